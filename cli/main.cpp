@@ -1,0 +1,20 @@
+// wirerig: the command-line tool. Each subcommand lives in its own *_command.{h,cpp}.
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "wire_command.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"wirerig: character rigging and animation with physically based wire deformations"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "wirerig " WIRERIG_VERSION);
+
+  wirerig::cli::WireCommandOptions wire_options;
+  CLI::App* wire = wirerig::cli::AddWireCommand(app, wire_options);
+
+  CLI11_PARSE(app, argc, argv);
+  if (wire->parsed())
+    return wirerig::cli::RunWireCommand(wire_options, std::cin, std::cout, std::cerr);
+  return 1;
+}

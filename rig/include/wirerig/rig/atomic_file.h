@@ -1,0 +1,17 @@
+// Writing files so that readers never see half of one: the bytes go to a temporary file in
+// the same folder, which is renamed over the target only after a successful write.
+#pragma once
+
+#include <filesystem>
+#include <string_view>
+
+#include "wirerig/rig/result.h"
+
+namespace wirerig {
+
+// Returns the path written, or an error naming the file and the cause. On failure the target
+// is untouched and no temporary file is left behind.
+Result<std::filesystem::path> WriteFileAtomically(const std::filesystem::path& path,
+                                                  std::string_view bytes);
+
+}  // namespace wirerig

@@ -1,0 +1,56 @@
+// Typed, path-aware reading of JSON objects for wirerig's file formats. Every accessor either
+// returns the value or throws FieldError carrying the JSON pointer of the field at fault
+// ("/bending/point_loads/2/at") and what is wrong. Loaders catch FieldError at their boundary
+// and turn it into a Result error, so exceptions never cross the public API.
+#pragma once
+
+#include <initializer_list>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "wirerig/runtime/conventions.h"
+
+namespace wirerig {
+
+struct FieldError : std::runtime_error {
+  FieldError(std::string field_path, const std::string& reason)
+      : std::runtime_error(field_path + ": " + reason), path(std::move(field_path)) {}
+  std::string path;
+};
+
+// A view of one JSON object at a path. The referenced json must outlive the view.
+class JsonObject {
+ public:
+  // Throws FieldError unless `value` is an object.
+  JsonObject(const nlohmann::json& value, std::string path);
+
+  const std::string& path() const { return path_; }
+  std::string PathOf(std::string_view key) const;
+  bool Has(std::string_view key) const;
+
+  // Throws FieldError if a key is not among `allowed` (catches misspelt fields).
+  void RejectUnknownKeys(std::initializer_list<std::string_view> allowed) const;
+
+  // Required and optional fields of each type; a present field of the wrong type throws.
+  const nlohmann::json& Required(std::string_view key) const;
+  JsonObject Object(std::string_view key) const;
+  double Number(std::string_view key) const;
+  double Number(std::string_view key, double fallback) const;
+  int Integer(std::string_view key, int fallback) const;
+  std::string String(std::string_view key) const;
+  Vec3 Vector3(std::string_view key, const Vec3& fallback) const;
+
+ private:
+  const nlohmann::json& json_;
+  std::string path_;
+};
+
+// Element access for arrays: throws FieldError unless `value` is an array.
+const nlohmann::json& RequireArray(const nlohmann::json& value, const std::string& path);
+// [x, y, z] of finite-or-not numbers; range checks are the runtime's job.
+Vec3 ReadVector3(const nlohmann::json& value, const std::string& path);
+
+}  // namespace wirerig

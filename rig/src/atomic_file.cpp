@@ -1,0 +1,36 @@
+#include "wirerig/rig/atomic_file.h"
+
+#include <unistd.h>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <system_error>
+
+namespace wirerig {
+
+Result<std::filesystem::path> WriteFileAtomically(const std::filesystem::path& path,
+                                                  std::string_view bytes) {
+  namespace fs = std::filesystem;
+  const fs::path temp = path.string() + ".tmp" + std::to_string(::getpid());
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out) return Error{path.string() + ": cannot write (" + std::strerror(errno) + ")"};
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.flush();
+    if (!out) {
+      std::error_code ignored;
+      fs::remove(temp, ignored);
+      return Error{path.string() + ": write failed"};
+    }
+  }
+  std::error_code error;
+  fs::rename(temp, path, error);
+  if (error) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+    return Error{path.string() + ": cannot replace (" + error.message() + ")"};
+  }
+  return path;
+}
+
+}  // namespace wirerig

@@ -1,0 +1,84 @@
+#include "wirerig/rig/json_fields.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+namespace wirerig {
+
+JsonObject::JsonObject(const nlohmann::json& value, std::string path)
+    : json_(value), path_(std::move(path)) {
+  if (!json_.is_object()) throw FieldError(path_.empty() ? "/" : path_, "must be an object");
+}
+
+std::string JsonObject::PathOf(std::string_view key) const {
+  return path_ + "/" + std::string(key);
+}
+
+bool JsonObject::Has(std::string_view key) const { return json_.contains(key); }
+
+void JsonObject::RejectUnknownKeys(std::initializer_list<std::string_view> allowed) const {
+  for (const auto& item : json_.items())
+    if (std::find(allowed.begin(), allowed.end(), item.key()) == allowed.end())
+      throw FieldError(PathOf(item.key()), "unknown field");
+}
+
+const nlohmann::json& JsonObject::Required(std::string_view key) const {
+  const auto it = json_.find(key);
+  if (it == json_.end()) throw FieldError(PathOf(key), "is required");
+  return *it;
+}
+
+JsonObject JsonObject::Object(std::string_view key) const {
+  return JsonObject(Required(key), PathOf(key));
+}
+
+double JsonObject::Number(std::string_view key) const {
+  const nlohmann::json& value = Required(key);
+  if (!value.is_number()) throw FieldError(PathOf(key), "must be a number");
+  return value.get<double>();
+}
+
+double JsonObject::Number(std::string_view key, double fallback) const {
+  return Has(key) ? Number(key) : fallback;
+}
+
+int JsonObject::Integer(std::string_view key, int fallback) const {
+  if (!Has(key)) return fallback;
+  const nlohmann::json& value = Required(key);
+  if (!value.is_number_integer()) throw FieldError(PathOf(key), "must be an integer");
+  const auto wide = value.get<long long>();
+  if (wide < std::numeric_limits<int>::min() || wide > std::numeric_limits<int>::max())
+    throw FieldError(PathOf(key), "is out of range");
+  return static_cast<int>(wide);
+}
+
+std::string JsonObject::String(std::string_view key) const {
+  const nlohmann::json& value = Required(key);
+  if (!value.is_string()) throw FieldError(PathOf(key), "must be a string");
+  return value.get<std::string>();
+}
+
+Vec3 JsonObject::Vector3(std::string_view key, const Vec3& fallback) const {
+  return Has(key) ? ReadVector3(Required(key), PathOf(key)) : fallback;
+}
+
+const nlohmann::json& RequireArray(const nlohmann::json& value, const std::string& path) {
+  if (!value.is_array()) throw FieldError(path, "must be an array");
+  return value;
+}
+
+Vec3 ReadVector3(const nlohmann::json& value, const std::string& path) {
+  if (!value.is_array() || value.size() != 3)
+    throw FieldError(path, "must be an array of 3 numbers [x, y, z]");
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) {
+    if (!value[i].is_number()) throw FieldError(path + "/" + std::to_string(i), "must be a number");
+    v[i] = value[i].get<double>();
+  }
+  return v;
+}
+
+}  // namespace wirerig

@@ -1,0 +1,237 @@
+#include "wirerig/rig/wire_problem.h"
+
+#include <istream>
+
+#include <nlohmann/json.hpp>
+
+#include "wirerig/rig/json_fields.h"
+#include "wirerig/runtime/axial_job.h"
+
+namespace wirerig {
+namespace {
+
+void ThrowIfInvalid(const Status& status, const std::string& prefix) {
+  if (status) return;
+  std::string path = prefix;
+  if (!status.field.empty()) path += "/" + std::string(status.field);
+  throw FieldError(path, std::string(status.reason));
+}
+
+Material ReadMaterial(const JsonObject& root) {
+  const nlohmann::json& value = root.Required("material");
+  if (value.is_string()) {
+    const std::string name = value.get<std::string>();
+    const Material* preset = FindMaterialPreset(name);
+    if (!preset)
+      throw FieldError(root.PathOf("material"), "unknown material preset '" + name + "'");
+    return *preset;
+  }
+  const JsonObject m = root.Object("material");
+  m.RejectUnknownKeys({"E", "nu", "density"});
+  const Material material{m.Number("E"), m.Number("nu"), m.Number("density", 0.0)};
+  ThrowIfInvalid(ValidateMaterial(material), m.path());
+  return material;
+}
+
+Section ReadSection(const JsonObject& root) {
+  const JsonObject s = root.Object("section");
+  s.RejectUnknownKeys({"A", "I", "strip", "tube"});
+  const int kinds = int(s.Has("strip")) + int(s.Has("tube")) + int(s.Has("A") || s.Has("I"));
+  if (kinds != 1)
+    throw FieldError(s.path(), "needs exactly one of {A, I}, {strip: {b, h}} or {tube: {r, h}}");
+  if (s.Has("strip")) {
+    const JsonObject strip = s.Object("strip");
+    strip.RejectUnknownKeys({"b", "h"});
+    const double b = strip.Number("b"), h = strip.Number("h");
+    ThrowIfInvalid(ValidateStrip(b, h), strip.path());
+    return StripSection(b, h);
+  }
+  if (s.Has("tube")) {
+    const JsonObject tube = s.Object("tube");
+    tube.RejectUnknownKeys({"r", "h"});
+    const double r = tube.Number("r"), h = tube.Number("h");
+    ThrowIfInvalid(ValidateTube(r, h), tube.path());
+    return TubeSection(r, h);
+  }
+  const Section section = CustomSection(s.Number("A"), s.Number("I"));
+  ThrowIfInvalid(ValidateSection(section), s.path());
+  return section;
+}
+
+// Calls read(element, element_path) for every element of the optional array `key`.
+template <typename Read>
+void ForEachElement(const JsonObject& object, std::string_view key, Read read) {
+  if (!object.Has(key)) return;
+  const std::string path = object.PathOf(key);
+  const nlohmann::json& array = RequireArray(object.Required(key), path);
+  for (std::size_t i = 0; i < array.size(); ++i)
+    read(JsonObject(array[i], path + "/" + std::to_string(i)));
+}
+
+WireBendingSpec ReadBending(const JsonObject& b) {
+  b.RejectUnknownKeys({"bc", "mode", "terms", "ends", "tip_force", "point_loads", "line_loads"});
+  WireBendingSpec spec;
+  const std::string bc = b.String("bc");
+  if (!ParseBoundaryCondition(bc, &spec.boundary))
+    throw FieldError(b.PathOf("bc"), "unknown boundary condition '" + bc +
+                                         "' (simply_supported, clamped, cantilever_free, "
+                                         "cantilever_guided)");
+  if (b.Has("mode")) {
+    const std::string mode = b.String("mode");
+    if (!ParseBendingMode(mode, &spec.mode))
+      throw FieldError(b.PathOf("mode"), "unknown mode '" + mode + "' (exact, series)");
+  }
+  spec.series_terms = b.Integer("terms", spec.series_terms);
+  if (b.Has("ends")) {
+    const std::string path = b.PathOf("ends");
+    const nlohmann::json& ends = RequireArray(b.Required("ends"), path);
+    if (ends.size() != 2) throw FieldError(path, "must hold two displacements [X0, X1]");
+    spec.start_displacement = ReadVector3(ends[0], path + "/0");
+    spec.end_displacement = ReadVector3(ends[1], path + "/1");
+  }
+  spec.tip_force = b.Vector3("tip_force", Vec3::Zero());
+  ForEachElement(b, "point_loads", [&](const JsonObject& load) {
+    load.RejectUnknownKeys({"at", "force"});
+    spec.point_loads.push_back(
+        {load.Number("at"), ReadVector3(load.Required("force"), load.PathOf("force"))});
+  });
+  ForEachElement(b, "line_loads", [&](const JsonObject& load) {
+    load.RejectUnknownKeys({"from", "to", "force_per_length"});
+    spec.line_loads.push_back(
+        {load.Number("from"), load.Number("to"),
+         ReadVector3(load.Required("force_per_length"), load.PathOf("force_per_length"))});
+  });
+  return spec;
+}
+
+WireAxialSpec ReadAxial(const JsonObject& a) {
+  a.RejectUnknownKeys({"fixed_at", "point_loads", "line_loads"});
+  WireAxialSpec spec;
+  spec.fixed_at = a.Number("fixed_at", 0.0);
+  ForEachElement(a, "point_loads", [&](const JsonObject& load) {
+    load.RejectUnknownKeys({"at", "force"});
+    spec.point_loads.push_back({load.Number("at"), load.Number("force")});
+  });
+  ForEachElement(a, "line_loads", [&](const JsonObject& load) {
+    load.RejectUnknownKeys({"from", "to", "force_per_length"});
+    spec.line_loads.push_back(
+        {load.Number("from"), load.Number("to"), load.Number("force_per_length")});
+  });
+  return spec;
+}
+
+// JSON pointer of a runtime job's field, for error messages.
+std::string JobFieldPath(const Status& status, std::string_view part) {
+  std::string path = "/";
+  path += part;
+  if (status.field == "length") return "/length";
+  if (status.field == "samples") return "/samples";
+  if (status.field == "bending_stiffness" || status.field == "axial_stiffness") return "/section";
+  if (status.field == "loads") return path;
+  if (status.field == "start_displacement") return path.append("/ends/0");
+  if (status.field == "end_displacement") return path.append("/ends/1");
+  if (status.field == "series_terms") return path.append("/terms");
+  if (status.field == "boundary") return path.append("/bc");
+  path.append("/").append(status.field);
+  if (status.index >= 0) path.append("/").append(std::to_string(status.index));
+  if (!status.member.empty()) path.append("/").append(status.member);
+  return path;
+}
+
+Error JobError(const Status& status, std::string_view part) {
+  return Error{JobFieldPath(status, part) + ": " + std::string(status.reason)};
+}
+
+}  // namespace
+
+Result<WireProblem> ParseWireProblem(const nlohmann::json& document) {
+  try {
+    const JsonObject root(document, "");
+    root.RejectUnknownKeys({"length", "material", "section", "samples", "bending", "axial"});
+    WireProblem problem;
+    problem.length = root.Number("length");
+    problem.material = ReadMaterial(root);
+    problem.section = ReadSection(root);
+    problem.samples = root.Integer("samples", 101);
+    if (problem.samples < 2 || problem.samples > WireProblem::kMaxSamples)
+      throw FieldError(root.PathOf("samples"), "must lie in [2, 1000000]");
+    if (root.Has("bending")) problem.bending = ReadBending(root.Object("bending"));
+    if (root.Has("axial")) problem.axial = ReadAxial(root.Object("axial"));
+    if (!problem.bending && !problem.axial)
+      throw FieldError("/", "needs \"bending\", \"axial\" or both");
+    return problem;
+  } catch (const FieldError& e) {
+    return Error{e.what()};
+  }
+}
+
+Result<WireProblem> LoadWireProblem(std::istream& in, std::string_view source_name) {
+  const nlohmann::json document = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (document.is_discarded()) return Error{std::string(source_name) + ": not valid JSON"};
+  Result<WireProblem> problem = ParseWireProblem(document);
+  if (!problem) return Error{std::string(source_name) + ": " + problem.error()};
+  return problem;
+}
+
+Result<WireSolution> SolveWireProblem(const WireProblem& problem) {
+  if (problem.samples < 2 || problem.samples > WireProblem::kMaxSamples)
+    return Error{"/samples: must lie in [2, 1000000]"};
+  WireSolution solution;
+  solution.stiffness = ComputeStiffness(problem.material, problem.section);
+  const auto n = static_cast<std::size_t>(problem.samples);
+  solution.v.resize(n);
+  for (std::size_t i = 0; i < n; ++i) solution.v[i] = double(i) / double(n - 1);
+
+  if (problem.bending) {
+    const WireBendingSpec& spec = *problem.bending;
+    solution.bending.resize(n);
+    solution.slope.resize(n);
+    solution.curvature.resize(n);
+    BendingJob job;
+    job.boundary = spec.boundary;
+    job.mode = spec.mode;
+    job.series_terms = spec.series_terms;
+    job.length = problem.length;
+    job.bending_stiffness = solution.stiffness.bending;
+    job.start_displacement = spec.start_displacement;
+    job.end_displacement = spec.end_displacement;
+    job.tip_force = spec.tip_force;
+    job.point_loads = spec.point_loads;
+    job.line_loads = spec.line_loads;
+    job.samples = solution.v;
+    job.displacement = solution.bending;
+    job.slope = solution.slope;
+    job.curvature = solution.curvature;
+    if (const Status status = job.Run(); !status) return JobError(status, "bending");
+  }
+  if (problem.axial) {
+    const WireAxialSpec& spec = *problem.axial;
+    solution.axial.resize(n);
+    solution.normal_force.resize(n);
+    AxialJob job;
+    job.length = problem.length;
+    job.axial_stiffness = solution.stiffness.axial;
+    job.fixed_at = spec.fixed_at;
+    job.point_loads = spec.point_loads;
+    job.line_loads = spec.line_loads;
+    job.samples = solution.v;
+    job.displacement = solution.axial;
+    job.normal_force = solution.normal_force;
+    if (const Status status = job.Run(); !status) return JobError(status, "axial");
+  }
+  return solution;
+}
+
+nlohmann::json WireSolutionToJson(const WireSolution& solution) {
+  nlohmann::json out;
+  out["v"] = solution.v;
+  if (!solution.bending.empty()) {
+    nlohmann::json bending = nlohmann::json::array();
+    for (const Vec3& x : solution.bending) bending.push_back({x.x(), x.y(), x.z()});
+    out["bending"] = std::move(bending);
+  }
+  if (!solution.axial.empty()) out["axial"] = solution.axial;
+  return out;
+}
+
+}  // namespace wirerig

@@ -1,0 +1,239 @@
+#include "wirerig/runtime/bending_job.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bending_internal.h"
+#include "validation.h"
+
+namespace wirerig {
+namespace {
+// Elementwise: Eigen's allFinite() computes x - x, which raises FE_INVALID on infinities.
+bool AllFinite(const Vec3& x) {
+  return std::isfinite(x.x()) && std::isfinite(x.y()) && std::isfinite(x.z());
+}
+}  // namespace
+
+std::string_view ToString(BoundaryCondition bc) {
+  switch (bc) {
+    case BoundaryCondition::kSimplySupported:
+      return "simply_supported";
+    case BoundaryCondition::kClamped:
+      return "clamped";
+    case BoundaryCondition::kCantileverFree:
+      return "cantilever_free";
+    case BoundaryCondition::kCantileverGuided:
+      return "cantilever_guided";
+  }
+  return "unknown";
+}
+
+bool ParseBoundaryCondition(std::string_view name, BoundaryCondition* out) {
+  for (BoundaryCondition bc :
+       {BoundaryCondition::kSimplySupported, BoundaryCondition::kClamped,
+        BoundaryCondition::kCantileverFree, BoundaryCondition::kCantileverGuided}) {
+    if (ToString(bc) == name) {
+      *out = bc;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool IsCantilever(BoundaryCondition bc) {
+  return bc == BoundaryCondition::kCantileverFree || bc == BoundaryCondition::kCantileverGuided;
+}
+
+std::string_view ToString(BendingMode mode) {
+  switch (mode) {
+    case BendingMode::kExact:
+      return "exact";
+    case BendingMode::kSeries:
+      return "series";
+  }
+  return "unknown";
+}
+
+bool ParseBendingMode(std::string_view name, BendingMode* out) {
+  if (name == "exact")
+    *out = BendingMode::kExact;
+  else if (name == "series")
+    *out = BendingMode::kSeries;
+  else
+    return false;
+  return true;
+}
+
+Status BendingJob::Validate() const {
+  switch (boundary) {
+    case BoundaryCondition::kSimplySupported:
+    case BoundaryCondition::kClamped:
+    case BoundaryCondition::kCantileverFree:
+    case BoundaryCondition::kCantileverGuided:
+      break;
+    default:
+      return Status::Invalid("boundary", "unknown boundary condition");
+  }
+  switch (mode) {
+    case BendingMode::kExact:
+      break;
+    case BendingMode::kSeries:
+      if (series_terms < 1 || series_terms > kMaxSeriesTerms)
+        return Status::Invalid("series_terms", "must lie in [1, 100000]");
+      break;
+    default:
+      return Status::Invalid("mode", "unknown bending mode");
+  }
+  if (Status s = detail::CheckPositive("length", length, "must be positive and finite (m)"); !s)
+    return s;
+  if (Status s = detail::CheckPositive("bending_stiffness", bending_stiffness,
+                                       "must be positive and finite (N m^2)");
+      !s)
+    return s;
+  const double compliance = detail::NormalizedCompliance(*this);
+  if (!std::isfinite(compliance))
+    return Status::Invalid("bending_stiffness", "too small for the length: L^3/EI overflows");
+  if (!AllFinite(start_displacement))
+    return Status::Invalid("start_displacement", "must be finite (m)");
+  if (!AllFinite(end_displacement))
+    return Status::Invalid("end_displacement", "must be finite (m)");
+  if (!AllFinite(tip_force)) return Status::Invalid("tip_force", "must be finite (N)");
+  if (!IsCantilever(boundary) && !tip_force.isZero(0.0))
+    return Status::Invalid("tip_force", "applies to cantilevers only");
+
+  double load_sum = tip_force.lpNorm<1>();
+  for (std::size_t i = 0; i < point_loads.size(); ++i) {
+    const int index = static_cast<int>(i);
+    if (Status s = detail::CheckLoadPosition("point_loads", index, point_loads[i].at); !s) return s;
+    if (!AllFinite(point_loads[i].force))
+      return Status::InvalidElement("point_loads", index, "force", "must be finite (N)");
+    load_sum += point_loads[i].force.lpNorm<1>();
+  }
+  for (std::size_t i = 0; i < line_loads.size(); ++i) {
+    const LineLoad& load = line_loads[i];
+    const int index = static_cast<int>(i);
+    if (Status s = detail::CheckLoadExtent("line_loads", index, load.from, load.to); !s) return s;
+    if (!AllFinite(load.force_per_length))
+      return Status::InvalidElement("line_loads", index, "force_per_length",
+                                    "must be finite (N/m)");
+    load_sum += load.force_per_length.lpNorm<1>() * length * (load.to - load.from);
+  }
+  const double bound =
+      start_displacement.lpNorm<1>() + end_displacement.lpNorm<1>() + compliance * load_sum;
+  if (!(std::isfinite(bound) && bound < detail::kMaxDeflectionBound))
+    return Status::Invalid("loads", "too large for the stiffness: the deflection would overflow");
+  if (Status s = detail::CheckSamples(samples); !s) return s;
+  if (Status s = detail::CheckOutput("displacement", displacement.size(), samples.size(), true); !s)
+    return s;
+  if (Status s = detail::CheckOutput("slope", slope.size(), samples.size(), false); !s) return s;
+  if (Status s = detail::CheckOutput("curvature", curvature.size(), samples.size(), false); !s)
+    return s;
+  return Status::Ok();
+}
+
+Status BendingJob::Run() const {
+  const Status status = Validate();
+  if (!status) return status;
+  if (mode == BendingMode::kExact)
+    detail::RunExactBending(*this);
+  else
+    detail::RunSeriesBending(*this);
+  return Status::Ok();
+}
+
+namespace detail {
+namespace {
+
+// X(v) = X0 + c1 v + c2 v^2 + c3 v^3 + compliance * M(v), M the Macaulay particular solution.
+struct ExactPolynomial {
+  Vec3 c1, c2, c3;
+};
+
+ExactPolynomial SolveExactPolynomial(const BendingJob& job, double compliance) {
+  // m_k = M^(k)(1) (PHYSICS.md section 2), accumulated without the compliance factor.
+  Vec3 m0 = Vec3::Zero(), m1 = Vec3::Zero(), m2 = Vec3::Zero(), m3 = Vec3::Zero();
+  for (const PointLoad& load : job.point_loads) {
+    const double w = 1.0 - load.at;
+    m0 += load.force * (w * w * w / 6.0);
+    m1 += load.force * (w * w / 2.0);
+    m2 += load.force * w;
+    m3 += load.force;
+  }
+  for (const LineLoad& load : job.line_loads) {
+    const Vec3 q = load.force_per_length * job.length;  // per unit v
+    const double wa = 1.0 - load.from, wb = 1.0 - load.to;
+    m0 += q * ((wa * wa * wa * wa - wb * wb * wb * wb) / 24.0);
+    m1 += q * ((wa * wa * wa - wb * wb * wb) / 6.0);
+    m2 += q * ((wa * wa - wb * wb) / 2.0);
+    m3 += q * (load.to - load.from);
+  }
+  m0 *= compliance;
+  m1 *= compliance;
+  m2 *= compliance;
+  m3 *= compliance;
+  const Vec3 q_tip = -job.tip_force * compliance;
+  const Vec3 d = job.end_displacement - job.start_displacement;
+  switch (job.boundary) {
+    case BoundaryCondition::kSimplySupported:
+      return {d - m0 + m2 / 6.0, Vec3::Zero(), -m2 / 6.0};
+    case BoundaryCondition::kClamped:
+      return {Vec3::Zero(), 3.0 * d + m1 - 3.0 * m0, -2.0 * d + 2.0 * m0 - m1};
+    case BoundaryCondition::kCantileverFree:
+      return {Vec3::Zero(), (m3 - m2 - q_tip) / 2.0, (q_tip - m3) / 6.0};
+    case BoundaryCondition::kCantileverGuided:
+      return {Vec3::Zero(), -(q_tip - m3) / 4.0 - m1 / 2.0, (q_tip - m3) / 6.0};
+  }
+  return {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+}
+
+// Evaluates X (and optionally dX/dv, d2X/dv2) at every sample; derivatives are converted to
+// arc length on output. Templated so the displacement-only loop carries no branches.
+template <bool kSlope, bool kCurvature>
+void EvaluateExact(const BendingJob& job, const ExactPolynomial& poly, double compliance) {
+  const double inv_length = 1.0 / job.length;
+  const Vec3 x0 = job.start_displacement;
+  for (std::size_t i = 0; i < job.samples.size(); ++i) {
+    const double v = job.samples[i];
+    Vec3 m = Vec3::Zero(), dm = Vec3::Zero(), ddm = Vec3::Zero();
+    for (const PointLoad& load : job.point_loads) {
+      const double t = std::max(v - load.at, 0.0);
+      m += load.force * (t * t * t / 6.0);
+      if constexpr (kSlope) dm += load.force * (t * t / 2.0);
+      if constexpr (kCurvature) ddm += load.force * t;
+    }
+    for (const LineLoad& load : job.line_loads) {
+      const Vec3 q = load.force_per_length * job.length;
+      const double ta = std::max(v - load.from, 0.0), tb = std::max(v - load.to, 0.0);
+      const double ta2 = ta * ta, tb2 = tb * tb;
+      m += q * ((ta2 * ta2 - tb2 * tb2) / 24.0);
+      if constexpr (kSlope) dm += q * ((ta2 * ta - tb2 * tb) / 6.0);
+      if constexpr (kCurvature) ddm += q * ((ta2 - tb2) / 2.0);
+    }
+    job.displacement[i] = x0 + v * (poly.c1 + v * (poly.c2 + v * poly.c3)) + compliance * m;
+    if constexpr (kSlope)
+      job.slope[i] =
+          (poly.c1 + v * (2.0 * poly.c2 + 3.0 * v * poly.c3) + compliance * dm) * inv_length;
+    if constexpr (kCurvature)
+      job.curvature[i] =
+          (2.0 * poly.c2 + 6.0 * v * poly.c3 + compliance * ddm) * (inv_length * inv_length);
+  }
+}
+
+}  // namespace
+
+void RunExactBending(const BendingJob& job) {
+  const double compliance = NormalizedCompliance(job);
+  const ExactPolynomial poly = SolveExactPolynomial(job, compliance);
+  const bool slope = !job.slope.empty(), curvature = !job.curvature.empty();
+  if (slope && curvature)
+    EvaluateExact<true, true>(job, poly, compliance);
+  else if (slope)
+    EvaluateExact<true, false>(job, poly, compliance);
+  else if (curvature)
+    EvaluateExact<false, true>(job, poly, compliance);
+  else
+    EvaluateExact<false, false>(job, poly, compliance);
+}
+
+}  // namespace detail
+}  // namespace wirerig

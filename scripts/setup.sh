@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Installs the Debian packages wirerig needs and caches the real test meshes.
+# Idempotent: prints nothing and installs nothing when everything is present.
+# Usage: scripts/setup.sh            (as root, or with sudo available)
+# Env:   WIRERIG_ASSET_DIR  where meshes go (default: <repo>/.cache/assets, git-ignored)
+set -euo pipefail
+
+repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+asset_dir=${WIRERIG_ASSET_DIR:-$repo_root/.cache/assets}
+
+# Build toolchain, libraries the targets link, test and benchmark frameworks.
+packages=(
+  cmake ninja-build g++ pkg-config git ca-certificates
+  libeigen3-dev libglm-dev nlohmann-json3-dev libcli11-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  assimp-testmodels
+)
+
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+
+apt_install() {
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get -qq -o DPkg::Lock::Timeout=600 update >/dev/null
+  "${sudo_cmd[@]}" apt-get -qq install -y --no-install-recommends \
+    -o DPkg::Lock::Timeout=600 "$@" >/dev/null
+}
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  apt_install "${missing[@]}"
+fi
+
+# Real meshes (docs/assets.md): Assimp's test models are used in place; the
+# CGAL demo meshes are extracted from the libcgal-demo .deb without installing it.
+mkdir -p "$asset_dir"
+cgal_meshes=(cow.off elephant.off man.off camel.off hand.off cactus.off)
+need_cgal=0
+for m in "${cgal_meshes[@]}"; do [ -s "$asset_dir/$m" ] || need_cgal=1; done
+if [ $need_cgal -eq 1 ]; then
+  echo "setup: fetching CGAL demo meshes into $asset_dir"
+  work=$(mktemp -d)
+  trap 'rm -rf "$work"' EXIT
+  (cd "$work" && apt-get -qq -o APT::Sandbox::User=root -o DPkg::Lock::Timeout=600 download libcgal-demo >/dev/null)
+  dpkg -x "$work"/libcgal-demo_*.deb "$work/x"
+  tar -xzf "$work/x/usr/share/doc/libcgal-dev/data.tar.gz" -C "$work"
+  for m in "${cgal_meshes[@]}"; do
+    src=$(find "$work/data/meshes" -name "$m" | head -n 1)
+    [ -n "$src" ] || { echo "setup: $m is missing from libcgal-demo" >&2; exit 1; }
+    cp "$src" "$asset_dir/$m.tmp" && mv "$asset_dir/$m.tmp" "$asset_dir/$m"
+  done
+fi
+ln -sfn /usr/share/assimp/models "$asset_dir/assimp"

@@ -1,0 +1,28 @@
+// A downstream program built against the installed wirerig package: solves a simply
+// supported wire with a centre load and checks F L^3 / (48 EI).
+#include <cmath>
+#include <cstdio>
+
+#include <wirerig/rig/wire_problem.h>
+#include <wirerig/runtime/bending_job.h>
+#include <nlohmann/json.hpp>
+
+int main() {
+  const wirerig::PointLoad load{0.5, wirerig::Vec3(0.0, -10.0, 0.0)};
+  const double v = 0.5;
+  wirerig::Vec3 x;
+  wirerig::BendingJob job;
+  job.length = 2.0;
+  job.bending_stiffness = 20.0;
+  job.point_loads = {&load, 1};
+  job.samples = {&v, 1};
+  job.displacement = {&x, 1};
+  if (!job.Run()) return 1;
+  const double expected = -10.0 * 8.0 / (48.0 * 20.0);
+  std::printf("centre deflection %.9f m, expected %.9f m\n", x.y(), expected);
+  const auto problem = wirerig::ParseWireProblem(nlohmann::json::parse(
+      R"({"length": 1, "material": "steel", "section": {"A": 1e-4, "I": 1e-8},
+          "axial": {"point_loads": [{"at": 1, "force": 1}]}})"));
+  if (!problem) return 3;
+  return std::abs(x.y() - expected) < 1e-12 ? 0 : 2;
+}

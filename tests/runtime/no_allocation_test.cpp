@@ -1,0 +1,107 @@
+// Proves that the jobs' Run() never allocates: global operator new is replaced by one that
+// counts, and the count must not change across Run().
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+#include <vector>
+
+#include "wirerig/runtime/axial_job.h"
+#include "wirerig/runtime/bending_job.h"
+#include "wirerig/runtime/curve.h"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}
+
+void* operator new(std::size_t size) {
+  ++g_allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return operator new(size); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace wirerig {
+namespace {
+
+TEST(NoAllocation, CountingAllocatorSeesAllocations) {
+  const long before = g_allocations;
+  auto* p = new std::vector<int>(100);
+  delete p;
+  EXPECT_GE(g_allocations - before, 2);
+}
+
+TEST(NoAllocation, BendingRunInBothModesWithAllOutputs) {
+  std::vector<PointLoad> p = {{0.2, Vec3(0, -1, 0)}, {0.7, Vec3(1, 0, 0)}};
+  std::vector<LineLoad> q = {{0.1, 0.5, Vec3(0, 0, 2)}};
+  std::vector<double> v(257);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = double(i) / double(v.size() - 1);
+  std::vector<Vec3> x(v.size()), slope(v.size()), curvature(v.size());
+  for (BendingMode mode : {BendingMode::kExact, BendingMode::kSeries}) {
+    BendingJob job;
+    job.boundary = BoundaryCondition::kCantileverFree;
+    job.mode = mode;
+    job.series_terms = 300;  // more than one stack block of terms
+    job.length = 1.5;
+    job.bending_stiffness = 3.0;
+    job.tip_force = Vec3(0, 1, 0);
+    job.point_loads = p;
+    job.line_loads = q;
+    job.samples = v;
+    job.displacement = x;
+    job.slope = slope;
+    job.curvature = curvature;
+    const long before = g_allocations;
+    const Status status = job.Run();
+    const long after = g_allocations;
+    ASSERT_TRUE(status.ok());
+    EXPECT_EQ(after, before) << ToString(mode);
+  }
+}
+
+TEST(NoAllocation, AxialRunWithNormalForce) {
+  std::vector<AxialPointLoad> p = {{0.2, -1.0}, {0.9, 2.0}};
+  std::vector<AxialLineLoad> q = {{0.3, 0.6, 1.0}};
+  std::vector<double> v = {0.0, 0.25, 0.5, 0.75, 1.0};
+  std::vector<double> x(v.size()), n(v.size());
+  AxialJob job;
+  job.length = 1.0;
+  job.axial_stiffness = 10.0;
+  job.fixed_at = 0.5;
+  job.point_loads = p;
+  job.line_loads = q;
+  job.samples = v;
+  job.displacement = x;
+  job.normal_force = n;
+  const long before = g_allocations;
+  const Status status = job.Run();
+  const long after = g_allocations;
+  ASSERT_TRUE(status.ok());
+  EXPECT_EQ(after, before);
+}
+
+TEST(NoAllocation, CurveQueries) {
+  std::vector<Vec3> points;
+  for (int i = 0; i < 12; ++i) points.emplace_back(std::cos(i * 0.5), std::sin(i * 0.5), 0.1 * i);
+  Curve curve;
+  ASSERT_TRUE(Curve::Build(points, false, CurveInterpolation::kCubic, &curve).ok());
+  std::vector<Vec3> resampled(40);
+  const long before = g_allocations;
+  Vec3 sum = Vec3::Zero();
+  for (int i = 0; i <= 100; ++i) {
+    const double v = i / 100.0;
+    sum += curve.Position(v) + curve.Tangent(v) + curve.FrameAt(v).normal;
+  }
+  curve.Resample(resampled);
+  const long after = g_allocations;
+  EXPECT_TRUE(sum.allFinite());
+  EXPECT_EQ(after, before);
+}
+
+}  // namespace
+}  // namespace wirerig
