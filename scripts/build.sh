@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Configures and builds wirerig. Usage: scripts/build.sh [release|asan]
+#   release  ->  build/        optimised, with tests, benchmarks and the CLI
+#   asan     ->  build-asan/   AddressSanitizer + UndefinedBehaviorSanitizer, no benchmarks
+set -euo pipefail
+repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+kind=${1:-release}
+jobs=${WIRERIG_JOBS:-$(nproc)}
+
+case "$kind" in
+  release) dir=$repo_root/build
+           flags=(-DCMAKE_BUILD_TYPE=Release) ;;
+  asan)    dir=$repo_root/build-asan
+           flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DWIRERIG_SANITIZE=ON
+                  -DWIRERIG_BUILD_BENCHMARKS=OFF) ;;
+  *) echo "usage: $0 [release|asan]" >&2; exit 2 ;;
+esac
+
+generator=()
+command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
+if [ ! -f "$dir/CMakeCache.txt" ]; then
+  cmake -S "$repo_root" -B "$dir" "${generator[@]}" "${flags[@]}" -DWIRERIG_WARNINGS_AS_ERRORS=ON >/dev/null
+fi
+cmake --build "$dir" --parallel "$jobs"
