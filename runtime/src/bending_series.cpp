@@ -89,7 +89,8 @@ void RunSeriesBending(const BendingJob& job) {
     for (std::size_t i = 0; i < job.samples.size(); ++i) {
       const double x = kPi * job.samples[i];
       const double step_sin = std::sin(x), step_cos = std::cos(x);
-      double s = std::sin(first * x), c = std::cos(first * x);
+      double s = step_sin, c = step_cos;  // sin, cos of first * x
+      if (first > 1) s = std::sin(first * x), c = std::cos(first * x);
       Vec3 sum = Vec3::Zero(), dsum = Vec3::Zero(), ddsum = Vec3::Zero();
       for (int k = 0; k < count; ++k) {
         const double npi = (first + k) * kPi;
