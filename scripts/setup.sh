@@ -19,9 +19,16 @@ packages=(
 sudo_cmd=()
 if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
 
+apt_updated=0
+apt_update_once() {
+  [ $apt_updated -eq 1 ] && return 0
+  "${sudo_cmd[@]}" apt-get -qq -o DPkg::Lock::Timeout=600 update >/dev/null
+  apt_updated=1
+}
+
 apt_install() {
   export DEBIAN_FRONTEND=noninteractive
-  "${sudo_cmd[@]}" apt-get -qq -o DPkg::Lock::Timeout=600 update >/dev/null
+  apt_update_once
   "${sudo_cmd[@]}" apt-get -qq install -y --no-install-recommends \
     -o DPkg::Lock::Timeout=600 "$@" >/dev/null
 }
@@ -47,7 +54,11 @@ if [ $need_cgal -eq 1 ]; then
   echo "setup: fetching CGAL demo meshes into $asset_dir"
   work=$(mktemp -d)
   trap 'rm -rf "$work"' EXIT
-  (cd "$work" && apt-get -qq -o APT::Sandbox::User=root -o DPkg::Lock::Timeout=600 download libcgal-demo >/dev/null)
+  download() {
+    (cd "$work" && apt-get -qq -o APT::Sandbox::User=root download libcgal-demo >/dev/null 2>&1)
+  }
+  download || { apt_update_once && download; } ||
+    { echo "setup: cannot download libcgal-demo from the Debian archive" >&2; exit 1; }
   dpkg -x "$work"/libcgal-demo_*.deb "$work/x"
   tar -xzf "$work/x/usr/share/doc/libcgal-dev/data.tar.gz" -C "$work"
   for m in "${cgal_meshes[@]}"; do

@@ -4,14 +4,11 @@ namespace wirerig {
 
 std::string ToString(const Status& status) {
   if (status.ok()) return "ok";
+  // Appends only: GCC 12 reports a false -Wrestrict on chained operator+ at -O3.
   std::string text(status.field);
-  if (status.index >= 0) text += "[" + std::to_string(status.index) + "]";
-  if (!status.member.empty()) {
-    text += ".";
-    text += status.member;
-  }
-  text += ": ";
-  text += status.reason;
+  if (status.index >= 0) text.append("[").append(std::to_string(status.index)).append("]");
+  if (!status.member.empty()) text.append(".").append(status.member);
+  text.append(": ").append(status.reason);
   return text;
 }
 

@@ -1,0 +1,33 @@
+# wirerig_target_options(<target>): warnings and sanitizers as PRIVATE options of
+# one target, so nothing leaks into consumers of the installed package.
+function(wirerig_target_options target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
+                                           -Wno-sign-conversion)
+  if(WIRERIG_WARNINGS_AS_ERRORS)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+  if(WIRERIG_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=address,undefined
+                                             -fno-sanitize-recover=all -fno-omit-frame-pointer)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
+endfunction()
+
+# wirerig_add_library(<name> <sources>...): the library wirerig_<name> with its alias
+# wirerig::<name>, its public include/ folder, per-target options, and install rules into the
+# exported package.
+function(wirerig_add_library name)
+  set(target wirerig_${name})
+  add_library(${target} ${ARGN})
+  add_library(wirerig::${name} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${name})
+  target_include_directories(${target} PUBLIC
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  target_compile_features(${target} PUBLIC cxx_std_20)
+  wirerig_target_options(${target})
+  install(TARGETS ${target} EXPORT wirerigTargets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  install(DIRECTORY include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endfunction()
