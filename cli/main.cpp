@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "rig_command.h"
 #include "wire_command.h"
 
 int main(int argc, char** argv) {

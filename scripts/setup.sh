@@ -11,7 +11,7 @@ asset_dir=${WIRERIG_ASSET_DIR:-$repo_root/.cache/assets}
 # Build toolchain, libraries the targets link, test and benchmark frameworks.
 packages=(
   cmake ninja-build g++ pkg-config git ca-certificates
-  libeigen3-dev libglm-dev nlohmann-json3-dev libcli11-dev
+  libeigen3-dev libglm-dev nlohmann-json3-dev libcli11-dev libassimp-dev libcgal-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   assimp-testmodels
 )

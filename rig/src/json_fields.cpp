@@ -70,6 +70,21 @@ const nlohmann::json& RequireArray(const nlohmann::json& value, const std::strin
   return value;
 }
 
+std::size_t ArraySize(const nlohmann::json& array) { return array.size(); }
+
+const nlohmann::json& ArrayElement(const nlohmann::json& array, std::size_t index) {
+  return array[index];
+}
+
+std::vector<Vec3> ReadVector3Array(const nlohmann::json& value, const std::string& path) {
+  RequireArray(value, path);
+  std::vector<Vec3> points;
+  points.reserve(value.size());
+  for (std::size_t i = 0; i < value.size(); ++i)
+    points.push_back(ReadVector3(value[i], path + "/" + std::to_string(i)));
+  return points;
+}
+
 Vec3 ReadVector3(const nlohmann::json& value, const std::string& path) {
   if (!value.is_array() || value.size() != 3)
     throw FieldError(path, "must be an array of 3 numbers [x, y, z]");

@@ -5,68 +5,11 @@
 #include <nlohmann/json.hpp>
 
 #include "wirerig/rig/json_fields.h"
+#include "wirerig/rig/json_physics.h"
 #include "wirerig/runtime/axial_job.h"
 
 namespace wirerig {
 namespace {
-
-void ThrowIfInvalid(const Status& status, const std::string& prefix) {
-  if (status) return;
-  std::string path = prefix;
-  if (!status.field.empty()) path += "/" + std::string(status.field);
-  throw FieldError(path, std::string(status.reason));
-}
-
-Material ReadMaterial(const JsonObject& root) {
-  const nlohmann::json& value = root.Required("material");
-  if (value.is_string()) {
-    const std::string name = value.get<std::string>();
-    const Material* preset = FindMaterialPreset(name);
-    if (!preset)
-      throw FieldError(root.PathOf("material"), "unknown material preset '" + name + "'");
-    return *preset;
-  }
-  const JsonObject m = root.Object("material");
-  m.RejectUnknownKeys({"E", "nu", "density"});
-  const Material material{m.Number("E"), m.Number("nu"), m.Number("density", 0.0)};
-  ThrowIfInvalid(ValidateMaterial(material), m.path());
-  return material;
-}
-
-Section ReadSection(const JsonObject& root) {
-  const JsonObject s = root.Object("section");
-  s.RejectUnknownKeys({"A", "I", "strip", "tube"});
-  const int kinds = int(s.Has("strip")) + int(s.Has("tube")) + int(s.Has("A") || s.Has("I"));
-  if (kinds != 1)
-    throw FieldError(s.path(), "needs exactly one of {A, I}, {strip: {b, h}} or {tube: {r, h}}");
-  if (s.Has("strip")) {
-    const JsonObject strip = s.Object("strip");
-    strip.RejectUnknownKeys({"b", "h"});
-    const double b = strip.Number("b"), h = strip.Number("h");
-    ThrowIfInvalid(ValidateStrip(b, h), strip.path());
-    return StripSection(b, h);
-  }
-  if (s.Has("tube")) {
-    const JsonObject tube = s.Object("tube");
-    tube.RejectUnknownKeys({"r", "h"});
-    const double r = tube.Number("r"), h = tube.Number("h");
-    ThrowIfInvalid(ValidateTube(r, h), tube.path());
-    return TubeSection(r, h);
-  }
-  const Section section = CustomSection(s.Number("A"), s.Number("I"));
-  ThrowIfInvalid(ValidateSection(section), s.path());
-  return section;
-}
-
-// Calls read(element, element_path) for every element of the optional array `key`.
-template <typename Read>
-void ForEachElement(const JsonObject& object, std::string_view key, Read read) {
-  if (!object.Has(key)) return;
-  const std::string path = object.PathOf(key);
-  const nlohmann::json& array = RequireArray(object.Required(key), path);
-  for (std::size_t i = 0; i < array.size(); ++i)
-    read(JsonObject(array[i], path + "/" + std::to_string(i)));
-}
 
 WireBendingSpec ReadBending(const JsonObject& b) {
   b.RejectUnknownKeys({"bc", "mode", "terms", "ends", "tip_force", "point_loads", "line_loads"});
@@ -150,8 +93,8 @@ Result<WireProblem> ParseWireProblem(const nlohmann::json& document) {
     root.RejectUnknownKeys({"length", "material", "section", "samples", "bending", "axial"});
     WireProblem problem;
     problem.length = root.Number("length");
-    problem.material = ReadMaterial(root);
-    problem.section = ReadSection(root);
+    problem.material = ReadMaterial(root, "material");
+    problem.section = ReadSection(root, "section");
     problem.samples = root.Integer("samples", 101);
     if (problem.samples < 2 || problem.samples > WireProblem::kMaxSamples)
       throw FieldError(root.PathOf("samples"), "must lie in [2, 1000000]");

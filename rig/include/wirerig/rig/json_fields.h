@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -50,7 +51,21 @@ class JsonObject {
 
 // Element access for arrays: throws FieldError unless `value` is an array.
 const nlohmann::json& RequireArray(const nlohmann::json& value, const std::string& path);
+std::size_t ArraySize(const nlohmann::json& array);
+const nlohmann::json& ArrayElement(const nlohmann::json& array, std::size_t index);
 // [x, y, z] of finite-or-not numbers; range checks are the runtime's job.
 Vec3 ReadVector3(const nlohmann::json& value, const std::string& path);
+// An array of [x, y, z].
+std::vector<Vec3> ReadVector3Array(const nlohmann::json& value, const std::string& path);
+
+// Calls read(JsonObject element) for every element of the optional array `key` of `object`.
+template <typename Read>
+void ForEachElement(const JsonObject& object, std::string_view key, Read read) {
+  if (!object.Has(key)) return;
+  const std::string path = object.PathOf(key);
+  const nlohmann::json& array = RequireArray(object.Required(key), path);
+  for (std::size_t i = 0; i < ArraySize(array); ++i)
+    read(JsonObject(ArrayElement(array, i), path + "/" + std::to_string(i)));
+}
 
 }  // namespace wirerig

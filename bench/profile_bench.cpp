@@ -1,0 +1,132 @@
+// The paper's Table 1 analogue: generate 103 profile curves with 20, 50 and 100 points each
+// on cow.off (parts from its curve skeleton, profiles shared out by central-curve length), and
+// the same on a 100k-triangle mesh (a procedural capsule). BVHs are built beforehand; their
+// build time is reported apart, by bvh_bench. Targets: under 1 ms for 103 x 100 on cow.off.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <vector>
+
+#include "wirerig/rig/curve_skeleton.h"
+#include "wirerig/rig/mesh_import.h"
+#include "wirerig/rig/part_assignment.h"
+#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/rig/profile_curves.h"
+#include "wirerig/rig/triangle_bvh.h"
+
+#ifndef WIRERIG_ASSET_DIR
+#define WIRERIG_ASSET_DIR "/work/main/.cache/assets"
+#endif
+
+namespace wirerig {
+namespace {
+
+constexpr int kProfiles = 103;
+
+// Everything profile generation needs, prepared once.
+struct Scene {
+  Mesh mesh;
+  TriangleBvh mesh_bvh;
+  std::vector<TriangleBvh> part_bvhs;
+  std::vector<Curve> curves;
+  std::vector<int> counts;  // profiles per part, summing to kProfiles
+  PartAssignment assignment;
+};
+
+double PolylineLength(const std::vector<Vec3>& points) {
+  double length = 0.0;
+  for (std::size_t k = 1; k < points.size(); ++k) length += (points[k] - points[k - 1]).norm();
+  return length;
+}
+
+void Prepare(Scene& scene, const RigDescription& description) {
+  scene.mesh_bvh = TriangleBvh::Build(scene.mesh.welded_positions, scene.mesh.welded_triangles);
+  scene.assignment = AssignParts(scene.mesh, description, scene.mesh_bvh).value();
+  double total = 0.0;
+  for (const PartDescription& part : description.parts) total += PolylineLength(part.central_curve);
+  int assigned = 0;
+  for (std::size_t i = 0; i < description.parts.size(); ++i) {
+    const PartDescription& part = description.parts[i];
+    Curve curve;
+    Curve::Build(part.central_curve, false,
+                 part.central_curve.size() >= 3 ? CurveInterpolation::kCubic : CurveInterpolation::kLinear,
+                 &curve);
+    scene.curves.push_back(curve);
+    const int count = i + 1 == description.parts.size()
+                          ? kProfiles - assigned
+                          : std::max(2, int(std::lround(kProfiles * PolylineLength(part.central_curve) / total)));
+    scene.counts.push_back(count);
+    assigned += count;
+  }
+  for (std::size_t i = 0; i < description.parts.size(); ++i)
+    scene.part_bvhs.push_back(TriangleBvh::Build(scene.mesh.welded_positions, scene.mesh.welded_triangles,
+                                                 scene.assignment.part_triangles[i]));
+}
+
+const Scene& Cow() {
+  static const Scene scene = [] {
+    Scene s;
+    s.mesh = ImportMesh(std::string(WIRERIG_ASSET_DIR) + "/cow.off").value().mesh;
+    const CurveSkeleton skeleton = ExtractCurveSkeleton(s.mesh).value();
+    Prepare(s, DescribeFromCurveSkeleton(s.mesh, skeleton).value());
+    return s;
+  }();
+  return scene;
+}
+
+const Scene& Capsule100k() {
+  static const Scene scene = [] {
+    Scene s;
+    s.mesh = MakeCapsule(0.1, 1.0, 256, 180, 8);  // ~100k triangles
+    RigDescription description;
+    description.parts.push_back({"body", {Vec3(0, 0, 0), Vec3(0, 1, 0)}, kProfiles, 20, "", {}});
+    Prepare(s, description);
+    return s;
+  }();
+  return scene;
+}
+
+// Generates all 103 profiles. `full`: the pipeline's defaults (2 re-centring passes, other-part
+// and orientation diagnostics); otherwise the paper's operation alone (one ray per point).
+void Run(benchmark::State& state, const Scene& scene, bool full) {
+  const int points = int(state.range(0));
+  std::size_t rays = 0;
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < scene.curves.size(); ++i) {
+      ProfileRequest request;
+      request.central_curve = &scene.curves[i];
+      request.profile_count = scene.counts[i];
+      request.points_per_profile = points;
+      request.part_bvh = &scene.part_bvhs[i];
+      if (full) {
+        request.mesh_bvh = &scene.mesh_bvh;
+        request.triangle_part = scene.assignment.triangle_part;
+        request.part = int(i);
+        request.positions = scene.mesh.welded_positions;
+        request.triangles = scene.mesh.welded_triangles;
+      } else {
+        request.recentre_passes = 0;
+      }
+      const ProfileSet set = GenerateProfiles(request);
+      rays += set.diagnostics.rays;
+      benchmark::DoNotOptimize(set.profiles.data());
+    }
+  }
+  state.counters["triangles"] = double(scene.mesh.welded_triangles.size());
+  state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
+}
+
+void BM_CowProfiles(benchmark::State& state) { Run(state, Cow(), false); }
+void BM_CowProfilesFullPipeline(benchmark::State& state) { Run(state, Cow(), true); }
+void BM_Capsule100kProfiles(benchmark::State& state) { Run(state, Capsule100k(), false); }
+void BM_Capsule100kProfilesFullPipeline(benchmark::State& state) { Run(state, Capsule100k(), true); }
+
+BENCHMARK(BM_CowProfiles)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CowProfilesFullPipeline)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Capsule100kProfiles)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Capsule100kProfilesFullPipeline)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace wirerig
+
+BENCHMARK_MAIN();

@@ -1,0 +1,133 @@
+#include "rig_command.h"
+
+#include <cstdio>
+#include <ostream>
+
+#include <CLI/CLI.hpp>
+
+#include "wirerig/rig/curve_skeleton.h"
+#include "wirerig/rig/mesh_import.h"
+#include "wirerig/rig/mesh_statistics.h"
+#include "wirerig/rig/rig_builder.h"
+#include "wirerig/rig/rig_file.h"
+
+namespace wirerig::cli {
+namespace {
+
+std::string Format(const char* format, auto... args) {
+  char buffer[512];
+  std::snprintf(buffer, sizeof buffer, format, args...);
+  return buffer;
+}
+
+void PrintMeshSummary(std::ostream& out, const std::string& path, const ImportedMesh& imported) {
+  const Mesh& mesh = imported.mesh;
+  const ImportReport& r = imported.report;
+  const MeshStatistics stats = ComputeMeshStatistics(mesh);
+  out << Format("mesh: %s (%s): %zu vertices (welded from %zu), %zu triangles, %zu mesh parts\n",
+                path.c_str(), r.format.c_str(), stats.vertices, stats.render_vertices,
+                stats.triangles, mesh.parts.size());
+  out << Format("  up axis +%s (%s), %g m per unit (%s)\n", std::string(ToString(r.source_up)).c_str(),
+                r.up_source.c_str(), r.unit_scale, r.unit_source.c_str());
+  out << Format("  %zu components, %zu boundary edges, %zu non-manifold edges, %zu degenerate "
+                "triangles, %zu joints\n",
+                stats.connected_components, stats.boundary_edges, stats.non_manifold_edges,
+                stats.degenerate_triangles, mesh.joints.size());
+}
+
+void PrintRigSummary(std::ostream& out, const BuiltRig& built, const std::string& source) {
+  out << "rig: " << built.rig.parts.size() << " parts from " << source << "\n";
+  out << Format("  %-22s %-16s %8s %9s %8s %7s %6s %6s %5s %5s\n", "part", "parent", "vertices",
+                "triangles", "profiles", "points", "misses", "other", "open", "cross");
+  for (std::size_t i = 0; i < built.rig.parts.size(); ++i) {
+    const RigPart& part = built.rig.parts[i];
+    const PartReport& r = built.report.parts[i];
+    std::size_t points = 0;
+    for (const ProfileCurve& p : part.profiles) points += p.points.size();
+    const std::string parent = part.parent >= 0 ? built.rig.parts[part.parent].name : "-";
+    out << Format("  %-22s %-16s %8zu %9zu %5zu/%-2d %7zu %6zu %6zu %5zu %5zu\n", part.name.c_str(),
+                  parent.c_str(), r.vertices, r.triangles, part.profiles.size(), part.profile_count,
+                  points, r.profiles.misses, r.profiles.other_part_hits, r.profiles.open_profiles,
+                  r.profiles.crossing_neighbour + r.profiles.self_intersecting);
+  }
+  if (built.report.warnings.empty()) {
+    out << "warnings: none\n";
+    return;
+  }
+  out << "warnings:\n";
+  for (const std::string& w : built.report.warnings) out << "  " << w << "\n";
+}
+
+}  // namespace
+
+CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options) {
+  CLI::App* rig = app.add_subcommand("rig", "Build a rig (profile and spine curves) from a mesh");
+  rig->add_option("mesh", options.mesh, "Mesh file (any format Assimp reads)")->required();
+  rig->add_option("-d,--description", options.description,
+                  "Rig description (JSON): parts and rough central curves");
+  rig->add_option("-o,--output", options.output, "Rig file to write (JSON)")->required();
+  rig->add_option("--up", options.up_axis, "Source up axis, overriding the file")
+      ->check(CLI::IsMember({"x", "y", "z"}));
+  rig->add_option("--unit-scale", options.unit_scale, "Metres per source unit, overriding the file")
+      ->check(CLI::PositiveNumber);
+  rig->add_option("--skin-thickness", options.skin_thickness, "Skin thickness for wire sections (m)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  return rig;
+}
+
+int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostream& err) {
+  auto fail = [&](const std::string& message) {
+    err << "wirerig rig: " << message << "\n";
+    return 1;
+  };
+  RigDescription description;
+  std::string source;
+  if (!options.description.empty()) {
+    Result<RigDescription> loaded = LoadRigDescription(options.description);
+    if (!loaded) return fail(loaded.error());
+    description = std::move(loaded).value();
+    source = options.description;
+  }
+  ImportOptions import = description.import;
+  if (!options.up_axis.empty()) {
+    UpAxis axis;
+    ParseUpAxis(options.up_axis, &axis);
+    import.up_axis = axis;
+  }
+  if (options.unit_scale > 0.0) import.unit_scale = options.unit_scale;
+  Result<ImportedMesh> imported = ImportMesh(options.mesh, import);
+  if (!imported) return fail(imported.error());
+  const Mesh& mesh = imported.value().mesh;
+  PrintMeshSummary(out, options.mesh, imported.value());
+
+  if (options.description.empty()) {
+    if (!mesh.joints.empty()) {
+      Result<RigDescription> from_skeleton = DescribeFromSkeleton(mesh);
+      if (!from_skeleton) return fail(options.mesh + ": " + from_skeleton.error());
+      description = std::move(from_skeleton).value();
+      source = "the skeleton (" + std::to_string(mesh.joints.size()) + " joints)";
+    } else {
+      Result<CurveSkeleton> skeleton = ExtractCurveSkeleton(mesh);
+      if (!skeleton)
+        return fail(options.mesh + ": no skeleton, no description, and no curve skeleton: " +
+                    skeleton.error());
+      Result<RigDescription> automatic = DescribeFromCurveSkeleton(mesh, skeleton.value());
+      if (!automatic) return fail(options.mesh + ": " + automatic.error());
+      description = std::move(automatic).value();
+      source = "the mesh's curve skeleton";
+    }
+    description.import = import;
+  }
+  RigBuildOptions build_options;
+  build_options.skin_thickness = options.skin_thickness;
+  Result<BuiltRig> built = BuildRig(mesh, description, options.mesh, build_options);
+  if (!built) return fail(options.mesh + ": " + built.error());
+  PrintRigSummary(out, built.value(), source);
+  const auto saved = SaveRig(built.value().rig, options.output);
+  if (!saved) return fail(saved.error());
+  out << "written: " << options.output << "\n";
+  return 0;
+}
+
+}  // namespace wirerig::cli

@@ -1,0 +1,28 @@
+// `wirerig rig MESH [--description DESC.json] -o RIG.json`: the whole rig-building pipeline.
+// Central curves come from the description when given, else from the asset's skeleton, else
+// from the mesh's curve skeleton. Prints a diagnostic summary; writes the rig atomically.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+
+#include <CLI/App.hpp>
+
+namespace wirerig::cli {
+
+struct RigCommandOptions {
+  std::string mesh;
+  std::string description;  // optional
+  std::string output;       // required
+  std::string up_axis;      // optional override: x, y or z
+  double unit_scale = 0.0;  // optional override (metres per unit), 0 = unset
+  double skin_thickness = 0.005;
+};
+
+CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options);
+
+// 0 on success; 1 with a message naming the file and problem on `err` otherwise (and no
+// output file).
+int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace wirerig::cli

@@ -1,0 +1,19 @@
+// Procedural meshes for analytic tests and samples. Closed, outward-oriented, welded, one
+// part each, metres; their axis is +Y from the origin unless stated.
+#pragma once
+
+#include "wirerig/rig/mesh.h"
+
+namespace wirerig {
+
+// Cylinder of `radius` from y = 0 to y = height, capped with fans at both ends.
+Mesh MakeCylinder(double radius, double height, int radial_segments, int height_segments);
+// Cone frustum with radius r0 at y = 0 and r1 at y = height (r1 may be 0: a pointed cone).
+Mesh MakeCone(double r0, double r1, double height, int radial_segments, int height_segments);
+// Torus around the Y axis in the XZ plane: core radius R, tube radius r.
+Mesh MakeTorus(double major_radius, double minor_radius, int ring_segments, int tube_segments);
+// Capsule: a cylinder of `radius` and `height` (y = 0 .. height) with hemispherical ends.
+Mesh MakeCapsule(double radius, double height, int radial_segments, int height_segments,
+                 int cap_rings);
+
+}  // namespace wirerig

@@ -1,0 +1,45 @@
+// BuildRig: the whole rig-building pipeline on an imported, welded mesh. Assigns vertices to
+// parts, casts each part's profile curves, interpolates its spine, attaches children to their
+// parents, and gives every wire a material and section:
+//   profile wire: a strip of the skin, b = the spacing of the profiles, h = skin thickness;
+//   spine wire: a tube of the part's mean profile radius r and wall h = skin thickness (<= 2r).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "wirerig/rig/mesh.h"
+#include "wirerig/rig/profile_curves.h"
+#include "wirerig/rig/result.h"
+#include "wirerig/rig/rig.h"
+#include "wirerig/rig/rig_description.h"
+
+namespace wirerig {
+
+struct RigBuildOptions {
+  double skin_thickness = 0.005;  // m
+};
+
+struct PartReport {
+  std::string name;
+  std::size_t vertices = 0;
+  std::size_t triangles = 0;
+  ProfileDiagnostics profiles;
+};
+
+struct RigBuildReport {
+  std::vector<PartReport> parts;
+  std::size_t occluded_fallbacks = 0;  // vertices no central curve could see
+  std::vector<std::string> warnings;   // human-readable, one per problem found
+};
+
+struct BuiltRig {
+  Rig rig;
+  RigBuildReport report;
+};
+
+// `mesh_path` is recorded in the rig. Errors name the part at fault.
+Result<BuiltRig> BuildRig(const Mesh& mesh, const RigDescription& description,
+                          const std::string& mesh_path, const RigBuildOptions& options = {});
+
+}  // namespace wirerig

@@ -1,0 +1,60 @@
+// RigDescription: how a mesh is divided into parts for rigging (paper section 2.1). Each part
+// has a rough central curve, from the user's JSON description, from the asset's skeleton
+// (one part per joint chain), or found automatically from the mesh's curve skeleton.
+//
+// Rules (checked by ValidateRigDescription): part names are unique and not empty; every
+// central curve has at least 2 finite points, consecutive points distinct; profile_count >= 2;
+// 3 <= points_per_profile <= 1024; a parent names an earlier part; exactly the first part has
+// no parent; vertex weights, when present, are one per welded vertex.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "wirerig/rig/mesh_import.h"
+#include "wirerig/rig/result.h"
+#include "wirerig/runtime/material.h"
+
+namespace wirerig {
+
+struct PartDescription {
+  std::string name;
+  // Rough central curve, root end first (the end attached to the parent), metres in the
+  // converted mesh frame (+Y up).
+  std::vector<Vec3> central_curve;
+  int profile_count = 12;       // profile curves along the part
+  int points_per_profile = 24;  // rays cast per profile
+  std::string parent;           // empty for the root part
+  // Optional: only these mesh parts (by MeshPart::name) belong to this part.
+  std::vector<std::string> mesh_parts;
+};
+
+struct RigDescription {
+  std::filesystem::path mesh;  // the mesh file; relative paths are relative to the description
+  ImportOptions import;        // up axis and unit overrides for the mesh
+  Material material{0.1e6, 0.45, 1060.0};  // default material of every wire (soft tissue)
+  std::vector<PartDescription> parts;
+  // Mesh parts (by MeshPart::name) that follow the rig but never catch profile rays, such as
+  // eyes inside a head; their vertices go to the nearest visible part like any other.
+  std::vector<std::string> passive_mesh_parts;
+  // Optional, from skin weights: vertex_part[w] is the part index of welded vertex w.
+  std::vector<int> vertex_part;
+};
+
+// Errors read "<json pointer>: <reason>".
+Result<RigDescription> ParseRigDescription(const nlohmann::json& document);
+// Reads the file; errors read "<path>: <json pointer>: <reason>". Resolves `mesh` against the
+// file's folder.
+Result<RigDescription> LoadRigDescription(const std::filesystem::path& path);
+// Empty when valid, else "<json pointer>: <reason>" naming the first broken rule.
+std::string ValidateRigDescription(const RigDescription& description);
+
+// From the asset's skeleton: one part per chain of joints (a chain ends where a joint has
+// zero or several children), hierarchy from the skeleton, vertices assigned by skin weights.
+Result<RigDescription> DescribeFromSkeleton(const Mesh& mesh);
+
+}  // namespace wirerig

@@ -1,0 +1,70 @@
+// TriangleBvh: a bounding volume hierarchy over (a subset of) a mesh's triangles, for ray
+// casting and closest-point queries. Build allocates; queries are const, allocation-free and
+// safe to run from several threads.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "wirerig/rig/mesh.h"
+
+namespace wirerig {
+
+struct RayHit {
+  double t = 0.0;              // distance along the (unit) ray direction, m
+  std::uint32_t triangle = 0;  // index into the triangle array given to Build
+  double u = 0.0, v = 0.0;     // barycentric: point = (1-u-v) a + u b + v c
+  Vec3 point = Vec3::Zero();
+};
+
+struct ClosestPoint {
+  Vec3 point = Vec3::Zero();
+  std::uint32_t triangle = 0;
+  double distance = 0.0;
+};
+
+class TriangleBvh {
+ public:
+  TriangleBvh() = default;
+
+  // Builds over `triangles` of `positions` (#P by 3), restricted to the triangle indices in
+  // `subset` when it is not empty. The spans must outlive the BVH. Degenerate triangles are
+  // kept but never hit.
+  static TriangleBvh Build(std::span<const Vec3> positions, std::span<const Triangle> triangles,
+                           std::span<const std::uint32_t> subset = {});
+
+  // Nearest intersection with t in (t_min, t_max] along origin + t * direction (direction
+  // need not be unit; t is then in units of |direction|), or nullopt. Both faces count.
+  // Watertight: a ray through an edge or vertex shared by triangles hits one of them. t_max is
+  // clamped to 1e300; a zero (or below 1e-150) direction hits nothing.
+  std::optional<RayHit> Raycast(const Vec3& origin, const Vec3& direction, double t_min,
+                                double t_max) const;
+
+  // The closest point on any triangle of the BVH, or nullopt when the BVH is empty.
+  std::optional<ClosestPoint> Closest(const Vec3& point) const;
+
+  std::size_t triangle_count() const;
+
+ private:
+  struct Node {
+    Vec3 min = Vec3::Zero(), max = Vec3::Zero();  // padded bounds of its triangles
+    std::uint32_t first = 0;  // leaf: first index into order_; inner: left child (right: +1)
+    std::uint32_t count = 0;  // leaf: number of triangles (1..4); inner: 0
+  };
+  std::span<const Vec3> positions_;
+  std::span<const Triangle> triangles_;
+  // Triangle indices, leaf ranges contiguous; the top bit marks degenerate triangles.
+  std::vector<std::uint32_t> order_;
+  std::vector<Node> nodes_;  // nodes_[0] is the root; empty for an empty BVH
+};
+
+// Generalised winding number of `point` with respect to the triangles (Jacobson et al. 2013):
+// 1 inside a closed, outward-oriented surface, 0 outside, fractional near holes. O(#F).
+// Triangles whose plane contains the point add nothing, so on a closed surface it is the
+// fraction of directions that enter the solid (1/2 on a flat face); finite everywhere.
+double WindingNumber(std::span<const Vec3> positions, std::span<const Triangle> triangles,
+                     const Vec3& point);
+
+}  // namespace wirerig

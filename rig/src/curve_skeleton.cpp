@@ -1,0 +1,1345 @@
+// Curve skeleton extraction (CGAL mean curvature flow) and automatic part description.
+//
+// All CGAL includes live in this file: CGAL is header-only and heavy to compile, and its
+// Surface_mesh_skeletonization package (GPL-3.0-or-later) stays an implementation detail.
+// Needs CGAL_EIGEN3_ENABLED (the contraction solves sparse systems with Eigen) and links GMP and
+// MPFR (the Delaunay triangulation used for the medial poles has exact constructions).
+#include "wirerig/rig/curve_skeleton.h"
+
+#include <fenv.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/extract_mean_curvature_flow_skeleton.h>
+
+namespace wirerig {
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using CgalPoint = Kernel::Point_3;
+using CgalMesh = CGAL::Surface_mesh<CgalPoint>;
+using Skeletonization = CGAL::Mean_curvature_flow_skeletonization<CgalMesh>;
+using CgalSkeleton = Skeletonization::Skeleton;
+using MesoSkeleton = Skeletonization::Meso_skeleton;  // CGAL's working copy (a Polyhedron_3)
+using MesoEdge = boost::graph_traits<MesoSkeleton>::edge_descriptor;
+
+}  // namespace
+}  // namespace wirerig
+
+// Determinism. CGAL's edge collapse keeps its candidate edges in a std::set<edge_descriptor>,
+// which orders Polyhedron_3 edges by the address of their halfedges, so the collapse order and
+// hence the skeleton depended on the heap's history (the same mesh gave 17 or 20 nodes depending
+// on earlier allocations in the process). This specialisation orders them by halfedge id
+// instead; ContractUntilConvergence numbers the halfedges in list order before every collapse
+// pass, so the ids are unique and deterministic. Addresses only break ties between distinct
+// edges with equal ids, which the numbering rules out.
+namespace std {
+template <>
+struct less<wirerig::MesoEdge> {
+  bool operator()(const wirerig::MesoEdge& x, const wirerig::MesoEdge& y) const {
+    const auto hx = x.halfedge(), hy = y.halfedge();
+    const std::size_t kx = std::min(hx->id(), hx->opposite()->id());
+    const std::size_t ky = std::min(hy->id(), hy->opposite()->id());
+    if (kx != ky) return kx < ky;
+    const std::less<const void*> address;
+    const void* ax = address(&*hx, &*hx->opposite()) ? &*hx : &*hx->opposite();
+    const void* ay = address(&*hy, &*hy->opposite()) ? &*hy : &*hy->opposite();
+    return address(ax, ay);
+  }
+};
+}  // namespace std
+
+namespace wirerig {
+namespace {
+
+bool IsFinite(const Vec3& p) {
+  // Not Eigen's allFinite(): it computes inf - inf, which traps when FE_INVALID is enabled.
+  return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
+}
+
+std::string Count(std::size_t n, const char* what) { return std::to_string(n) + " " + what; }
+
+// Saves the floating-point environment, clears the flags and disables every trap until
+// destruction, which clears whatever flags were raised meanwhile and restores the saved
+// environment (traps included). CGAL raises floating-point exceptions on purpose inside its
+// interval arithmetic (filtered predicates of the Delaunay triangulation that finds the medial
+// poles compute with infinite bounds) and the contraction's cotangent weights may divide by
+// zero on needle triangles before remeshing removes them; with traps enabled (as the tests do)
+// that would be a SIGFPE although the results are checked afterwards.
+class ScopedFloatingPointHold {
+ public:
+  ScopedFloatingPointHold() { feholdexcept(&saved_); }
+  ~ScopedFloatingPointHold() {
+    feclearexcept(FE_ALL_EXCEPT);
+    fesetenv(&saved_);
+  }
+  ScopedFloatingPointHold(const ScopedFloatingPointHold&) = delete;
+  ScopedFloatingPointHold& operator=(const ScopedFloatingPointHold&) = delete;
+
+ private:
+  fenv_t saved_;
+};
+
+// Skeletonization::contract_until_convergence(), with the halfedges numbered before each
+// collapse pass (see std::less<MesoEdge> above).
+void ContractUntilConvergence(Skeletonization& skeletonization, double original_area) {
+  auto& meso = const_cast<MesoSkeleton&>(skeletonization.meso_skeleton());
+  double last_area = 0.0;
+  for (std::size_t iteration = 0;;) {
+    skeletonization.contract_geometry();
+    std::size_t id = 0;
+    for (auto h = meso.halfedges_begin(); h != meso.halfedges_end(); ++h) h->id() = id++;
+    skeletonization.collapse_edges();
+    skeletonization.split_faces();
+    skeletonization.detect_degeneracies();
+    const double area = CGAL::Polygon_mesh_processing::area(meso);
+    if (std::abs(last_area - area) / original_area < skeletonization.area_variation_factor()) {
+      break;
+    }
+    last_area = area;
+    if (++iteration >= skeletonization.max_iterations()) break;
+  }
+}
+
+// The contracted skeleton can cut across a concave crease (between a leg and the belly, say)
+// and leave the surface for a short stretch. Such points move to just inside the surface,
+// beyond their nearest surface point, so that every skeleton point is inside the mesh (rays
+// cast from central curves need that). Points still outside after the largest step stay.
+void PullInside(const CgalMesh& mesh, std::vector<Vec3>& points) {
+  using Inside = CGAL::Side_of_triangle_mesh<CgalMesh, Kernel>;
+  Inside::AABB_tree tree(faces(mesh).first, faces(mesh).second, mesh);
+  const Inside inside(tree);
+  const CGAL::Bbox_3 box = tree.bbox();
+  const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) +
+                                    CGAL::square(box.ymax() - box.ymin()) +
+                                    CGAL::square(box.zmax() - box.zmin()));
+  bool accelerated = false;
+  for (Vec3& point : points) {
+    const CgalPoint p(point.x(), point.y(), point.z());
+    if (inside(p) == CGAL::ON_BOUNDED_SIDE) continue;
+    if (!accelerated) {
+      tree.accelerate_distance_queries();
+      accelerated = true;
+    }
+    const CgalPoint q = tree.closest_point(p);
+    const Vec3 nearest(q.x(), q.y(), q.z());
+    Vec3 inward = nearest - point;
+    const double norm = inward.norm();
+    if (!(norm > 0.0)) continue;
+    inward /= norm;
+    for (const double step : {0.002, 0.005, 0.01, 0.02}) {
+      const Vec3 moved = nearest + step * diagonal * inward;
+      if (inside(CgalPoint(moved.x(), moved.y(), moved.z())) == CGAL::ON_BOUNDED_SIDE) {
+        point = moved;
+        break;
+      }
+    }
+  }
+}
+
+// Closed, oriented 2-manifold check over the welded triangles. Empty when fine, else why not.
+std::string CheckClosedManifold(const std::vector<Vec3>& positions,
+                                const std::vector<Triangle>& triangles) {
+  const std::size_t vertex_count = positions.size();
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    const Triangle& t = triangles[f];
+    for (std::uint32_t v : t) {
+      if (v >= vertex_count) {
+        return "triangle " + std::to_string(f) + " uses vertex " + std::to_string(v) +
+               " but there are only " + Count(vertex_count, "welded vertices");
+      }
+    }
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+      return "triangle " + std::to_string(f) + " repeats a vertex (degenerate)";
+    }
+  }
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    if (!IsFinite(positions[v])) {
+      return "welded vertex " + std::to_string(v) + " is not finite";
+    }
+  }
+
+  // Directed edges (a -> b in a triangle's winding), sorted: a closed, consistently oriented
+  // 2-manifold uses every undirected edge exactly twice, once in each direction.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> directed;
+  directed.reserve(triangles.size() * 3);
+  for (const Triangle& t : triangles) {
+    for (int k = 0; k < 3; ++k) directed.emplace_back(t[k], t[(k + 1) % 3]);
+  }
+  std::sort(directed.begin(), directed.end());
+  std::size_t repeated_directed = 0;
+  for (std::size_t i = 1; i < directed.size(); ++i) {
+    if (directed[i] == directed[i - 1]) ++repeated_directed;
+  }
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> undirected;
+  undirected.reserve(directed.size());
+  for (const auto& [a, b] : directed) undirected.emplace_back(std::min(a, b), std::max(a, b));
+  std::sort(undirected.begin(), undirected.end());
+  std::size_t boundary = 0, non_manifold = 0;
+  for (std::size_t i = 0; i < undirected.size();) {
+    std::size_t j = i;
+    while (j < undirected.size() && undirected[j] == undirected[i]) ++j;
+    if (j - i == 1) ++boundary;
+    if (j - i > 2) ++non_manifold;
+    i = j;
+  }
+  if (boundary > 0) {
+    return "the mesh is not closed: " + Count(boundary, "boundary edges") +
+           " (holes or open borders; the curve skeleton needs a closed surface)";
+  }
+  if (non_manifold > 0) {
+    return "the mesh is not 2-manifold: " + Count(non_manifold, "edges") +
+           " shared by three or more triangles";
+  }
+  if (repeated_directed > 0) {
+    return "the mesh is not consistently oriented: " + Count(repeated_directed, "edges") +
+           " run the same way in both of their triangles";
+  }
+
+  return {};
+}
+
+// The surface handed to CGAL: only the vertices that triangles use, and a vertex of its own
+// for every fan of triangles around a pinched vertex (two closed sheets touching at a point,
+// as when a file repeats a vertex that welding then merges). Needs CheckClosedManifold to have
+// passed: then the link of every vertex (b -> c for each triangle (v, b, c)) is a permutation,
+// and each of its cycles is one fan.
+struct FanSplitMesh {
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+};
+
+FanSplitMesh SplitFans(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles) {
+  const std::size_t vertex_count = positions.size();
+  // Corners grouped by vertex: (link source, link target, corner = 3 * triangle + k).
+  struct Corner {
+    std::uint32_t from, to;
+    std::size_t corner;
+    bool operator<(const Corner& other) const { return from < other.from; }
+  };
+  std::vector<std::size_t> first(vertex_count + 1, 0);
+  for (const Triangle& t : triangles) {
+    for (std::uint32_t v : t) ++first[v + 1];
+  }
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<Corner> corners(first.back());
+  std::vector<std::size_t> fill(first.begin(), first.end() - 1);
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    const Triangle& t = triangles[f];
+    for (int k = 0; k < 3; ++k) {
+      corners[fill[t[k]]++] = {t[(k + 1) % 3], t[(k + 2) % 3], 3 * f + static_cast<std::size_t>(k)};
+    }
+  }
+
+  FanSplitMesh result;
+  result.triangles = triangles;
+  std::vector<std::uint32_t> new_index(vertex_count, 0);
+  std::vector<char> used(vertex_count, 0);
+  for (const Triangle& t : triangles) {
+    for (std::uint32_t v : t) used[v] = 1;
+  }
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    if (!used[v]) continue;
+    new_index[v] = static_cast<std::uint32_t>(result.positions.size());
+    result.positions.push_back(positions[v]);
+  }
+  for (Triangle& t : result.triangles) {
+    for (std::uint32_t& v : t) v = new_index[v];
+  }
+  std::vector<char> visited(corners.size(), 0);
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    const auto begin = corners.begin() + static_cast<std::ptrdiff_t>(first[v]);
+    const auto end = corners.begin() + static_cast<std::ptrdiff_t>(first[v + 1]);
+    if (begin == end) continue;
+    std::sort(begin, end);
+    bool first_fan = true;
+    for (auto start = begin; start != end; ++start) {
+      if (visited[start - corners.begin()]) continue;
+      std::uint32_t index = new_index[v];
+      if (!first_fan) {
+        index = static_cast<std::uint32_t>(result.positions.size());
+        result.positions.push_back(positions[v]);
+      }
+      first_fan = false;
+      // Walk the cycle through `start`.
+      auto at = start;
+      while (!visited[at - corners.begin()]) {
+        visited[at - corners.begin()] = 1;
+        result.triangles[at->corner / 3][at->corner % 3] = index;
+        at = std::lower_bound(begin, end, Corner{at->to, 0, 0});
+        if (at == end) break;  // cannot happen once CheckClosedManifold passed
+      }
+    }
+  }
+  return result;
+}
+
+// Turns the skeleton graph into nodes (vertices of degree != 2) and the polylines between
+// them. Deterministic: nodes in increasing vertex order, branches in order of their first node
+// and its neighbours. A cycle without any node gets its lowest vertex as a node.
+CurveSkeleton ToCurveSkeleton(const std::vector<Vec3>& points,
+                              const std::vector<std::vector<std::size_t>>& adjacency) {
+  const std::size_t n = points.size();
+  CurveSkeleton result;
+  std::vector<int> node_of(n, -1);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (adjacency[v].size() != 2) {
+      node_of[v] = static_cast<int>(result.nodes.size());
+      result.nodes.push_back(points[v]);
+    }
+  }
+  // Each undirected edge is walked once.
+  std::map<std::pair<std::size_t, std::size_t>, bool> walked;
+  auto edge_key = [](std::size_t a, std::size_t b) {
+    return std::make_pair(std::min(a, b), std::max(a, b));
+  };
+  auto walk_from = [&](std::size_t start) {
+    for (std::size_t next : adjacency[start]) {
+      if (walked[edge_key(start, next)]) continue;
+      CurveSkeleton::Branch branch;
+      branch.from = node_of[start];
+      branch.points.push_back(points[start]);
+      std::size_t previous = start, at = next;
+      walked[edge_key(previous, at)] = true;
+      while (node_of[at] < 0) {
+        branch.points.push_back(points[at]);
+        const std::size_t following =
+            adjacency[at][0] == previous ? adjacency[at][1] : adjacency[at][0];
+        previous = at;
+        at = following;
+        walked[edge_key(previous, at)] = true;
+      }
+      branch.points.push_back(points[at]);
+      branch.to = node_of[at];
+      result.branches.push_back(std::move(branch));
+    }
+  };
+  for (std::size_t v = 0; v < n; ++v) {
+    if (node_of[v] >= 0) walk_from(v);
+  }
+  // Cycles made only of degree-2 vertices.
+  for (std::size_t v = 0; v < n; ++v) {
+    if (node_of[v] >= 0 || adjacency[v].size() != 2) continue;
+    if (walked[edge_key(v, adjacency[v][0])]) continue;
+    node_of[v] = static_cast<int>(result.nodes.size());
+    result.nodes.push_back(points[v]);
+    walk_from(v);
+  }
+  return result;
+}
+
+}  // namespace
+
+Result<CurveSkeleton> ExtractCurveSkeleton(const Mesh& mesh) {
+  if (mesh.welded_triangles.empty()) {
+    if (!mesh.triangles.empty()) {
+      return Error{"curve skeleton: the mesh is not welded (call WeldByPosition first)"};
+    }
+    return Error{"curve skeleton: the mesh has no triangles"};
+  }
+  const std::vector<Vec3>& positions = mesh.welded_positions;
+  const std::vector<Triangle>& triangles = mesh.welded_triangles;
+  if (std::string why = CheckClosedManifold(positions, triangles); !why.empty()) {
+    return Error{"curve skeleton: " + why};
+  }
+
+  const FanSplitMesh surface = SplitFans(positions, triangles);
+  CgalMesh cgal_mesh;
+  for (const Vec3& p : surface.positions) cgal_mesh.add_vertex(CgalPoint(p.x(), p.y(), p.z()));
+  for (std::size_t f = 0; f < surface.triangles.size(); ++f) {
+    const Triangle& t = surface.triangles[f];
+    if (cgal_mesh.add_face(CgalMesh::Vertex_index(t[0]), CgalMesh::Vertex_index(t[1]),
+                           CgalMesh::Vertex_index(t[2])) == CgalMesh::null_face()) {
+      return Error{"curve skeleton: triangle " + std::to_string(f) +
+                   " cannot join the surface (not 2-manifold)"};
+    }
+  }
+
+  CgalSkeleton skeleton;
+  try {
+    ScopedFloatingPointHold hold;
+    Skeletonization skeletonization(cgal_mesh);
+#ifdef WIRERIG_SKELETON_DEBUG
+    if (const char* v = std::getenv("MCF_WH")) skeletonization.set_quality_speed_tradeoff(std::atof(v));
+    if (const char* v = std::getenv("MCF_WM")) skeletonization.set_medially_centered_speed_tradeoff(std::atof(v));
+    if (const char* v = std::getenv("MCF_EDGE")) skeletonization.set_min_edge_length(std::atof(v) * skeletonization.min_edge_length());
+    if (const char* v = std::getenv("MCF_AREA")) skeletonization.set_area_variation_factor(std::atof(v));
+    if (const char* v = std::getenv("MCF_MC")) skeletonization.set_is_medially_centered(std::atoi(v) != 0);
+#endif
+    ContractUntilConvergence(skeletonization, CGAL::Polygon_mesh_processing::area(cgal_mesh));
+    skeletonization.convert_to_skeleton(skeleton);
+  } catch (const std::exception& e) {
+    return Error{std::string("curve skeleton: CGAL failed: ") + e.what()};
+  }
+
+  const std::size_t n = boost::num_vertices(skeleton);
+  if (n == 0) return Error{"curve skeleton: CGAL returned an empty skeleton"};
+  std::vector<Vec3> points(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    const CgalPoint& p = skeleton[v].point;
+    points[v] = Vec3(p.x(), p.y(), p.z());
+    if (!IsFinite(points[v])) {
+      return Error{"curve skeleton: CGAL produced a non-finite skeleton point (degenerate mesh?)"};
+    }
+  }
+  try {
+    ScopedFloatingPointHold hold;
+    PullInside(cgal_mesh, points);
+  } catch (const std::exception& e) {
+    return Error{std::string("curve skeleton: CGAL failed: ") + e.what()};
+  }
+  std::vector<std::vector<std::size_t>> adjacency(n);
+  for (auto [e, e_end] = boost::edges(skeleton); e != e_end; ++e) {
+    const std::size_t a = boost::source(*e, skeleton), b = boost::target(*e, skeleton);
+    if (a == b) continue;
+    adjacency[a].push_back(b);
+    adjacency[b].push_back(a);
+  }
+  for (auto& neighbours : adjacency) {
+    std::sort(neighbours.begin(), neighbours.end());
+    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+  }
+  return ToCurveSkeleton(points, adjacency);
+}
+
+namespace {
+
+// Tuning of DescribeFromCurveSkeleton. Lengths are fractions of the bounding box diagonal or
+// multiples of the local radius (distance from the skeleton to the surface).
+constexpr double kSpurFraction = 0.08;       // leaf branches protruding less than this ...
+constexpr double kSpurRadiusFactor = 0.75;   // ... or less than this many junction radii go
+constexpr double kLinkRadiusFactor = 1.5;    // junctions closer than this many radii are one
+constexpr double kComponentFraction = 0.05;  // smaller separate skeleton pieces are dropped
+constexpr double kLowFraction = 0.25;        // leg ends lie in this lowest fraction of height
+constexpr double kExtendFraction = 0.8;      // free ends move this far towards the surface
+constexpr int kRadiusSamples = 12;           // radius samples per branch
+
+// Brute-force distance and ray queries against the mesh surface (few hundred queries per
+// description, so no acceleration structure beyond bounding-sphere culling).
+class Surface {
+ public:
+  Surface(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles) {
+    triangles_.reserve(triangles.size());
+    for (const Triangle& t : triangles) {
+      if (t[0] >= positions.size() || t[1] >= positions.size() || t[2] >= positions.size()) {
+        continue;
+      }
+      Tri tri{positions[t[0]], positions[t[1]], positions[t[2]], Vec3::Zero(), Vec3::Zero(), 0};
+      if (!IsFinite(tri.a) || !IsFinite(tri.b) || !IsFinite(tri.c)) continue;
+      tri.normal = (tri.b - tri.a).cross(tri.c - tri.a);
+      const double scale = std::max({(tri.b - tri.a).squaredNorm(), (tri.c - tri.a).squaredNorm(),
+                                     (tri.c - tri.b).squaredNorm()});
+      if (!(tri.normal.squaredNorm() > 1e-24 * scale * scale)) continue;  // degenerate
+      tri.centre = (tri.a + tri.b + tri.c) / 3.0;
+      tri.bound = std::sqrt(
+          std::max({(tri.a - tri.centre).squaredNorm(), (tri.b - tri.centre).squaredNorm(),
+                    (tri.c - tri.centre).squaredNorm()}));
+      triangles_.push_back(tri);
+    }
+  }
+
+  bool empty() const { return triangles_.empty(); }
+
+  // Distance to the nearest surface point (infinity when there are no triangles).
+  double Distance(const Vec3& p) const {
+    double best = std::numeric_limits<double>::infinity();
+    for (const Tri& t : triangles_) {
+      const double lower = (p - t.centre).norm() - t.bound;
+      if (lower >= best) continue;
+      best = std::min(best, PointTriangleDistance(p, t));
+    }
+    return best;
+  }
+
+  // Distance along the unit direction to the first surface crossing, and whether the surface
+  // is left there (outward normal along the ray), i.e. the origin was inside.
+  struct Hit {
+    double t;
+    bool leaving;
+  };
+  std::optional<Hit> Raycast(const Vec3& origin, const Vec3& direction) const {
+    std::optional<Hit> best;
+    for (const Tri& t : triangles_) {
+      const Vec3 e1 = t.b - t.a, e2 = t.c - t.a;
+      const Vec3 h = direction.cross(e2);
+      const double det = e1.dot(h);
+      if (std::abs(det) <= 1e-14 * e1.norm() * e2.norm()) continue;
+      const double inv = 1.0 / det;
+      const Vec3 s = origin - t.a;
+      const double u = s.dot(h) * inv;
+      if (u < 0.0 || u > 1.0) continue;
+      const Vec3 q = s.cross(e1);
+      const double v = direction.dot(q) * inv;
+      if (v < 0.0 || u + v > 1.0) continue;
+      const double distance = e2.dot(q) * inv;
+      if (distance <= 0.0 || (best && distance >= best->t)) continue;
+      best = Hit{distance, t.normal.dot(direction) > 0.0};
+    }
+    return best;
+  }
+
+ private:
+  struct Tri {
+    Vec3 a, b, c, normal, centre;
+    double bound;
+  };
+
+  static double SegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 ab = b - a;
+    const double length2 = ab.squaredNorm();
+    double t = length2 > 0.0 ? (p - a).dot(ab) / length2 : 0.0;
+    t = std::clamp(t, 0.0, 1.0);
+    return (p - (a + t * ab)).norm();
+  }
+
+  static double PointTriangleDistance(const Vec3& p, const Tri& t) {
+    // Inside the prism over the triangle: distance to the plane; else to the nearest edge.
+    const Vec3& n = t.normal;
+    if (n.dot((t.b - t.a).cross(p - t.a)) >= 0.0 && n.dot((t.c - t.b).cross(p - t.b)) >= 0.0 &&
+        n.dot((t.a - t.c).cross(p - t.c)) >= 0.0) {
+      return std::abs((p - t.a).dot(n)) / n.norm();
+    }
+    return std::min(
+        {SegmentDistance(p, t.a, t.b), SegmentDistance(p, t.b, t.c), SegmentDistance(p, t.c, t.a)});
+  }
+
+  std::vector<Tri> triangles_;
+};
+
+double PolylineLength(const std::vector<Vec3>& points) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < points.size(); ++i) length += (points[i] - points[i - 1]).norm();
+  return length;
+}
+
+// Union-find over node indices.
+class Sets {
+ public:
+  explicit Sets(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  int Find(int x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  bool Unite(int a, int b) {
+    a = Find(a);
+    b = Find(b);
+    if (a == b) return false;
+    parent_[std::max(a, b)] = std::min(a, b);  // deterministic representative
+    return true;
+  }
+
+ private:
+  std::vector<int> parent_;
+};
+
+// The skeleton as an editable graph: pruned, then split into a spanning forest (tree edges)
+// plus the edges that close cycles.
+struct Edge {
+  int a = -1, b = -1;
+  std::vector<Vec3> points;  // from nodes[a] to nodes[b]
+  double length = 0.0;
+  bool alive = true;
+  bool tree = false;  // in the spanning forest
+  bool link = false;  // tree edge inside a junction region
+  bool used = false;  // taken by a part
+  int Other(int n) const { return n == a ? b : a; }
+  // The polyline starting at node n.
+  std::vector<Vec3> From(int n) const {
+    std::vector<Vec3> result = points;
+    if (n != a) std::reverse(result.begin(), result.end());
+    return result;
+  }
+};
+
+struct Part {
+  std::vector<int> nodes;  // skeleton nodes the curve passes, in order
+  std::vector<Vec3> curve;
+  int parent = -1;
+  bool free_start = false, free_end = false;  // the curve ends at a skeleton leaf there
+  std::string name;
+  double radius = 0.0;        // mean distance of the curve's outer half to the surface
+  double mass = 0.0;          // surface area nearest to the part's branches ...
+  double subtree_mass = 0.0;  // ... and to those of its descendants
+};
+
+class Describer {
+ public:
+  Describer(const Mesh& mesh, const CurveSkeleton& skeleton)
+      : mesh_positions_(mesh.welded_triangles.empty() ? mesh.positions : mesh.welded_positions),
+        mesh_triangles_(mesh.welded_triangles.empty() ? mesh.triangles : mesh.welded_triangles),
+        surface_(mesh_positions_, mesh_triangles_),
+        skeleton_(skeleton) {}
+
+  Result<RigDescription> Run();
+
+ private:
+  std::string Validate() const;
+  double NodeRadius(int n);
+  double MeanRadius(const std::vector<Vec3>& points) const;
+  std::vector<std::vector<int>> Incident() const;
+  void PruneSpurs();
+  void MergeAt(int node, int e1, int e2);
+  void BuildForest();
+  double Farthest(int node, int via) const;
+  int WalkChain(int start, int first_edge, Part& part);
+  void AddChildren(int part_index);
+  int ChooseTorsoEdge(int component) const;
+  void ComputeMass();
+  double SideMass(int node, int excluded) const;
+  void ExtendEnds(Part& part) const;
+  void Name();
+
+  const std::vector<Vec3>& mesh_positions_;
+  const std::vector<Triangle>& mesh_triangles_;
+  Surface surface_;
+  const CurveSkeleton& skeleton_;
+  double diagonal_ = 0.0;
+  Vec3 low_ = Vec3::Zero(), high_ = Vec3::Zero();
+
+  std::vector<Vec3> nodes_;
+  std::vector<Edge> edges_;
+  std::vector<double> node_radius_;  // negative until computed
+  std::vector<int> degree_;          // alive edge ends per node
+  std::vector<int> region_;          // junction region (node index of its representative)
+  std::vector<int> component_;
+  std::vector<std::vector<int>> tree_edges_;  // per node
+  std::vector<int> owner_;                    // part holding each node
+  std::vector<double> mass_;                  // surface area nearest to each edge
+  std::vector<Part> parts_;
+};
+
+std::string Describer::Validate() const {
+  const int node_count = static_cast<int>(skeleton_.nodes.size());
+  for (int n = 0; n < node_count; ++n) {
+    if (!IsFinite(skeleton_.nodes[n])) return "node " + std::to_string(n) + " is not finite";
+  }
+  for (std::size_t i = 0; i < skeleton_.branches.size(); ++i) {
+    const CurveSkeleton::Branch& branch = skeleton_.branches[i];
+    const std::string where = "branch " + std::to_string(i);
+    if (branch.from < 0 || branch.from >= node_count || branch.to < 0 || branch.to >= node_count) {
+      return where + " names a node that does not exist";
+    }
+    if (branch.points.size() < 2) return where + " has fewer than 2 points";
+    for (const Vec3& p : branch.points) {
+      if (!IsFinite(p)) return where + " has a point that is not finite";
+    }
+  }
+  return {};
+}
+
+double Describer::NodeRadius(int n) {
+  if (node_radius_[n] < 0.0) node_radius_[n] = surface_.Distance(nodes_[n]);
+  return node_radius_[n];
+}
+
+double Describer::MeanRadius(const std::vector<Vec3>& points) const {
+  if (points.empty()) return 0.0;
+  const std::size_t samples = std::min<std::size_t>(points.size(), kRadiusSamples);
+  double sum = 0.0;
+  for (std::size_t k = 0; k < samples; ++k) {
+    const std::size_t i = samples == 1 ? 0 : k * (points.size() - 1) / (samples - 1);
+    sum += surface_.Distance(points[i]);
+  }
+  return sum / static_cast<double>(samples);
+}
+
+std::vector<std::vector<int>> Describer::Incident() const {
+  std::vector<std::vector<int>> incident(nodes_.size());
+  for (std::size_t e = 0; e < edges_.size(); ++e) {
+    if (!edges_[e].alive) continue;
+    incident[edges_[e].a].push_back(static_cast<int>(e));
+    incident[edges_[e].b].push_back(static_cast<int>(e));  // a self-loop counts twice
+  }
+  return incident;
+}
+
+// Joins the two edges e1 and e2 that meet at `node` (of degree 2) into e1.
+void Describer::MergeAt(int node, int e1, int e2) {
+  Edge& first = edges_[e1];
+  Edge& second = edges_[e2];
+  std::vector<Vec3> points = first.From(first.Other(node));
+  const std::vector<Vec3> tail = second.From(node);
+  points.insert(points.end(), tail.begin() + 1, tail.end());
+  const int a = first.Other(node), b = second.Other(node);
+  first.a = a;
+  first.b = b;
+  first.points = std::move(points);
+  first.length = PolylineLength(first.points);
+  second.alive = false;
+}
+
+// Removes short leaf branches (bumps, ears, toes) one at a time, shortest protrusion first,
+// and joins the two branches left at a junction that drops to degree 2.
+void Describer::PruneSpurs() {
+  for (;;) {
+    const std::vector<std::vector<int>> incident = Incident();
+    int best = -1, best_junction = -1;
+    double best_protrusion = std::numeric_limits<double>::infinity();
+    for (std::size_t e = 0; e < edges_.size(); ++e) {
+      const Edge& edge = edges_[e];
+      if (!edge.alive || edge.a == edge.b) continue;
+      int junction = -1;
+      if (incident[edge.a].size() == 1 && incident[edge.b].size() >= 3) junction = edge.b;
+      if (incident[edge.b].size() == 1 && incident[edge.a].size() >= 3) junction = edge.a;
+      if (junction < 0) continue;
+      const double radius = NodeRadius(junction);
+      const double protrusion = edge.length - radius;
+      const double threshold = std::max(kSpurFraction * diagonal_, kSpurRadiusFactor * radius);
+      if (protrusion < threshold && protrusion < best_protrusion) {
+        best = static_cast<int>(e);
+        best_junction = junction;
+        best_protrusion = protrusion;
+      }
+    }
+    if (best < 0) return;
+    edges_[best].alive = false;
+    const std::vector<int> left = Incident()[best_junction];
+    if (left.size() == 2 && left[0] != left[1]) MergeAt(best_junction, left[0], left[1]);
+  }
+}
+
+// Spanning forest (Kruskal, longest edges first, so cycles open at their shortest edge),
+// junction regions, connected components.
+void Describer::BuildForest() {
+  const std::vector<std::vector<int>> incident = Incident();
+  degree_.assign(nodes_.size(), 0);
+  for (std::size_t n = 0; n < nodes_.size(); ++n) degree_[n] = static_cast<int>(incident[n].size());
+  std::vector<int> order;
+  for (std::size_t e = 0; e < edges_.size(); ++e) {
+    if (edges_[e].alive) order.push_back(static_cast<int>(e));
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int x, int y) { return edges_[x].length > edges_[y].length; });
+  Sets components(nodes_.size());
+  for (int e : order) edges_[e].tree = components.Unite(edges_[e].a, edges_[e].b);
+  Sets regions(nodes_.size());
+  tree_edges_.assign(nodes_.size(), {});
+  for (std::size_t e = 0; e < edges_.size(); ++e) {
+    Edge& edge = edges_[e];
+    if (!edge.tree) continue;
+    tree_edges_[edge.a].push_back(static_cast<int>(e));
+    tree_edges_[edge.b].push_back(static_cast<int>(e));
+    if (degree_[edge.a] >= 3 && degree_[edge.b] >= 3 &&
+        edge.length < kLinkRadiusFactor * std::max(NodeRadius(edge.a), NodeRadius(edge.b))) {
+      edge.link = true;
+      regions.Unite(edge.a, edge.b);
+    }
+  }
+  region_.resize(nodes_.size());
+  component_.resize(nodes_.size());
+  for (std::size_t n = 0; n < nodes_.size(); ++n) {
+    region_[n] = regions.Find(static_cast<int>(n));
+    component_[n] = components.Find(static_cast<int>(n));
+  }
+}
+
+// Length of the longest way from `node` through tree edge `via` and on through unused tree
+// edges away from `node`.
+double Describer::Farthest(int node, int via) const {
+  const int next = edges_[via].Other(node);
+  double best = 0.0;
+  for (int e : tree_edges_[next]) {
+    if (e != via && !edges_[e].used) best = std::max(best, Farthest(next, e));
+  }
+  return edges_[via].length + best;
+}
+
+// Surface area nearest to each edge (triangle centroids to the nearest skeleton segment; at
+// most about 8000 triangles sampled).
+void Describer::ComputeMass() {
+  mass_.assign(edges_.size(), 0.0);
+  struct Segment {
+    Vec3 a, ab;
+    double length2;
+    int edge;
+  };
+  std::vector<Segment> segments;
+  for (std::size_t e = 0; e < edges_.size(); ++e) {
+    if (!edges_[e].alive) continue;
+    const std::vector<Vec3>& p = edges_[e].points;
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+      segments.push_back(
+          {p[i], p[i + 1] - p[i], (p[i + 1] - p[i]).squaredNorm(), static_cast<int>(e)});
+    }
+  }
+  if (segments.empty()) return;
+  const std::size_t stride = std::max<std::size_t>(1, mesh_triangles_.size() / 8000);
+  for (std::size_t f = 0; f < mesh_triangles_.size(); f += stride) {
+    const Triangle& t = mesh_triangles_[f];
+    if (t[0] >= mesh_positions_.size() || t[1] >= mesh_positions_.size() ||
+        t[2] >= mesh_positions_.size()) {
+      continue;
+    }
+    const Vec3 &a = mesh_positions_[t[0]], &b = mesh_positions_[t[1]], &c = mesh_positions_[t[2]];
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    if (!std::isfinite(area) || !(area > 0.0)) continue;
+    const Vec3 centre = (a + b + c) / 3.0;
+    double best = std::numeric_limits<double>::infinity();
+    int nearest = -1;
+    for (const Segment& segment : segments) {
+      const double u =
+          segment.length2 > 0.0
+              ? std::clamp((centre - segment.a).dot(segment.ab) / segment.length2, 0.0, 1.0)
+              : 0.0;
+      const double d2 = (centre - segment.a - u * segment.ab).squaredNorm();
+      if (d2 < best) {
+        best = d2;
+        nearest = segment.edge;
+      }
+    }
+    mass_[nearest] += area;
+  }
+}
+
+// Mass of the tree on the side of `node` away from tree edge `excluded`.
+double Describer::SideMass(int node, int excluded) const {
+  double total = 0.0;
+  std::vector<std::pair<int, int>> stack{{node, excluded}};
+  while (!stack.empty()) {
+    const auto [at, from] = stack.back();
+    stack.pop_back();
+    for (int e : tree_edges_[at]) {
+      if (e == from) continue;
+      total += mass_[e];
+      stack.emplace_back(edges_[e].Other(at), e);
+    }
+  }
+  return total;
+}
+
+// Appends edges to `part` from `start` through `first_edge`, then always on along the unused
+// tree edge leading farthest, until a leaf or a used end. Returns the last node.
+int Describer::WalkChain(int start, int first_edge, Part& part) {
+  int at = start, via = first_edge;
+  for (;;) {
+    Edge& edge = edges_[via];
+    edge.used = true;
+    part.mass += mass_[via];
+    const std::vector<Vec3> points = edge.From(at);
+    part.curve.insert(part.curve.end(), part.curve.empty() ? points.begin() : points.begin() + 1,
+                      points.end());
+    at = edge.Other(at);
+    part.nodes.push_back(at);
+    int next = -1;
+    double best = -1.0;
+    for (int e : tree_edges_[at]) {
+      if (edges_[e].used) continue;
+      const double reach = Farthest(at, e);
+      if (reach > best) {
+        best = reach;
+        next = e;
+      }
+    }
+    if (next < 0) return at;
+    via = next;
+  }
+}
+
+// Gives part `part_index` its children: every unused tree edge leaving one of its nodes, or
+// leaving its junction regions through links, starts a child (breadth first, recursively).
+void Describer::AddChildren(int part_index) {
+  const std::vector<int> path = parts_[part_index].nodes;
+  for (int n : path) owner_[n] = part_index;
+  for (int w : path) {
+    // Depth-first through unused links of w's junction region, collecting exits.
+    struct Visit {
+      int node;
+      std::vector<Vec3> prefix;  // polyline from w to node
+      std::vector<int> nodes;    // nodes after w up to node
+    };
+    std::vector<Visit> stack{{w, {nodes_[w]}, {}}};
+    while (!stack.empty()) {
+      Visit visit = std::move(stack.back());
+      stack.pop_back();
+      std::vector<int> exits = tree_edges_[visit.node];
+      for (auto it = exits.rbegin(); it != exits.rend(); ++it) {
+        Edge& edge = edges_[*it];
+        if (edge.used || !edge.link) continue;
+        edge.used = true;
+        Visit next{edge.Other(visit.node), visit.prefix, visit.nodes};
+        const std::vector<Vec3> points = edge.From(visit.node);
+        next.prefix.insert(next.prefix.end(), points.begin() + 1, points.end());
+        next.nodes.push_back(next.node);
+        owner_[next.node] = part_index;
+        stack.push_back(std::move(next));
+      }
+      for (int e : exits) {
+        if (edges_[e].used) continue;
+        Part child;
+        child.parent = part_index;
+        child.curve = visit.prefix;
+        child.nodes.push_back(w);
+        child.nodes.insert(child.nodes.end(), visit.nodes.begin(), visit.nodes.end());
+        const int last = WalkChain(visit.node, e, child);
+        child.free_end = degree_[last] == 1;
+        parts_.push_back(std::move(child));
+      }
+    }
+  }
+}
+
+// The torso: the thick, central branch between two junction regions.
+int Describer::ChooseTorsoEdge(int component) const {
+  std::map<int, int> region_degree;
+  for (std::size_t n = 0; n < nodes_.size(); ++n) {
+    if (component_[n] != component) continue;
+    for (int e : tree_edges_[n]) {
+      if (!edges_[e].link) ++region_degree[region_[n]];
+    }
+  }
+  int best = -1;
+  double best_score = -1.0;
+  for (std::size_t e = 0; e < edges_.size(); ++e) {
+    const Edge& edge = edges_[e];
+    if (!edge.tree || edge.link || component_[edge.a] != component) continue;
+    const int ra = region_[edge.a], rb = region_[edge.b];
+    if (ra == rb || region_degree[ra] < 3 || region_degree[rb] < 3) continue;
+    const double radius = MeanRadius(edge.points);
+    const double side_a = SideMass(edge.a, static_cast<int>(e));
+    const double side_b = SideMass(edge.b, static_cast<int>(e));
+    const double total = side_a + side_b + mass_[e];
+    const double balance = total > 0.0 ? std::min(side_a, side_b) / total : 0.0;
+    const double stubbiness = radius > 0.0 ? std::min(1.0, edge.length / (2.0 * radius)) : 1.0;
+    const double score = radius * radius * stubbiness * std::sqrt(balance);
+#ifdef WIRERIG_SKELETON_DEBUG
+    std::fprintf(stderr,
+                 "torso candidate %zu: %d-%d (%.2f %.2f %.2f)-(%.2f %.2f %.2f) L=%.3f r=%.3f "
+                 "balance=%.2f own=%.2f score=%.4f\n",
+                 e, edge.a, edge.b, nodes_[edge.a].x(), nodes_[edge.a].y(), nodes_[edge.a].z(),
+                 nodes_[edge.b].x(), nodes_[edge.b].y(), nodes_[edge.b].z(), edge.length, radius,
+                 balance, mass_[e] / total, score);
+#endif
+    if (score > best_score) {
+      best_score = score;
+      best = static_cast<int>(e);
+    }
+  }
+  return best;
+}
+
+void Describer::ExtendEnds(Part& part) const {
+  auto extend_back = [&](std::vector<Vec3>& curve) {
+    if (curve.size() < 2) return;
+    const Vec3 end = curve.back();
+    // The end tangent over about two local radii, at most half the curve.
+    const double reach = std::min(2.0 * std::max(surface_.Distance(end), 1e-3 * diagonal_),
+                                  0.5 * PolylineLength(curve));
+    double walked = 0.0;
+    std::size_t i = curve.size() - 1;
+    while (i > 0 && walked < reach) {
+      walked += (curve[i] - curve[i - 1]).norm();
+      --i;
+    }
+    Vec3 direction = end - curve[i];
+    const double norm = direction.norm();
+    if (!(norm > 1e-9 * diagonal_)) return;
+    direction /= norm;
+    const std::optional<Surface::Hit> hit = surface_.Raycast(end, direction);
+    if (!hit || !hit->leaving) return;  // the end is not inside: leave it
+    const double extension = kExtendFraction * hit->t;
+    if (extension > 1e-6 * diagonal_ && extension < 0.25 * diagonal_) {
+      curve.push_back(end + extension * direction);
+    }
+  };
+  if (part.free_end) extend_back(part.curve);
+  if (part.free_start) {
+    std::reverse(part.curve.begin(), part.curve.end());
+    extend_back(part.curve);
+    std::reverse(part.curve.begin(), part.curve.end());
+  }
+}
+
+void Reverse(Part& part) {
+  std::reverse(part.curve.begin(), part.curve.end());
+  std::reverse(part.nodes.begin(), part.nodes.end());
+  std::swap(part.free_start, part.free_end);
+}
+
+// Names the torso's children by shape (quadruped or biped, +Y up) and orients the torso.
+void Describer::Name() {
+  Part& torso = parts_[0];
+  torso.name = "torso";
+  const Vec3 up = Vec3::UnitY();
+  const double height = high_.y() - low_.y();
+  const Vec3 t0 = torso.curve.front(), t1 = torso.curve.back();
+  const Vec3 centre = 0.5 * (t0 + t1);
+  const Vec3 axis = t1 - t0;
+  const Vec3 horizontal(axis.x(), 0.0, axis.z());
+  double torso_low = std::numeric_limits<double>::infinity();
+  double torso_high = -std::numeric_limits<double>::infinity();
+  for (const Vec3& p : torso.curve) {
+    torso_low = std::min(torso_low, p.y());
+    torso_high = std::max(torso_high, p.y());
+  }
+
+  std::vector<int> children, low;
+  for (std::size_t i = 1; i < parts_.size(); ++i) {
+    if (parts_[i].parent != 0) continue;
+    children.push_back(static_cast<int>(i));
+    const Vec3& end = parts_[i].curve.back();
+    if (end.y() < torso_low && end.y() - low_.y() < kLowFraction * height) {
+      low.push_back(static_cast<int>(i));
+    }
+  }
+  std::stable_sort(low.begin(), low.end(), [&](int a, int b) {
+    return parts_[a].curve.back().y() < parts_[b].curve.back().y();
+  });
+  auto end_of = [&](int i) -> const Vec3& { return parts_[i].curve.back(); };
+  auto others_than = [&](const std::vector<int>& legs) {
+    std::vector<int> others;
+    for (int c : children) {
+      if (std::find(legs.begin(), legs.end(), c) == legs.end()) others.push_back(c);
+    }
+    return others;
+  };
+
+  const bool lying = horizontal.norm() >= std::abs(axis.y()) && horizontal.norm() > 0.0;
+  if (lying && low.size() >= 4) {
+    // Quadruped. Front is the head's end of the torso; left is the animal's own left,
+    // up x front (for a head towards +X that is -Z).
+    const std::vector<int> legs(low.begin(), low.begin() + 4);
+    const std::vector<int> others = others_than(legs);
+    const Vec3 along = horizontal.normalized();
+    auto t = [&](int c) { return (end_of(c) - centre).dot(along); };
+    int head = -1, tail = -1;
+    if (!others.empty()) {
+      int first = others.front(), last = others.front();
+      for (int c : others) {
+        if (t(c) < t(first)) first = c;
+        if (t(c) > t(last)) last = c;
+      }
+      if (first != last && t(first) < 0.0 && t(last) > 0.0) {
+        const bool first_thicker = parts_[first].radius >= parts_[last].radius;
+        head = first_thicker ? first : last;
+        tail = first_thicker ? last : first;
+      } else {
+        // One free end: a head carries more surface than a leg (neck, ears, ...), a tail less.
+        const int single = std::abs(t(first)) >= std::abs(t(last)) ? first : last;
+        double leg_mass = 0.0;
+        for (int leg : legs) leg_mass += 0.25 * parts_[leg].subtree_mass;
+        (parts_[single].subtree_mass > leg_mass ? head : tail) = single;
+      }
+    }
+    Vec3 front = along;
+    if (head >= 0)
+      front = t(head) >= 0.0 ? along : Vec3(-along);
+    else if (tail >= 0)
+      front = t(tail) >= 0.0 ? Vec3(-along) : along;
+    const Vec3 left = up.cross(front);
+    std::vector<int> order = legs;
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+      return (parts_[a].curve.front() - centre).dot(front) >
+             (parts_[b].curve.front() - centre).dot(front);
+    });
+    auto name_pair = [&](int a, int b, const char* left_name, const char* right_name) {
+      if ((end_of(a) - centre).dot(left) < (end_of(b) - centre).dot(left)) std::swap(a, b);
+      parts_[a].name = left_name;
+      parts_[b].name = right_name;
+    };
+    if (head >= 0) parts_[head].name = "head";
+    if (tail >= 0) parts_[tail].name = "tail";
+    name_pair(order[0], order[1], "leg_front_left", "leg_front_right");
+    name_pair(order[2], order[3], "leg_back_left", "leg_back_right");
+    if ((t0 - centre).dot(front) > 0.0) Reverse(torso);  // from the hips forwards
+    return;
+  }
+  if (!lying && low.size() >= 2) {
+    // Biped, assumed to face +Z (glTF), so its left is +X; when its feet spread along Z
+    // rather than X it is assumed to face +X, left then being -Z.
+    const std::vector<int> legs(low.begin(), low.begin() + 2);
+    const Vec3 spread = end_of(legs[0]) - end_of(legs[1]);
+    const Vec3 left =
+        std::abs(spread.z()) > std::abs(spread.x()) ? Vec3(-Vec3::UnitZ()) : Vec3(Vec3::UnitX());
+    std::vector<int> others = others_than(legs);
+    int head = -1;
+    for (int c : others) {
+      if (end_of(c).y() > torso_high && (head < 0 || end_of(c).y() > end_of(head).y())) head = c;
+    }
+    if (head >= 0) {
+      parts_[head].name = "head";
+      others.erase(std::find(others.begin(), others.end(), head));
+    }
+    int arm_left = -1, arm_right = -1;
+    for (int c : others) {
+      const double side = (end_of(c) - centre).dot(left);
+      if (side > 0.0 && (arm_left < 0 || side > (end_of(arm_left) - centre).dot(left))) {
+        arm_left = c;
+      }
+      if (side < 0.0 && (arm_right < 0 || side < (end_of(arm_right) - centre).dot(left))) {
+        arm_right = c;
+      }
+    }
+    if (arm_left >= 0) parts_[arm_left].name = "arm_left";
+    if (arm_right >= 0) parts_[arm_right].name = "arm_right";
+    const bool first_left =
+        (end_of(legs[0]) - centre).dot(left) >= (end_of(legs[1]) - centre).dot(left);
+    parts_[legs[0]].name = first_left ? "leg_left" : "leg_right";
+    parts_[legs[1]].name = first_left ? "leg_right" : "leg_left";
+  }
+  if (t0.y() > t1.y()) Reverse(torso);  // from the lower end (the hips of a biped) up
+}
+
+Result<RigDescription> Describer::Run() {
+  const std::string context = "curve skeleton description: ";
+  if (std::string why = Validate(); !why.empty()) return Error{context + why};
+  if (skeleton_.nodes.empty()) return Error{context + "the skeleton is empty"};
+  if (surface_.empty()) return Error{context + "the mesh has no (non-degenerate) triangles"};
+  bool first = true;
+  for (const Triangle& t : mesh_triangles_) {
+    for (std::uint32_t v : t) {
+      if (v >= mesh_positions_.size() || !IsFinite(mesh_positions_[v])) continue;
+      low_ = first ? mesh_positions_[v] : Vec3(low_.cwiseMin(mesh_positions_[v]));
+      high_ = first ? mesh_positions_[v] : Vec3(high_.cwiseMax(mesh_positions_[v]));
+      first = false;
+    }
+  }
+  diagonal_ = (high_ - low_).norm();
+  if (!(diagonal_ > 0.0)) return Error{context + "the mesh has no extent"};
+
+  nodes_ = skeleton_.nodes;
+  node_radius_.assign(nodes_.size(), -1.0);
+  for (const CurveSkeleton::Branch& branch : skeleton_.branches) {
+    Edge edge;
+    edge.a = branch.from;
+    edge.b = branch.to;
+    edge.points = branch.points;
+    edge.length = PolylineLength(edge.points);
+    edges_.push_back(std::move(edge));
+  }
+  // Nodes of degree 2 (not made by ExtractCurveSkeleton, but allowed) join their branches.
+  for (std::size_t n = 0; n < nodes_.size(); ++n) {
+    const std::vector<int> incident = Incident()[n];
+    if (incident.size() == 2 && incident[0] != incident[1]) {
+      MergeAt(static_cast<int>(n), incident[0], incident[1]);
+    }
+  }
+  PruneSpurs();
+  BuildForest();
+  ComputeMass();
+
+  // The main component has the longest skeleton.
+  std::map<int, double> component_length;
+  for (const Edge& edge : edges_) {
+    if (edge.alive) component_length[component_[edge.a]] += edge.length;
+  }
+  int main = component_.empty() ? 0 : component_[0];
+  double main_length = -1.0;
+  for (std::size_t n = 0; n < nodes_.size(); ++n) {
+    const double length = component_length[component_[n]];
+    if (length > main_length) {
+      main_length = length;
+      main = component_[n];
+    }
+  }
+  owner_.assign(nodes_.size(), -1);
+
+  Part torso;
+  if (const int e = ChooseTorsoEdge(main); e >= 0) {
+    edges_[e].used = true;
+    torso.mass = mass_[e];
+    torso.curve = edges_[e].points;
+    torso.nodes = {edges_[e].a, edges_[e].b};
+  } else {
+    // At most one junction region: the thickest non-link branch, from its junction outwards.
+    int best = -1;
+    double best_score = -1.0;
+    for (std::size_t i = 0; i < edges_.size(); ++i) {
+      const Edge& edge = edges_[i];
+      if (!edge.alive || edge.link || component_[edge.a] != main) continue;
+      const double radius = MeanRadius(edge.points);
+      const double score =
+          radius * (radius > 0.0 ? std::min(1.0, edge.length / (2.0 * radius)) : 1.0);
+      if (score > best_score) {
+        best_score = score;
+        best = static_cast<int>(i);
+      }
+    }
+    if (best >= 0) {
+      Edge& edge = edges_[best];
+      edge.used = true;
+      torso.mass = mass_[best];
+      const int start = degree_[edge.b] >= 3 && degree_[edge.a] < 3 ? edge.b : edge.a;
+      torso.curve = edge.From(start);
+      torso.nodes = {start, edge.Other(start)};
+      torso.free_start = degree_[start] == 1;
+      torso.free_end = degree_[edge.Other(start)] == 1;
+    } else {
+      // A single point (a blob): a segment through it along the mesh's longest extent.
+      int node = 0;
+      while (node < static_cast<int>(nodes_.size()) && component_[node] != main) ++node;
+      const Vec3 extent = high_ - low_;
+      Eigen::Index axis_index = 0;
+      extent.maxCoeff(&axis_index);
+      const Vec3 axis = Vec3::Unit(axis_index);
+      const Vec3 p = nodes_[node];
+      const std::optional<Surface::Hit> forward = surface_.Raycast(p, axis);
+      const std::optional<Surface::Hit> backward = surface_.Raycast(p, -axis);
+      if (!forward || !backward || !forward->leaving || !backward->leaving) {
+        return Error{context + "the skeleton has no branches and its node is not inside the mesh"};
+      }
+      torso.curve = {p - kExtendFraction * backward->t * axis,
+                     p + kExtendFraction * forward->t * axis};
+      torso.nodes = {node};
+    }
+  }
+  parts_.push_back(std::move(torso));
+  for (std::size_t i = 0; i < parts_.size(); ++i) AddChildren(static_cast<int>(i));
+
+  // Branches that close cycles hang from the part holding one of their ends.
+  auto add_cycle_edges = [&](int component) {
+    for (std::size_t e = 0; e < edges_.size(); ++e) {
+      Edge& edge = edges_[e];
+      if (!edge.alive || edge.used || edge.tree || component_[edge.a] != component) continue;
+      edge.used = true;
+      Part part;
+      part.mass = mass_[e];
+      part.parent = owner_[edge.a] >= 0 ? owner_[edge.a] : std::max(owner_[edge.b], 0);
+      part.curve = edge.points;
+      part.nodes = {edge.a, edge.b};
+      parts_.push_back(std::move(part));
+    }
+  };
+  add_cycle_edges(main);
+
+  // Separate pieces (from separate shells of the mesh), if long enough: their longest path
+  // hangs from the nearest part, starting at its end nearest to it.
+  std::vector<int> components;
+  for (std::size_t n = 0; n < nodes_.size(); ++n) {
+    const int c = component_[n];
+    if (c != main && std::find(components.begin(), components.end(), c) == components.end() &&
+        component_length[c] >= kComponentFraction * diagonal_) {
+      components.push_back(c);
+    }
+  }
+  const std::size_t main_parts = parts_.size();
+  for (int c : components) {
+    int start = -1, first_edge = -1;
+    double longest = -1.0;
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+      if (component_[n] != c || tree_edges_[n].size() != 1) continue;
+      const double reach = Farthest(static_cast<int>(n), tree_edges_[n][0]);
+      if (reach > longest) {
+        longest = reach;
+        start = static_cast<int>(n);
+        first_edge = tree_edges_[n][0];
+      }
+    }
+    if (start < 0) {
+      add_cycle_edges(c);
+      continue;
+    }
+    Part part;
+    part.nodes.push_back(start);
+    const int last = WalkChain(start, first_edge, part);
+    part.free_start = true;
+    part.free_end = degree_[last] == 1;
+    double near_start = std::numeric_limits<double>::infinity(), near_end = near_start;
+    for (std::size_t i = 0; i < main_parts; ++i) {
+      for (const Vec3& p : parts_[i].curve) {
+        const double ds = (p - part.curve.front()).norm(), de = (p - part.curve.back()).norm();
+        if (ds < near_start || de < near_end) {
+          if (std::min(ds, de) < std::min(near_start, near_end)) {
+            part.parent = static_cast<int>(i);
+          }
+          near_start = std::min(near_start, ds);
+          near_end = std::min(near_end, de);
+        }
+      }
+    }
+    if (near_end < near_start) Reverse(part);
+    parts_.push_back(std::move(part));
+    const std::size_t from = parts_.size() - 1;
+    for (std::size_t i = from; i < parts_.size(); ++i) AddChildren(static_cast<int>(i));
+    add_cycle_edges(c);
+  }
+
+  // Thickness of a part: its outer half, past the junction blob it starts in.
+  for (Part& part : parts_) {
+    const double half = 0.5 * PolylineLength(part.curve);
+    double walked = 0.0;
+    std::size_t i = 1;
+    while (i < part.curve.size() && walked < half) {
+      walked += (part.curve[i] - part.curve[i - 1]).norm();
+      ++i;
+    }
+    part.radius = MeanRadius({part.curve.begin() + (i - 1), part.curve.end()});
+  }
+  for (std::size_t i = parts_.size(); i-- > 0;) {
+    parts_[i].subtree_mass += parts_[i].mass;
+    if (parts_[i].parent >= 0) parts_[parts_[i].parent].subtree_mass += parts_[i].subtree_mass;
+  }
+  Name();
+  for (Part& part : parts_) ExtendEnds(part);
+
+  // Output order: torso, the named parts in a fixed order, the rest as found (parents first).
+  static const char* const kOrder[] = {
+      "torso",           "head",          "tail",           "leg_front_left",
+      "leg_front_right", "leg_back_left", "leg_back_right", "arm_left",
+      "arm_right",       "leg_left",      "leg_right"};
+  std::vector<int> order;
+  for (const char* name : kOrder) {
+    for (std::size_t i = 0; i < parts_.size(); ++i) {
+      if (parts_[i].name == name) order.push_back(static_cast<int>(i));
+    }
+  }
+  for (std::size_t i = 0; i < parts_.size(); ++i) {
+    if (parts_[i].name.empty()) order.push_back(static_cast<int>(i));
+  }
+
+  RigDescription description;
+  std::vector<int> kept(parts_.size(), -1);  // index into description.parts
+  int branch_number = 0;
+  for (int i : order) {
+    Part& part = parts_[i];
+    std::vector<Vec3> curve;
+    for (const Vec3& p : part.curve) {
+      if (curve.empty() || (p - curve.back()).norm() > 1e-9 * diagonal_) curve.push_back(p);
+    }
+    if (curve.size() < 2) {
+      // Degenerate: its children hang from its parent instead.
+      for (Part& other : parts_) {
+        if (other.parent == i) other.parent = part.parent;
+      }
+      continue;
+    }
+    PartDescription out;
+    out.name = part.name.empty() ? "branch_" + std::to_string(++branch_number) : part.name;
+    out.central_curve = std::move(curve);
+    if (part.parent >= 0 && kept[part.parent] >= 0) {
+      out.parent = description.parts[kept[part.parent]].name;
+    }
+    kept[i] = static_cast<int>(description.parts.size());
+    description.parts.push_back(std::move(out));
+  }
+  if (description.parts.empty() || !description.parts.front().parent.empty()) {
+    return Error{context + "the skeleton has no usable branch"};
+  }
+  return description;
+}
+
+}  // namespace
+
+Result<RigDescription> DescribeFromCurveSkeleton(const Mesh& mesh, const CurveSkeleton& skeleton) {
+  return Describer(mesh, skeleton).Run();
+}
+
+}  // namespace wirerig

@@ -1,0 +1,152 @@
+#include "wirerig/rig/rig_builder.h"
+
+#include <algorithm>
+
+#include "wirerig/rig/part_assignment.h"
+#include "wirerig/rig/spine_curves.h"
+#include "wirerig/rig/triangle_bvh.h"
+
+namespace wirerig {
+namespace {
+
+double MeanRadius(const RigPart& part) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < part.profiles.size(); ++k)
+    for (const Vec3& p : part.profiles[k].points) {
+      sum += (p - part.spine_points[k]).norm();
+      ++count;
+    }
+  return count ? sum / double(count) : 0.0;
+}
+
+// Section of each wire (see rig_builder.h).
+void AssignWires(RigPart& part, const Material& material, double thickness) {
+  const double radius = std::max(MeanRadius(part), 1e-6);
+  part.spine_wire = {material, TubeSection(radius, std::min(thickness, 2.0 * radius))};
+  const std::size_t n = part.profiles.size();
+  part.profile_wires.clear();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec3& here = part.profiles[k].origin;
+    const Vec3& prev = part.profiles[k > 0 ? k - 1 : std::min<std::size_t>(1, n - 1)].origin;
+    const Vec3& next = part.profiles[k + 1 < n ? k + 1 : (n >= 2 ? n - 2 : 0)].origin;
+    const double spacing = std::max(0.5 * ((here - prev).norm() + (next - here).norm()), 1e-6);
+    part.profile_wires.push_back({material, StripSection(spacing, thickness)});
+  }
+}
+
+void Warn(RigBuildReport& report, const std::string& part, const ProfileDiagnostics& d) {
+  auto add = [&](std::size_t count, const char* what) {
+    if (count)
+      report.warnings.push_back("part '" + part + "': " + std::to_string(count) + " " + what);
+  };
+  add(d.misses, "rays missed the surface");
+  add(d.other_part_hits, "rays met another part first");
+  add(d.open_profiles, "profiles are open");
+  add(d.empty_profiles, "profiles had fewer than 2 hits and were dropped");
+  add(d.self_intersecting, "profiles cross themselves");
+  add(d.crossing_neighbour, "pairs of adjacent profiles cross");
+  add(d.outside_profiles, "profiles had their origin outside the part and were dropped");
+}
+
+// Six times the signed volume enclosed by the triangles (positive when they face outwards).
+double SignedVolume6(const Mesh& mesh) {
+  double volume = 0.0;
+  for (const Triangle& t : mesh.welded_triangles)
+    volume += mesh.welded_positions[t[0]].dot(
+        mesh.welded_positions[t[1]].cross(mesh.welded_positions[t[2]]));
+  return volume;
+}
+
+}  // namespace
+
+Result<BuiltRig> BuildRig(const Mesh& mesh, const RigDescription& description,
+                          const std::string& mesh_path, const RigBuildOptions& options) {
+  if (std::string error = ValidateRigDescription(description); !error.empty())
+    return Error{"description: " + error};
+  if (mesh.welded_triangles.empty()) return Error{"the mesh has no triangles"};
+  if (!(options.skin_thickness > 0.0)) return Error{"skin thickness must be positive"};
+
+  Result<std::vector<bool>> passive = FindPassiveTriangles(mesh, description);
+  if (!passive) return Error{passive.error()};
+  const std::vector<std::uint32_t> active = ActiveTriangles(passive.value());
+  const TriangleBvh mesh_bvh =
+      TriangleBvh::Build(mesh.welded_positions, mesh.welded_triangles, active);
+  Result<PartAssignment> assignment = AssignParts(mesh, description, mesh_bvh, passive.value());
+  if (!assignment) return Error{assignment.error()};
+  const PartAssignment& parts = assignment.value();
+
+  BuiltRig built;
+  Rig& rig = built.rig;
+  rig.mesh = mesh_path;
+  rig.import = description.import;
+  rig.mesh_vertices = mesh.welded_positions.size();
+  rig.mesh_triangles = mesh.welded_triangles.size();
+  rig.vertex_part = parts.vertex_part;
+  built.report.occluded_fallbacks = parts.occluded_fallbacks;
+
+  const bool inward_facing = SignedVolume6(mesh) < 0.0;
+  if (inward_facing) built.report.warnings.push_back("the mesh's triangles face inwards");
+  std::vector<Curve> spines;
+  for (std::size_t i = 0; i < description.parts.size(); ++i) {
+    const PartDescription& d = description.parts[i];
+    Curve central;
+    const auto interpolation =
+        d.central_curve.size() >= 3 ? CurveInterpolation::kCubic : CurveInterpolation::kLinear;
+    if (Status s = Curve::Build(d.central_curve, false, interpolation, &central); !s)
+      return Error{"part '" + d.name + "': central curve: " + ToString(s)};
+    const TriangleBvh part_bvh =
+        TriangleBvh::Build(mesh.welded_positions, mesh.welded_triangles, parts.part_triangles[i]);
+    ProfileRequest request;
+    request.central_curve = &central;
+    request.profile_count = d.profile_count;
+    request.points_per_profile = d.points_per_profile;
+    request.part_bvh = &part_bvh;
+    request.mesh_bvh = &mesh_bvh;
+    request.triangle_part = parts.triangle_part;
+    request.part = int(i);
+    request.positions = mesh.welded_positions;
+    request.triangles = mesh.welded_triangles;
+    request.inward_facing = inward_facing;
+    ProfileSet profiles = GenerateProfiles(request);
+
+    RigPart part;
+    part.name = d.name;
+    part.central_curve = d.central_curve;
+    part.profile_count = d.profile_count;
+    part.points_per_profile = d.points_per_profile;
+    part.profiles = std::move(profiles.profiles);
+    part.spine_points = SpinePoints(part.profiles, profiles.foreign_points);
+    Result<Curve> spine = BuildSpineCurve(part.spine_points);
+    if (!spine)
+      return Error{"part '" + d.name + "': " + std::to_string(part.profiles.size()) + " of " +
+                   std::to_string(d.profile_count) +
+                   " profiles hit its surface; is its central curve inside the mesh? (" +
+                   spine.error() + ")"};
+    AssignWires(part, description.material, options.skin_thickness);
+    if (!d.parent.empty()) {
+      for (std::size_t p = 0; p < i; ++p)
+        if (description.parts[p].name == d.parent) part.parent = int(p);
+      part.attachment = ClosestParameter(spines[part.parent], part.spine_points.front());
+    }
+    spines.push_back(std::move(spine).value());
+
+    PartReport report;
+    report.name = d.name;
+    report.vertices =
+        std::size_t(std::count(parts.vertex_part.begin(), parts.vertex_part.end(), int(i)));
+    report.triangles = parts.part_triangles[i].size();
+    report.profiles = profiles.diagnostics;
+    Warn(built.report, d.name, profiles.diagnostics);
+    built.report.parts.push_back(report);
+    rig.parts.push_back(std::move(part));
+  }
+  if (parts.occluded_fallbacks)
+    built.report.warnings.push_back(
+        std::to_string(parts.occluded_fallbacks) +
+        " vertices are hidden from every central curve by the surface itself (concave "
+                                    "detail) and went to the nearest curve");
+  return built;
+}
+
+}  // namespace wirerig

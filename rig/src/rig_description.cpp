@@ -1,0 +1,211 @@
+#include "wirerig/rig/rig_description.h"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "wirerig/rig/json_fields.h"
+#include "wirerig/rig/json_physics.h"
+
+namespace wirerig {
+namespace {
+
+constexpr int kMaxPointsPerProfile = 1024;
+constexpr int kMaxProfiles = 4096;
+
+std::vector<std::string> ReadNames(const JsonObject& object, std::string_view key) {
+  std::vector<std::string> names;
+  if (!object.Has(key)) return names;
+  const nlohmann::json& array = RequireArray(object.Required(key), object.PathOf(key));
+  for (std::size_t i = 0; i < array.size(); ++i) {
+    if (!array[i].is_string())
+      throw FieldError(object.PathOf(key) + "/" + std::to_string(i), "must be a string");
+    names.push_back(array[i].get<std::string>());
+  }
+  return names;
+}
+
+PartDescription ReadPart(const JsonObject& p, const PartDescription& defaults) {
+  p.RejectUnknownKeys(
+      {"name", "central_curve", "profile_count", "points_per_profile", "parent", "mesh_parts"});
+  PartDescription part = defaults;
+  part.name = p.String("name");
+  part.central_curve = ReadVector3Array(p.Required("central_curve"), p.PathOf("central_curve"));
+  part.profile_count = p.Integer("profile_count", defaults.profile_count);
+  part.points_per_profile = p.Integer("points_per_profile", defaults.points_per_profile);
+  if (p.Has("parent") && !p.Required("parent").is_null()) part.parent = p.String("parent");
+  part.mesh_parts = ReadNames(p, "mesh_parts");
+  return part;
+}
+
+}  // namespace
+
+Result<RigDescription> ParseRigDescription(const nlohmann::json& document) {
+  try {
+    const JsonObject root(document, "");
+    root.RejectUnknownKeys({"format", "version", "mesh", "up_axis", "unit_scale", "material",
+                            "defaults", "parts", "passive_mesh_parts"});
+    if (root.Has("format") && root.String("format") != "wirerig.rig_description")
+      throw FieldError("/format", "must be \"wirerig.rig_description\"");
+    if (root.Integer("version", 1) != 1) throw FieldError("/version", "unsupported version");
+    RigDescription description;
+    if (root.Has("mesh")) description.mesh = root.String("mesh");
+    if (root.Has("up_axis")) {
+      UpAxis axis;
+      const std::string name = root.String("up_axis");
+      if (!ParseUpAxis(name, &axis)) throw FieldError("/up_axis", "must be \"x\", \"y\" or \"z\"");
+      description.import.up_axis = axis;
+    }
+    if (root.Has("unit_scale")) {
+      const double scale = root.Number("unit_scale");
+      if (!(std::isfinite(scale) && scale > 0.0))
+        throw FieldError("/unit_scale", "must be positive and finite (metres per unit)");
+      description.import.unit_scale = scale;
+    }
+    if (root.Has("material")) description.material = ReadMaterial(root, "material");
+    PartDescription defaults;
+    if (root.Has("defaults")) {
+      const JsonObject d = root.Object("defaults");
+      d.RejectUnknownKeys({"profile_count", "points_per_profile"});
+      defaults.profile_count = d.Integer("profile_count", defaults.profile_count);
+      defaults.points_per_profile = d.Integer("points_per_profile", defaults.points_per_profile);
+    }
+    description.passive_mesh_parts = ReadNames(root, "passive_mesh_parts");
+    RequireArray(root.Required("parts"), "/parts");
+    ForEachElement(root, "parts", [&](const JsonObject& p) {
+      description.parts.push_back(ReadPart(p, defaults));
+    });
+    if (std::string error = ValidateRigDescription(description); !error.empty())
+      return Error{error};
+    return description;
+  } catch (const FieldError& e) {
+    return Error{e.what()};
+  }
+}
+
+Result<RigDescription> LoadRigDescription(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error{path.string() + ": cannot open file"};
+  const nlohmann::json document = nlohmann::json::parse(in, nullptr, false);
+  if (document.is_discarded()) return Error{path.string() + ": not valid JSON"};
+  Result<RigDescription> description = ParseRigDescription(document);
+  if (!description) return Error{path.string() + ": " + description.error()};
+  if (!description.value().mesh.empty() && description.value().mesh.is_relative())
+    description.value().mesh = path.parent_path() / description.value().mesh;
+  return description;
+}
+
+std::string ValidateRigDescription(const RigDescription& description) {
+  if (Status s = ValidateMaterial(description.material); !s)
+    return "/material/" + std::string(s.field) + ": " + std::string(s.reason);
+  if (description.parts.empty()) return "/parts: needs at least one part";
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < description.parts.size(); ++i) {
+    const PartDescription& part = description.parts[i];
+    const std::string path = "/parts/" + std::to_string(i);
+    if (part.name.empty()) return path + "/name: must not be empty";
+    if (!seen.insert(part.name).second) return path + "/name: '" + part.name + "' is used twice";
+    if (part.central_curve.size() < 2) return path + "/central_curve: needs at least 2 points";
+    for (std::size_t k = 0; k < part.central_curve.size(); ++k) {
+      const Vec3& p = part.central_curve[k];
+      if (!(std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z())))
+        return path + "/central_curve/" + std::to_string(k) + ": must be finite";
+      if (k > 0 && (p - part.central_curve[k - 1]).norm() <= 0.0)
+        return path + "/central_curve/" + std::to_string(k) + ": repeats the previous point";
+    }
+    if (part.profile_count < 2 || part.profile_count > kMaxProfiles)
+      return path + "/profile_count: must lie in [2, 4096]";
+    if (part.points_per_profile < 3 || part.points_per_profile > kMaxPointsPerProfile)
+      return path + "/points_per_profile: must lie in [3, 1024]";
+    if (i == 0 && !part.parent.empty()) return path + "/parent: the first part is the root";
+    if (i > 0 && part.parent.empty()) return path + "/parent: only the first part may be a root";
+    if (i > 0 && !seen.contains(part.parent))
+      return path + "/parent: '" + part.parent + "' is not an earlier part";
+    if (part.parent == part.name) return path + "/parent: a part cannot be its own parent";
+  }
+  for (int p : description.vertex_part)
+    if (p < -1 || p >= static_cast<int>(description.parts.size()))
+      return "/vertex_part: names a part that does not exist";
+  return {};
+}
+
+Result<RigDescription> DescribeFromSkeleton(const Mesh& mesh) {
+  const std::size_t joint_count = mesh.joints.size();
+  if (joint_count == 0) return Error{"the mesh has no skeleton"};
+  if (mesh.skin_joints.size() != mesh.positions.size())
+    return Error{"the mesh's skeleton has no skin weights"};
+  std::vector<std::vector<int>> children(joint_count);
+  for (std::size_t j = 0; j < joint_count; ++j)
+    if (mesh.joints[j].parent >= 0) children[mesh.joints[j].parent].push_back(int(j));
+  auto position = [&](int j) -> Vec3 { return mesh.joints[j].bind_global.block<3, 1>(0, 3); };
+
+  // Chains: maximal runs of joints where every inner joint has exactly one child.
+  RigDescription description;
+  std::vector<int> chain_of(joint_count, -1);
+  std::vector<int> chain_parent_joint;
+  for (std::size_t start = 0; start < joint_count; ++start) {
+    const int parent = mesh.joints[start].parent;
+    if (parent >= 0 && children[parent].size() == 1) continue;  // not a chain start
+    PartDescription part;
+    part.name = mesh.joints[start].name;
+    if (parent >= 0) part.central_curve.push_back(position(parent));
+    for (int j = int(start);; j = children[j][0]) {
+      chain_of[j] = int(description.parts.size());
+      const Vec3 p = position(j);
+      if (part.central_curve.empty() || (p - part.central_curve.back()).norm() > 1e-9)
+        part.central_curve.push_back(p);
+      if (children[j].size() != 1) break;
+    }
+    chain_parent_joint.push_back(parent);
+    description.parts.push_back(std::move(part));
+  }
+  // Parent names, then drop chains too short to be a curve (their vertices go to the parent).
+  std::vector<int> remap(description.parts.size(), -1);
+  std::vector<PartDescription> kept;
+  for (std::size_t c = 0; c < description.parts.size(); ++c) {
+    int parent_chain = chain_parent_joint[c] >= 0 ? chain_of[chain_parent_joint[c]] : -1;
+    PartDescription& part = description.parts[c];
+    if (part.central_curve.size() < 2 && parent_chain >= 0) {
+      remap[c] = remap[parent_chain];
+      continue;
+    }
+    if (part.central_curve.size() < 2) continue;  // an isolated joint without a parent
+    part.parent = parent_chain >= 0 && remap[parent_chain] >= 0 ? kept[remap[parent_chain]].name
+                                                                : std::string();
+    remap[c] = int(kept.size());
+    kept.push_back(std::move(part));
+  }
+  // A skeleton may have several roots: keep the largest tree's root first and hang other
+  // roots from it so that exactly one part is the root.
+  for (std::size_t i = 1; i < kept.size(); ++i)
+    if (kept[i].parent.empty()) kept[i].parent = kept[0].name;
+  if (kept.empty()) return Error{"the skeleton has no chain of two or more joints"};
+  description.parts = std::move(kept);
+
+  // Vertices follow the joint of largest weight; welded vertices follow their first render
+  // vertex.
+  const std::size_t welded = mesh.welded_positions.size();
+  description.vertex_part.assign(welded, -1);
+  std::vector<bool> set(welded, false);
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const std::uint32_t w = mesh.weld_map.empty() ? std::uint32_t(v) : mesh.weld_map[v];
+    if (w >= welded || set[w]) continue;
+    int best = -1;
+    double best_weight = 0.0;
+    for (int k = 0; k < 4; ++k)
+      if (mesh.skin_joints[v][k] >= 0 && mesh.skin_weights[v][k] > best_weight) {
+        best = mesh.skin_joints[v][k];
+        best_weight = mesh.skin_weights[v][k];
+      }
+    if (best >= 0 && best < int(joint_count)) description.vertex_part[w] = remap[chain_of[best]];
+    set[w] = true;
+  }
+  if (std::string error = ValidateRigDescription(description); !error.empty())
+    return Error{"skeleton gives an invalid description: " + error};
+  return description;
+}
+
+}  // namespace wirerig

@@ -1,0 +1,214 @@
+#include "wirerig/rig/rig_file.h"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "wirerig/rig/atomic_file.h"
+#include "wirerig/rig/json_fields.h"
+#include "wirerig/rig/json_physics.h"
+
+namespace wirerig {
+namespace {
+
+nlohmann::json ToJson(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json ToJson(const std::vector<Vec3>& points) {
+  nlohmann::json array = nlohmann::json::array();
+  for (const Vec3& p : points) array.push_back(ToJson(p));
+  return array;
+}
+
+nlohmann::json ToJson(const WireProperties& wire) {
+  return {{"material", MaterialToJson(wire.material)}, {"section", SectionToJson(wire.section)}};
+}
+
+WireProperties ReadWire(const JsonObject& parent, std::string_view key) {
+  const JsonObject wire = parent.Object(key);
+  wire.RejectUnknownKeys({"material", "section"});
+  return {ReadMaterial(wire, "material"), ReadSection(wire, "section")};
+}
+
+void RequireFinite(const Vec3& v, const std::string& path) {
+  if (!(std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z())))
+    throw FieldError(path, "must be finite");
+}
+
+void RequireUnit(const Vec3& v, const std::string& path) {
+  RequireFinite(v, path);
+  if (std::abs(v.norm() - 1.0) > 1e-6) throw FieldError(path, "must be a unit vector");
+}
+
+std::size_t ReadCount(const JsonObject& object, std::string_view key) {
+  const nlohmann::json& value = object.Required(key);
+  if (!value.is_number_unsigned()) throw FieldError(object.PathOf(key), "must be a count");
+  return value.get<std::size_t>();
+}
+
+ProfileCurve ReadProfile(const JsonObject& p) {
+  p.RejectUnknownKeys({"v", "origin", "tangent", "normal", "binormal", "closed", "points", "wire"});
+  ProfileCurve profile;
+  profile.v = p.Number("v");
+  if (!(profile.v > 0.0 && profile.v < 1.0)) throw FieldError(p.PathOf("v"), "must lie in (0, 1)");
+  profile.origin = ReadVector3(p.Required("origin"), p.PathOf("origin"));
+  RequireFinite(profile.origin, p.PathOf("origin"));
+  profile.frame.tangent = ReadVector3(p.Required("tangent"), p.PathOf("tangent"));
+  profile.frame.normal = ReadVector3(p.Required("normal"), p.PathOf("normal"));
+  profile.frame.binormal = ReadVector3(p.Required("binormal"), p.PathOf("binormal"));
+  RequireUnit(profile.frame.tangent, p.PathOf("tangent"));
+  RequireUnit(profile.frame.normal, p.PathOf("normal"));
+  RequireUnit(profile.frame.binormal, p.PathOf("binormal"));
+  const nlohmann::json& closed = p.Required("closed");
+  if (!closed.is_boolean()) throw FieldError(p.PathOf("closed"), "must be true or false");
+  profile.closed = closed.get<bool>();
+  profile.points = ReadVector3Array(p.Required("points"), p.PathOf("points"));
+  if (profile.points.size() < 2) throw FieldError(p.PathOf("points"), "needs at least 2 points");
+  for (std::size_t i = 0; i < profile.points.size(); ++i)
+    RequireFinite(profile.points[i], p.PathOf("points") + "/" + std::to_string(i));
+  return profile;
+}
+
+RigPart ReadPart(const JsonObject& p, const std::vector<RigPart>& earlier) {
+  p.RejectUnknownKeys({"name", "parent", "attachment", "central_curve", "profile_count",
+                       "points_per_profile", "profiles", "spine_points", "spine_wire"});
+  RigPart part;
+  part.name = p.String("name");
+  if (part.name.empty()) throw FieldError(p.PathOf("name"), "must not be empty");
+  for (const RigPart& other : earlier)
+    if (other.name == part.name) throw FieldError(p.PathOf("name"), "is used twice");
+  if (!p.Required("parent").is_null()) {
+    const std::string parent = p.String("parent");
+    for (std::size_t i = 0; i < earlier.size(); ++i)
+      if (earlier[i].name == parent) part.parent = int(i);
+    if (part.parent < 0)
+      throw FieldError(p.PathOf("parent"), "'" + parent + "' is not an earlier part");
+  } else if (!earlier.empty()) {
+    throw FieldError(p.PathOf("parent"), "only the first part may be a root");
+  }
+  part.attachment = p.Number("attachment");
+  if (!(part.attachment >= 0.0 && part.attachment <= 1.0))
+    throw FieldError(p.PathOf("attachment"), "must lie in [0, 1]");
+  part.central_curve = ReadVector3Array(p.Required("central_curve"), p.PathOf("central_curve"));
+  if (part.central_curve.size() < 2)
+    throw FieldError(p.PathOf("central_curve"), "needs at least 2 points");
+  part.profile_count = p.Integer("profile_count", 0);
+  part.points_per_profile = p.Integer("points_per_profile", 0);
+  if (part.profile_count < 2) throw FieldError(p.PathOf("profile_count"), "must be at least 2");
+  if (part.points_per_profile < 3)
+    throw FieldError(p.PathOf("points_per_profile"), "must be at least 3");
+  RequireArray(p.Required("profiles"), p.PathOf("profiles"));
+  ForEachElement(p, "profiles", [&](const JsonObject& profile) {
+    part.profiles.push_back(ReadProfile(profile));
+    part.profile_wires.push_back(ReadWire(profile, "wire"));
+  });
+  part.spine_points = ReadVector3Array(p.Required("spine_points"), p.PathOf("spine_points"));
+  if (part.spine_points.size() != part.profiles.size() || part.profiles.size() < 2)
+    throw FieldError(p.PathOf("spine_points"), "needs one point per profile, at least 2");
+  for (std::size_t i = 0; i < part.spine_points.size(); ++i)
+    RequireFinite(part.spine_points[i], p.PathOf("spine_points") + "/" + std::to_string(i));
+  part.spine_wire = ReadWire(p, "spine_wire");
+  return part;
+}
+
+}  // namespace
+
+nlohmann::json RigToJson(const Rig& rig) {
+  nlohmann::json mesh = {
+      {"path", rig.mesh}, {"vertices", rig.mesh_vertices}, {"triangles", rig.mesh_triangles}};
+  if (rig.import.up_axis) mesh["up_axis"] = ToString(*rig.import.up_axis);
+  if (rig.import.unit_scale) mesh["unit_scale"] = *rig.import.unit_scale;
+  nlohmann::json parts = nlohmann::json::array();
+  for (const RigPart& part : rig.parts) {
+    nlohmann::json profiles = nlohmann::json::array();
+    for (std::size_t k = 0; k < part.profiles.size(); ++k) {
+      const ProfileCurve& p = part.profiles[k];
+      profiles.push_back({{"v", p.v},
+                          {"origin", ToJson(p.origin)},
+                          {"tangent", ToJson(p.frame.tangent)},
+                          {"normal", ToJson(p.frame.normal)},
+                          {"binormal", ToJson(p.frame.binormal)},
+                          {"closed", p.closed},
+                          {"points", ToJson(p.points)},
+                          {"wire", ToJson(part.profile_wires[k])}});
+    }
+    parts.push_back({{"name", part.name},
+                     {"parent", part.parent >= 0 ? nlohmann::json(rig.parts[part.parent].name)
+                                                 : nlohmann::json(nullptr)},
+                     {"attachment", part.attachment},
+                     {"central_curve", ToJson(part.central_curve)},
+                     {"profile_count", part.profile_count},
+                     {"points_per_profile", part.points_per_profile},
+                     {"profiles", std::move(profiles)},
+                     {"spine_points", ToJson(part.spine_points)},
+                     {"spine_wire", ToJson(part.spine_wire)}});
+  }
+  return {{"format", "wirerig.rig"},
+          {"version", Rig::kFormatVersion},
+          {"mesh", std::move(mesh)},
+          {"parts", std::move(parts)},
+          {"vertex_part", rig.vertex_part}};
+}
+
+Result<Rig> RigFromJson(const nlohmann::json& document) {
+  try {
+    const JsonObject root(document, "");
+    root.RejectUnknownKeys({"format", "version", "mesh", "parts", "vertex_part"});
+    if (root.String("format") != "wirerig.rig")
+      throw FieldError("/format", "must be \"wirerig.rig\"");
+    if (root.Integer("version", -1) != Rig::kFormatVersion)
+      throw FieldError("/version", "unsupported version (this build reads version 1)");
+    Rig rig;
+    const JsonObject mesh = root.Object("mesh");
+    mesh.RejectUnknownKeys({"path", "vertices", "triangles", "up_axis", "unit_scale"});
+    rig.mesh = mesh.String("path");
+    rig.mesh_vertices = ReadCount(mesh, "vertices");
+    rig.mesh_triangles = ReadCount(mesh, "triangles");
+    if (mesh.Has("up_axis")) {
+      UpAxis axis;
+      if (!ParseUpAxis(mesh.String("up_axis"), &axis))
+        throw FieldError(mesh.PathOf("up_axis"), "must be \"x\", \"y\" or \"z\"");
+      rig.import.up_axis = axis;
+    }
+    if (mesh.Has("unit_scale")) {
+      const double scale = mesh.Number("unit_scale");
+      if (!(std::isfinite(scale) && scale > 0.0))
+        throw FieldError(mesh.PathOf("unit_scale"), "must be positive and finite");
+      rig.import.unit_scale = scale;
+    }
+    RequireArray(root.Required("parts"), "/parts");
+    ForEachElement(root, "parts",
+                   [&](const JsonObject& p) { rig.parts.push_back(ReadPart(p, rig.parts)); });
+    if (rig.parts.empty()) throw FieldError("/parts", "needs at least one part");
+    const nlohmann::json& vertex_part = RequireArray(root.Required("vertex_part"), "/vertex_part");
+    if (vertex_part.size() != rig.mesh_vertices)
+      throw FieldError("/vertex_part", "needs one entry per mesh vertex (" +
+                                           std::to_string(rig.mesh_vertices) + ")");
+    for (std::size_t i = 0; i < vertex_part.size(); ++i) {
+      if (!vertex_part[i].is_number_integer() || vertex_part[i].get<long long>() < 0 ||
+          vertex_part[i].get<long long>() >= static_cast<long long>(rig.parts.size()))
+        throw FieldError("/vertex_part/" + std::to_string(i), "must be a part index");
+      rig.vertex_part.push_back(vertex_part[i].get<int>());
+    }
+    return rig;
+  } catch (const FieldError& e) {
+    return Error{e.what()};
+  }
+}
+
+Result<std::filesystem::path> SaveRig(const Rig& rig, const std::filesystem::path& path) {
+  return WriteFileAtomically(path, RigToJson(rig).dump(1) + "\n");
+}
+
+Result<Rig> LoadRig(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error{path.string() + ": cannot open file"};
+  const nlohmann::json document = nlohmann::json::parse(in, nullptr, false);
+  if (document.is_discarded()) return Error{path.string() + ": not valid JSON"};
+  Result<Rig> rig = RigFromJson(document);
+  if (!rig) return Error{path.string() + ": " + rig.error()};
+  return rig;
+}
+
+}  // namespace wirerig

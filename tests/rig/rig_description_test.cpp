@@ -1,0 +1,96 @@
+// Rig descriptions: parsing, validation rules with JSON pointers, and the checked-in ones.
+#include "wirerig/rig/rig_description.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#ifndef WIRERIG_SAMPLES_DIR
+#define WIRERIG_SAMPLES_DIR "/work/main/samples"
+#endif
+
+namespace wirerig {
+namespace {
+
+nlohmann::json Good() {
+  return nlohmann::json::parse(R"({
+    "format": "wirerig.rig_description", "version": 1, "up_axis": "z", "material": "rubber",
+    "defaults": {"profile_count": 6, "points_per_profile": 16},
+    "parts": [
+      {"name": "body", "central_curve": [[0, 0, 0], [0, 1, 0]]},
+      {"name": "arm", "parent": "body", "central_curve": [[0, 0.8, 0], [0.5, 0.8, 0]],
+       "profile_count": 4, "mesh_parts": ["arm_mesh"]}
+    ]})");
+}
+
+TEST(RigDescription, ParsesFieldsAndDefaults) {
+  const Result<RigDescription> d = ParseRigDescription(Good());
+  ASSERT_TRUE(d.ok()) << d.error();
+  ASSERT_EQ(d.value().parts.size(), 2u);
+  EXPECT_EQ(d.value().import.up_axis, UpAxis::kZ);
+  EXPECT_EQ(d.value().material.youngs_modulus, FindMaterialPreset("rubber")->youngs_modulus);
+  EXPECT_EQ(d.value().parts[0].profile_count, 6);
+  EXPECT_EQ(d.value().parts[0].points_per_profile, 16);
+  EXPECT_EQ(d.value().parts[1].profile_count, 4);
+  EXPECT_EQ(d.value().parts[1].parent, "body");
+  EXPECT_EQ(d.value().parts[1].mesh_parts, std::vector<std::string>{"arm_mesh"});
+}
+
+void ExpectRefused(const nlohmann::json& document, const std::string& expected) {
+  const Result<RigDescription> d = ParseRigDescription(document);
+  ASSERT_FALSE(d.ok());
+  EXPECT_NE(d.error().find(expected), std::string::npos) << d.error();
+}
+
+TEST(RigDescription, EachBrokenRuleIsNamed) {
+  nlohmann::json d = Good();
+  d["parts"][1]["parent"] = "leg";
+  ExpectRefused(d, "/parts/1/parent: 'leg' is not an earlier part");
+  d = Good();
+  d["parts"][1]["name"] = "body";
+  ExpectRefused(d, "/parts/1/name: 'body' is used twice");
+  d = Good();
+  d["parts"][0]["central_curve"] = {{0, 0, 0}};
+  ExpectRefused(d, "/parts/0/central_curve: needs at least 2 points");
+  d = Good();
+  d["parts"][0]["central_curve"] = {{0, 0, 0}, {0, 0, 0}};
+  ExpectRefused(d, "/parts/0/central_curve/1: repeats the previous point");
+  d = Good();
+  d["parts"][0]["points_per_profile"] = 2;
+  ExpectRefused(d, "/parts/0/points_per_profile: must lie in [3, 1024]");
+  d = Good();
+  d["parts"][0]["profile_count"] = 1;
+  ExpectRefused(d, "/parts/0/profile_count: must lie in [2, 4096]");
+  d = Good();
+  d["parts"][0]["parent"] = "arm";
+  ExpectRefused(d, "/parts/0/parent: the first part is the root");
+  d = Good();
+  d["parts"][1].erase("parent");
+  ExpectRefused(d, "/parts/1/parent: only the first part may be a root");
+  d = Good();
+  d["up_axis"] = "up";
+  ExpectRefused(d, "/up_axis: must be \"x\", \"y\" or \"z\"");
+  d = Good();
+  d["unit_scale"] = 0;
+  ExpectRefused(d, "/unit_scale: must be positive");
+  d = Good();
+  d["parts"] = nlohmann::json::array();
+  ExpectRefused(d, "/parts: needs at least one part");
+  d = Good();
+  d["parts"][0]["central_curve"][1] = {0, 1};
+  ExpectRefused(d, "/parts/0/central_curve/1: must be an array of 3 numbers");
+  d = Good();
+  d["material"] = {{"E", 1e6}, {"nu", 0.7}};
+  ExpectRefused(d, "/material/nu: must lie in (-1, 0.5)");
+}
+
+TEST(RigDescription, CheckedInDescriptionsLoad) {
+  const Result<RigDescription> human =
+      LoadRigDescription(std::string(WIRERIG_SAMPLES_DIR) + "/rigs/human.description.json");
+  ASSERT_TRUE(human.ok()) << human.error();
+  EXPECT_GE(human.value().parts.size(), 6u);
+  EXPECT_EQ(human.value().mesh.filename(), "human.zae");
+}
+
+}  // namespace
+}  // namespace wirerig
