@@ -41,25 +41,29 @@ double PolylineLength(const std::vector<Vec3>& points) {
 
 void Prepare(Scene& scene, const RigDescription& description) {
   scene.mesh_bvh = TriangleBvh::Build(scene.mesh.welded_positions, scene.mesh.welded_triangles);
-  scene.assignment = AssignParts(scene.mesh, description, scene.mesh_bvh).value();
+  const std::vector<bool> passive(scene.mesh.welded_triangles.size(), false);
+  scene.assignment = AssignParts(scene.mesh, description, scene.mesh_bvh, passive).value();
   double total = 0.0;
   for (const PartDescription& part : description.parts) total += PolylineLength(part.central_curve);
   int assigned = 0;
   for (std::size_t i = 0; i < description.parts.size(); ++i) {
     const PartDescription& part = description.parts[i];
     Curve curve;
-    Curve::Build(part.central_curve, false,
-                 part.central_curve.size() >= 3 ? CurveInterpolation::kCubic : CurveInterpolation::kLinear,
-                 &curve);
+    Curve::Build(
+        part.central_curve, false,
+        part.central_curve.size() >= 3 ? CurveInterpolation::kCubic : CurveInterpolation::kLinear,
+        &curve);
     scene.curves.push_back(curve);
-    const int count = i + 1 == description.parts.size()
-                          ? kProfiles - assigned
-                          : std::max(2, int(std::lround(kProfiles * PolylineLength(part.central_curve) / total)));
+    const int count =
+        i + 1 == description.parts.size()
+            ? kProfiles - assigned
+            : std::max(2, int(std::lround(kProfiles * PolylineLength(part.central_curve) / total)));
     scene.counts.push_back(count);
     assigned += count;
   }
   for (std::size_t i = 0; i < description.parts.size(); ++i)
-    scene.part_bvhs.push_back(TriangleBvh::Build(scene.mesh.welded_positions, scene.mesh.welded_triangles,
+    scene.part_bvhs.push_back(TriangleBvh::Build(scene.mesh.welded_positions,
+                                                 scene.mesh.welded_triangles,
                                                  scene.assignment.part_triangles[i]));
 }
 
@@ -119,12 +123,18 @@ void Run(benchmark::State& state, const Scene& scene, bool full) {
 void BM_CowProfiles(benchmark::State& state) { Run(state, Cow(), false); }
 void BM_CowProfilesFullPipeline(benchmark::State& state) { Run(state, Cow(), true); }
 void BM_Capsule100kProfiles(benchmark::State& state) { Run(state, Capsule100k(), false); }
-void BM_Capsule100kProfilesFullPipeline(benchmark::State& state) { Run(state, Capsule100k(), true); }
+void BM_Capsule100kProfilesFullPipeline(benchmark::State& state) {
+  Run(state, Capsule100k(), true);
+}
 
 BENCHMARK(BM_CowProfiles)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CowProfilesFullPipeline)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Capsule100kProfiles)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Capsule100kProfilesFullPipeline)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Capsule100kProfilesFullPipeline)
+    ->Arg(20)
+    ->Arg(50)
+    ->Arg(100)
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace wirerig

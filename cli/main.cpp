@@ -14,8 +14,12 @@ int main(int argc, char** argv) {
   wirerig::cli::WireCommandOptions wire_options;
   CLI::App* wire = wirerig::cli::AddWireCommand(app, wire_options);
 
+  wirerig::cli::RigCommandOptions rig_options;
+  CLI::App* rig = wirerig::cli::AddRigCommand(app, rig_options);
+
   CLI11_PARSE(app, argc, argv);
   if (wire->parsed())
     return wirerig::cli::RunWireCommand(wire_options, std::cin, std::cout, std::cerr);
+  if (rig->parsed()) return wirerig::cli::RunRigCommand(rig_options, std::cout, std::cerr);
   return 1;
 }

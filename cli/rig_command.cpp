@@ -27,12 +27,14 @@ void PrintMeshSummary(std::ostream& out, const std::string& path, const Imported
   out << Format("mesh: %s (%s): %zu vertices (welded from %zu), %zu triangles, %zu mesh parts\n",
                 path.c_str(), r.format.c_str(), stats.vertices, stats.render_vertices,
                 stats.triangles, mesh.parts.size());
-  out << Format("  up axis +%s (%s), %g m per unit (%s)\n", std::string(ToString(r.source_up)).c_str(),
-                r.up_source.c_str(), r.unit_scale, r.unit_source.c_str());
-  out << Format("  %zu components, %zu boundary edges, %zu non-manifold edges, %zu degenerate "
-                "triangles, %zu joints\n",
-                stats.connected_components, stats.boundary_edges, stats.non_manifold_edges,
-                stats.degenerate_triangles, mesh.joints.size());
+  out << Format("  up axis +%s (%s), %g m per unit (%s)\n",
+                std::string(ToString(r.source_up)).c_str(), r.up_source.c_str(), r.unit_scale,
+                r.unit_source.c_str());
+  out << Format(
+      "  %zu components, %zu boundary edges, %zu non-manifold edges, %zu degenerate "
+      "triangles, %zu joints\n",
+      stats.connected_components, stats.boundary_edges, stats.non_manifold_edges,
+      stats.degenerate_triangles, mesh.joints.size());
 }
 
 void PrintRigSummary(std::ostream& out, const BuiltRig& built, const std::string& source) {
@@ -70,7 +72,8 @@ CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options) {
       ->check(CLI::IsMember({"x", "y", "z"}));
   rig->add_option("--unit-scale", options.unit_scale, "Metres per source unit, overriding the file")
       ->check(CLI::PositiveNumber);
-  rig->add_option("--skin-thickness", options.skin_thickness, "Skin thickness for wire sections (m)")
+  rig->add_option("--skin-thickness", options.skin_thickness,
+                  "Skin thickness for wire sections (m)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   return rig;
@@ -110,8 +113,8 @@ int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostr
     } else {
       Result<CurveSkeleton> skeleton = ExtractCurveSkeleton(mesh);
       if (!skeleton)
-        return fail(options.mesh + ": no skeleton, no description, and no curve skeleton: " +
-                    skeleton.error());
+        return fail(options.mesh +
+                    ": no skeleton, no description, and no curve skeleton: " + skeleton.error());
       Result<RigDescription> automatic = DescribeFromCurveSkeleton(mesh, skeleton.value());
       if (!automatic) return fail(options.mesh + ": " + automatic.error());
       description = std::move(automatic).value();

@@ -102,7 +102,9 @@ Result<PartAssignment> AssignParts(const Mesh& mesh, const RigDescription& descr
                    "', which the mesh does not have"};
   }
 
-  // The rest: nearest visible central curve.
+  // The rest: the nearest visible central curve. A child whose closest point is its own root
+  // end (the vertex lies behind the joint, e.g. torso skin behind the shoulder) is taken only
+  // when no other curve sees the vertex.
   std::vector<std::pair<double, int>> order(part_count);
   std::vector<CurveProjection> projections(part_count);
   for (std::size_t v = 0; v < vertex_count; ++v) {
@@ -112,14 +114,20 @@ Result<PartAssignment> AssignParts(const Mesh& mesh, const RigDescription& descr
     for (std::size_t i = 0; i < part_count; ++i) {
       if (restricted[i]) continue;
       projections[i] = Project(description.parts[i].central_curve, p);
-      const bool behind_child_root = projections[i].at_root && !description.parts[i].parent.empty();
-      if (!behind_child_root) order[candidates++] = {projections[i].distance, int(i)};
+      order[candidates++] = {projections[i].distance, int(i)};
     }
     if (candidates == 0) continue;
     std::sort(order.begin(), order.begin() + long(candidates));
+    auto behind_child_root = [&](int i) {
+      return projections[i].at_root && !description.parts[i].parent.empty();
+    };
     int chosen = -1;
-    for (std::size_t c = 0; c < candidates && chosen < 0; ++c)
-      if (!Occluded(active_bvh, projections[order[c].second].point, p)) chosen = order[c].second;
+    for (int pass = 0; pass < 2 && chosen < 0; ++pass)
+      for (std::size_t c = 0; c < candidates && chosen < 0; ++c) {
+        const int i = order[c].second;
+        if (behind_child_root(i) == (pass == 0)) continue;
+        if (!Occluded(active_bvh, projections[i].point, p)) chosen = i;
+      }
     if (chosen < 0) {
       chosen = order[0].second;
       ++result.occluded_fallbacks;

@@ -145,7 +145,7 @@ Result<BuiltRig> BuildRig(const Mesh& mesh, const RigDescription& description,
     built.report.warnings.push_back(
         std::to_string(parts.occluded_fallbacks) +
         " vertices are hidden from every central curve by the surface itself (concave "
-                                    "detail) and went to the nearest curve");
+        "detail) and went to the nearest curve");
   return built;
 }
 

@@ -59,7 +59,7 @@ TEST(ProfileCurves, CylinderProfilesAreCirclesAndTheSpineIsTheAxis) {
   for (std::size_t k = 0; k < set.profiles.size(); ++k) {
     const ProfileCurve& profile = set.profiles[k];
     EXPECT_TRUE(profile.closed);
-    EXPECT_DOUBLE_EQ(profile.v, (k + 1) / 10.0);
+    EXPECT_DOUBLE_EQ(profile.v, double(k + 1) / 10.0);
     ASSERT_EQ(profile.points.size(), 32u);
     for (const Vec3& p : profile.points) {
       EXPECT_NEAR(RadialDistance(p), r, 1e-6 * r);

@@ -83,8 +83,12 @@ TEST(RigBuilder, HumanFromItsDescription) {
   ExpectRigFitsMesh(mesh, built.value());
   // Children attach to the torso's spine: arms high up, legs at the bottom.
   for (const RigPart& part : built.value().rig.parts) {
-    if (part.name.starts_with("arm")) EXPECT_GT(part.attachment, 0.7) << part.name;
-    if (part.name.starts_with("leg")) EXPECT_LT(part.attachment, 0.15) << part.name;
+    if (part.name.starts_with("arm")) {
+      EXPECT_GT(part.attachment, 0.7) << part.name;
+    }
+    if (part.name.starts_with("leg")) {
+      EXPECT_LT(part.attachment, 0.15) << part.name;
+    }
   }
 }
 

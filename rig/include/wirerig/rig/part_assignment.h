@@ -4,8 +4,8 @@
 // part lists by name (mesh_parts); otherwise the nearest visible central curve. "Visible" is
 // the junction rule: a vertex goes to a curve only if the straight segment from the curve to
 // the vertex stays inside the mesh (so an arm never takes hip vertices across the air gap),
-// and never to a child part when its closest point is the child's root end (so an arm never
-// takes torso vertices behind the shoulder).
+// and to a child part whose closest point is the child's root end only when no other curve
+// sees the vertex (so an arm does not take torso vertices behind the shoulder).
 #pragma once
 
 #include <cstdint>

@@ -21,9 +21,9 @@
 namespace wirerig {
 
 struct ProfileCurve {
-  double v = 0.0;            // interface parameter on the central curve, in (0, 1)
+  double v = 0.0;              // interface parameter on the central curve, in (0, 1)
   Vec3 origin = Vec3::Zero();  // the rays' origin: on the central curve, then re-centred
-  Frame frame;               // frame.tangent is the normal of the profile's plane
+  Frame frame;                 // frame.tangent is the normal of the profile's plane
   bool closed = false;
   std::vector<Vec3> points;  // in ray order (counter-clockwise about frame.tangent)
 };
@@ -31,14 +31,14 @@ struct ProfileCurve {
 // Per part, never silently dropped: every count is reported.
 struct ProfileDiagnostics {
   std::size_t rays = 0;
-  std::size_t misses = 0;                // rays that hit nothing of the part
-  std::size_t other_part_hits = 0;       // rays whose point is on another part's surface
+  std::size_t misses = 0;           // rays that hit nothing of the part
+  std::size_t other_part_hits = 0;  // rays whose point is on another part's surface
   std::size_t open_profiles = 0;
-  std::size_t empty_profiles = 0;        // fewer than 2 hits: dropped, and counted here
-  std::size_t self_intersecting = 0;     // profiles whose loop crosses itself
-  std::size_t crossing_neighbour = 0;    // adjacent profiles that cross each other
-  std::size_t outside_profiles = 0;      // origin outside the part (hits enter the surface):
-                                         // dropped, and counted here
+  std::size_t empty_profiles = 0;      // fewer than 2 hits: dropped, and counted here
+  std::size_t self_intersecting = 0;   // profiles whose loop crosses itself
+  std::size_t crossing_neighbour = 0;  // adjacent profiles that cross each other
+  std::size_t outside_profiles = 0;    // origin outside the part (hits enter the surface):
+                                       // dropped, and counted here
 };
 
 struct ProfileSet {

@@ -27,7 +27,7 @@ struct RigPart {
   std::vector<Vec3> central_curve;
   int profile_count = 0;
   int points_per_profile = 0;
-  std::vector<ProfileCurve> profiles;  // the profiles that hit the surface, in order
+  std::vector<ProfileCurve> profiles;         // the profiles that hit the surface, in order
   std::vector<WireProperties> profile_wires;  // one per profile
   std::vector<Vec3> spine_points;  // profile centroids; the spine interpolates them (C2 cubic)
   WireProperties spine_wire;
@@ -36,9 +36,9 @@ struct RigPart {
 struct Rig {
   static constexpr int kFormatVersion = 1;
 
-  std::string mesh;             // the mesh file, as given when the rig was built
-  ImportOptions import;         // up axis / unit overrides used to import it
-  std::size_t mesh_vertices = 0;   // welded vertices: a rig fits only a mesh with these counts
+  std::string mesh;               // the mesh file, as given when the rig was built
+  ImportOptions import;           // up axis / unit overrides used to import it
+  std::size_t mesh_vertices = 0;  // welded vertices: a rig fits only a mesh with these counts
   std::size_t mesh_triangles = 0;
   std::vector<RigPart> parts;
   std::vector<int> vertex_part;  // #W welded vertex -> part index
