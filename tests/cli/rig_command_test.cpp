@@ -1,0 +1,96 @@
+// `wirerig rig`, run in-process: a real mesh with its description gives a rig file that loads
+// back; bad meshes and descriptions end in a message naming the file, exit 1, and no file.
+#include "rig_command.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "wirerig/rig/rig_file.h"
+
+namespace wirerig::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandRun {
+  int exit_code;
+  std::string out, err;
+};
+
+CommandRun RunRig(const RigCommandOptions& options) {
+  std::ostringstream out, err;
+  const int code = RunRigCommand(options, out, err);
+  return {code, out.str(), err.str()};
+}
+
+fs::path Output(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / "wirerig_rig_command_test";
+  fs::create_directories(dir);
+  fs::remove(dir / name);
+  return dir / name;
+}
+
+TEST(RigCommand, HumanWithItsDescriptionWritesARigThatLoads) {
+  RigCommandOptions options;
+  options.mesh = std::string(WIRERIG_ASSET_DIR) + "/assimp/Collada/human.zae";
+  options.description = std::string(WIRERIG_SAMPLES_DIR) + "/rigs/human.description.json";
+  options.output = Output("human.rig.json").string();
+  const CommandRun run = RunRig(options);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("14444 vertices (welded from 15593), 28796 triangles"), std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("rig: 6 parts from"), std::string::npos) << run.out;
+  const Result<Rig> rig = LoadRig(options.output);
+  ASSERT_TRUE(rig.ok()) << rig.error();
+  EXPECT_EQ(rig.value().parts.size(), 6u);
+  EXPECT_EQ(rig.value().mesh_vertices, 14444u);
+}
+
+TEST(RigCommand, SkeletonAssetNeedsNoHandInput) {
+  RigCommandOptions options;
+  options.mesh = std::string(WIRERIG_ASSET_DIR) + "/assimp/X/anim_test.x";
+  options.output = Output("anim_test.rig.json").string();
+  const CommandRun run = RunRig(options);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("from the skeleton (4 joints)"), std::string::npos) << run.out;
+  EXPECT_TRUE(LoadRig(options.output).ok());
+}
+
+void ExpectFailure(const RigCommandOptions& options, const std::string& expected) {
+  const CommandRun run = RunRig(options);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(options.output));
+}
+
+TEST(RigCommandErrors, HugeClaimedMeshIsRefusedQuickly) {
+  RigCommandOptions options;
+  options.mesh = std::string(WIRERIG_ASSET_DIR) + "/assimp/invalid/OutOfMemory.off";
+  options.output = Output("oom.rig.json").string();
+  ExpectFailure(options, "OutOfMemory.off: claims 353535235358 vertices");
+}
+
+TEST(RigCommandErrors, OpenMeshWithoutDescriptionSaysWhy) {
+  RigCommandOptions options;
+  options.mesh = std::string(WIRERIG_ASSET_DIR) + "/assimp/STL/sphereWithHole.stl";
+  options.output = Output("hole.rig.json").string();
+  ExpectFailure(options, "sphereWithHole.stl: no skeleton, no description, and no curve skeleton");
+}
+
+TEST(RigCommandErrors, BrokenDescriptionNamesFileAndField) {
+  const fs::path description = Output("broken.description.json");
+  std::ofstream(description) << R"({"parts": [{"name": "a", "central_curve": [[0,0,0],[0,1,0]]},
+                                           {"name": "b", "parent": "c",
+                                            "central_curve": [[0,0,0],[1,0,0]]}]})";
+  RigCommandOptions options;
+  options.mesh = std::string(WIRERIG_ASSET_DIR) + "/cow.off";
+  options.description = description.string();
+  options.output = Output("broken.rig.json").string();
+  ExpectFailure(options, description.string() + ": /parts/1/parent: 'c' is not an earlier part");
+}
+
+}  // namespace
+}  // namespace wirerig::cli
