@@ -78,11 +78,11 @@ std::string Count(std::size_t n, const char* what) { return std::to_string(n) + 
 
 // Saves the floating-point environment, clears the flags and disables every trap until
 // destruction, which clears whatever flags were raised meanwhile and restores the saved
-// environment (traps included). CGAL raises floating-point exceptions on purpose inside its
-// interval arithmetic (filtered predicates of the Delaunay triangulation that finds the medial
-// poles compute with infinite bounds) and the contraction's cotangent weights may divide by
-// zero on needle triangles before remeshing removes them; with traps enabled (as the tests do)
-// that would be a SIGFPE although the results are checked afterwards.
+// environment (traps included). CGAL raises floating-point exceptions as a matter of course:
+// its filtered predicates and lazy constructions compute with intervals whose bounds may be
+// infinite (seen: Interval_nt products in the circumcentre of a Delaunay cell, while the
+// Voronoi poles of a UV sphere are computed, raise FE_INVALID). With traps enabled, as in the
+// tests, that would be a SIGFPE; results are checked for finiteness afterwards instead.
 class ScopedFloatingPointHold {
  public:
   ScopedFloatingPointHold() { feholdexcept(&saved_); }

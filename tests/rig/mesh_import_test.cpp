@@ -33,12 +33,13 @@ namespace fs = std::filesystem;
 
 fs::path Asset(const std::string& relative) { return fs::path(WIRERIG_ASSET_DIR) / relative; }
 
-// Skips the test when an asset is missing (scripts/setup.sh fetches them).
-#define REQUIRE_ASSET(path)                                                              \
-  do {                                                                                   \
-    if (!fs::exists(path)) {                                                             \
-      GTEST_SKIP() << "asset missing: " << (path).string() << " (run scripts/setup.sh)"; \
-    }                                                                                    \
+// Fails the test when an asset is missing (scripts/setup.sh fetches them): a missing asset
+// must never pass unnoticed.
+#define REQUIRE_ASSET(path)                                                        \
+  do {                                                                             \
+    if (!fs::exists(path)) {                                                       \
+      FAIL() << "asset missing: " << (path).string() << " (run scripts/setup.sh)"; \
+    }                                                                              \
   } while (false)
 
 // A scratch file in the test's temporary folder.

@@ -16,7 +16,6 @@
 
 namespace wirerig {
 
-using Triangle = std::array<std::uint32_t, 3>;
 using Vec2 = Eigen::Vector2d;
 using Vec4 = Eigen::Vector4d;
 using Mat4 = Eigen::Matrix4d;

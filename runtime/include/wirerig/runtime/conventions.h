@@ -11,7 +11,11 @@
 // MATRICES     Column-major (Eigen's default, also glTF's and OpenGL's); they act on
 //              column vectors: p' = M * p.
 // ANGLES       Radians.
+// TRIANGLES    Counter-clockwise seen from outside: outward normals by the right-hand rule.
 #pragma once
+
+#include <array>
+#include <cstdint>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -21,5 +25,7 @@ namespace wirerig {
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Quat = Eigen::Quaterniond;
+// Three vertex indices, counter-clockwise seen from outside (outward-facing).
+using Triangle = std::array<std::uint32_t, 3>;
 
 }  // namespace wirerig
