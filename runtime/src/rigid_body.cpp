@@ -27,22 +27,20 @@ double MaxAbs(const Vec3& x) {
 
 // ---------------------------------------------------------------------------------------
 // Saturating arithmetic on non-negative bounds: results never exceed kSaturated, and no
-// operation overflows whatever its (finite, non-negative) operands.
+// operation overflows whatever its (finite, non-negative) operands. Branch-free, so that no
+// compiler can speculate an overflowing product past a guard.
 constexpr double kSaturated = 1e300;
 
-double Sat(double a) { return a < kSaturated ? a : kSaturated; }
+double Sat(double a) { return std::min(a, kSaturated); }
 double SatAdd(double a, double b) { return Sat(Sat(a) + Sat(b)); }
 double SatMul(double a, double b) {
-  a = Sat(a);
   b = Sat(b);
-  if (b <= 1.0) return a * b;
-  return a > kSaturated / b ? kSaturated : a * b;
+  return Sat(std::min(Sat(a), kSaturated / std::max(b, 1.0)) * b);
 }
 // b > 0.
 double SatDiv(double a, double b) {
   a = Sat(a);
-  if (b >= 1.0) return a / b;
-  return a >= kSaturated * b ? kSaturated : a / b;
+  return Sat(a / std::max(b, a / kSaturated));
 }
 
 // ---------------------------------------------------------------------------------------
@@ -54,6 +52,8 @@ constexpr double kMaxCoordinate = 1e50;
 // A closed surface has zero vector area; an opening leaves its own vector area behind. The
 // misfit accepted, relative to the total area, covers round-off and hairline cracks.
 constexpr double kMaxRelativeOpening = 1e-6;
+// Bound on the mass and every inertia component (kg, kg m^2).
+constexpr double kMaxInertia = 1e290;
 
 // Triangles present with indices in range; every position finite and within kMaxCoordinate.
 Status CheckSurface(std::span<const Vec3> positions, std::span<const Triangle> triangles) {
@@ -156,14 +156,16 @@ Quat FromCoeffs(const Vec4& c) {
 Quat NormalizedOr(const Vec4& c, const Quat& fallback) {
   const double n2 = c.squaredNorm();
   if (!(n2 > kMinSquaredNorm)) return fallback;
-  return FromCoeffs(c / std::sqrt(n2));
+  return FromCoeffs(c / std::sqrt(std::max(n2, kMinSquaredNorm)));
 }
 
 // exp of the rotation vector phi: the unit quaternion rotating by |phi| about phi.
 Quat ExpMap(const Vec3& phi) {
   const double angle = phi.norm();
   // sin(angle/2)/angle, by its series where the quotient would lose precision.
-  const double s = angle < 1e-4 ? 0.5 - angle * angle / 48.0 : std::sin(0.5 * angle) / angle;
+  constexpr double kSeriesBelow = 1e-4;
+  const double s = angle < kSeriesBelow ? 0.5 - angle * angle / 48.0
+                                        : std::sin(0.5 * angle) / std::max(angle, kSeriesBelow);
   return Quat(std::cos(0.5 * angle), s * phi.x(), s * phi.y(), s * phi.z());
 }
 
@@ -188,7 +190,7 @@ Mat3 RotationOf(const Quat& q) {
   r << w * w + x * x - y * y - z * z, 2.0 * (x * y - w * z), 2.0 * (x * z + w * y),
       2.0 * (x * y + w * z), w * w - x * x + y * y - z * z, 2.0 * (y * z - w * x),
       2.0 * (x * z - w * y), 2.0 * (y * z + w * x), w * w - x * x - y * y + z * z;
-  return r / n2;
+  return r / std::max(n2, kMinSquaredNorm);
 }
 
 // World angular velocity R I_b^-1 R^T L of a body at orientation q with momentum L.
@@ -352,7 +354,7 @@ Status ComputeSolidMassProperties(std::span<const Vec3> positions,
                            "is not positive: the surface faces inward or encloses nothing");
   // |I| <= 14 rho sum|V_t| R^2 and m <= rho sum|V_t|, with R the half extent.
   const double r2 = frame.half_extent * frame.half_extent;
-  if (!(SatMul(density, SatMul(abs_volume, std::max(1.0, 16.0 * r2))) < kSaturated))
+  if (!(SatMul(density, SatMul(abs_volume, std::max(1.0, 16.0 * r2))) <= kMaxInertia))
     return Status::Invalid("density", "too large for the body: the inertia would overflow");
   if (!(density * volume > 0.0))
     return Status::Invalid("density", "too small for the body: the mass underflows");
@@ -389,7 +391,7 @@ Status ComputeShellMassProperties(std::span<const Vec3> positions,
   if (!(area > 0.0)) return Status::Invalid("triangles", "have no area (all degenerate)");
   const double r2 = frame.half_extent * frame.half_extent;
   const double areal_density = SatMul(density, thickness);
-  if (!(SatMul(areal_density, SatMul(area, std::max(1.0, 16.0 * r2))) < kSaturated))
+  if (!(SatMul(areal_density, SatMul(area, std::max(1.0, 16.0 * r2))) <= kMaxInertia))
     return Status::Invalid("density", "too large for the body: the inertia would overflow");
   if (!(areal_density * area > 0.0))
     return Status::Invalid("density", "too small for the body: the mass underflows");

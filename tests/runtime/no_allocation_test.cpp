@@ -7,9 +7,14 @@
 #include <new>
 #include <vector>
 
+#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/rig/rig_builder.h"
+#include "wirerig/rig/rig_model_builder.h"
 #include "wirerig/runtime/axial_job.h"
 #include "wirerig/runtime/bending_job.h"
 #include "wirerig/runtime/curve.h"
+#include "wirerig/runtime/rig_evaluation.h"
+#include "wirerig/runtime/rigid_body.h"
 
 namespace {
 std::atomic<long> g_allocations{0};
@@ -101,6 +106,49 @@ TEST(NoAllocation, CurveQueries) {
   const long after = g_allocations;
   EXPECT_TRUE(sum.allFinite());
   EXPECT_EQ(after, before);
+}
+
+TEST(NoAllocation, RigEvaluationWithLoadsAndNormals) {
+  // A deformable one-part rig on a procedural capsule, with a pose, spine loads and normals.
+  RigDescription description;
+  description.parts.push_back({"body", {Vec3(0, 0.05, 0), Vec3(0, 0.95, 0)}, 8, 16, "", {}});
+  const Mesh mesh = MakeCapsule(0.2, 1.0, 32, 16, 6);
+  const Result<BuiltRig> rig = BuildRig(mesh, description, "capsule");
+  ASSERT_TRUE(rig.ok()) << rig.error();
+  const Result<BuiltRigModel> model = BuildRigModel(mesh, rig.value().rig);
+  ASSERT_TRUE(model.ok()) << model.error();
+  RigWorkspace workspace = MakeRigWorkspace(model.value().model);
+  std::vector<Vec3> positions(model.value().model.vertices.size()), normals(positions.size());
+  std::vector<PointLoad> loads = {{0.7, Vec3(1e-4, 0, 0)}};
+  std::vector<AxialPointLoad> axial = {{1.0, 1e-3}};
+  std::vector<PartPose> poses(1);
+  poses[0].rotation = Quat(Eigen::AngleAxisd(0.2, Vec3::UnitX()));
+  poses[0].loads.bending_point_loads = loads;
+  poses[0].loads.axial_point_loads = axial;
+  EvaluateRigJob job{&model.value().model, poses, &workspace, positions, normals};
+  const long before = g_allocations;
+  const Status status = job.Run();
+  const long after = g_allocations;
+  ASSERT_TRUE(status.ok()) << ToString(status);
+  EXPECT_EQ(after, before);
+}
+
+TEST(NoAllocation, RigidBodyStepsWithBothIntegrators) {
+  for (RigidIntegrator integrator : {RigidIntegrator::kRk4, RigidIntegrator::kMomentum}) {
+    RigidBodyState state;
+    state.angular_velocity = Vec3(0.1, 1.0, 0.1);
+    RigidBodyStepJob step;
+    step.integrator = integrator;
+    step.mass = 2.0;
+    step.principal_moments = Vec3(1, 2, 3);
+    step.dt = 0.01;
+    step.at_start.force = step.at_middle.force = step.at_end.force = Vec3(0, -19.6, 0);
+    step.state = &state;
+    const long before = g_allocations;
+    for (int i = 0; i < 100; ++i) ASSERT_TRUE(step.Run().ok());
+    const long after = g_allocations;
+    EXPECT_EQ(after, before);
+  }
 }
 
 }  // namespace

@@ -1,0 +1,170 @@
+#include "wirerig/rig/rig_model_builder.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "wirerig/rig/spine_curves.h"
+#include "wirerig/runtime/spine_interpolation.h"
+
+namespace wirerig {
+namespace {
+
+// v of the point of the sampled spine polyline closest to p.
+double ProjectOnSamples(const std::vector<Vec3>& samples, const Vec3& p) {
+  const std::size_t n = samples.size();
+  double best_distance = std::numeric_limits<double>::max(), best_v = 0.0;
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const Vec3 a = samples[k], ab = samples[k + 1] - a;
+    const double length2 = ab.squaredNorm();
+    const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+    const double d = (a + t * ab - p).squaredNorm();
+    if (d < best_distance) best_distance = d, best_v = (double(k) + t) / double(n - 1);
+  }
+  return best_v;
+}
+
+Mat3 Axes(const Frame& f) {
+  Mat3 m;
+  m.col(0) = f.normal;
+  m.col(1) = f.binormal;
+  m.col(2) = f.tangent;
+  return m;
+}
+
+// Mass properties of the solid the part's closed profiles enclose (a tube of their loops with
+// fan caps); an empty MassProperties when the profiles are open or differ in point count.
+MassProperties ProfileSolid(const RigPart& part, double density) {
+  const std::size_t m = part.profiles.front().points.size();
+  for (const ProfileCurve& p : part.profiles)
+    if (!p.closed || p.points.size() != m) return {};
+  std::vector<Vec3> positions;
+  for (const ProfileCurve& p : part.profiles)
+    positions.insert(positions.end(), p.points.begin(), p.points.end());
+  const auto first_centre = std::uint32_t(positions.size());
+  positions.push_back(part.spine_points.front());
+  positions.push_back(part.spine_points.back());
+  std::vector<Triangle> triangles;
+  const auto count = std::uint32_t(part.profiles.size());
+  const auto mm = std::uint32_t(m);
+  for (std::uint32_t k = 0; k + 1 < count; ++k)
+    for (std::uint32_t j = 0; j < mm; ++j) {
+      const std::uint32_t a = k * mm + j, b = k * mm + (j + 1) % mm;
+      const std::uint32_t c = a + mm, d = b + mm;
+      triangles.push_back({a, b, d});
+      triangles.push_back({a, d, c});
+    }
+  for (std::uint32_t j = 0; j < mm; ++j) {
+    triangles.push_back({first_centre, (j + 1) % mm, j});
+    triangles.push_back({first_centre + 1, (count - 1) * mm + j, (count - 1) * mm + (j + 1) % mm});
+  }
+  MassProperties mass;
+  if (ComputeSolidMassProperties(positions, triangles, density, &mass)) return mass;
+  // Rays turn the other way round: the loops' orientation made the surface face inwards.
+  for (Triangle& t : triangles) std::swap(t[1], t[2]);
+  if (ComputeSolidMassProperties(positions, triangles, density, &mass)) return mass;
+  return {};
+}
+
+}  // namespace
+
+Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
+                                    const RigModelOptions& options) {
+  if (mesh.welded_positions.size() != rig.mesh_vertices ||
+      mesh.welded_triangles.size() != rig.mesh_triangles)
+    return Error{"the mesh has " + std::to_string(mesh.welded_positions.size()) + " vertices and " +
+                 std::to_string(mesh.welded_triangles.size()) +
+                 " triangles; the rig was built for " + std::to_string(rig.mesh_vertices) +
+                 " and " + std::to_string(rig.mesh_triangles)};
+  BuiltRigModel built;
+  RigModel& model = built.model;
+  model.triangles = mesh.welded_triangles;
+  for (const RigPart& part : rig.parts) {
+    PartModel out;
+    out.name = part.name;
+    out.parent = part.parent;
+    out.attachment = part.attachment;
+    out.kind = options.spine_kind;
+    Result<Curve> spine = BuildSpineCurve(part.spine_points);
+    if (!spine) return Error{"part '" + part.name + "': " + spine.error()};
+    const int samples = std::max(options.min_spine_samples, 4 * int(part.profiles.size()));
+    out.spine_points.resize(std::size_t(samples));
+    spine.value().Resample(out.spine_points);
+    out.spine_frames.resize(std::size_t(samples));
+    PropagateSpineFrames(out.spine_points, spine.value().FrameAt(0.0), out.spine_frames);
+    out.spine_length = spine.value().length();
+    out.spine_stiffness = ComputeStiffness(part.spine_wire.material, part.spine_wire.section);
+    out.mass = ProfileSolid(part, part.spine_wire.material.density);
+    for (std::size_t p = 0; p < part.profiles.size(); ++p) {
+      ProfileModel profile;
+      profile.spine_v = ProjectOnSamples(out.spine_points, part.spine_points[p]);
+      profile.closed = part.profiles[p].closed;
+      profile.stiffness =
+          ComputeStiffness(part.profile_wires[p].material, part.profile_wires[p].section);
+      Vec3 origin;
+      const Mat3 axes =
+          Axes(InterpolateSpine(out.spine_points, out.spine_frames, profile.spine_v, &origin));
+      for (const Vec3& q : part.profiles[p].points)
+        profile.local_points.push_back(axes.transpose() * (q - origin));
+      out.profiles.push_back(std::move(profile));
+    }
+    model.parts.push_back(std::move(out));
+  }
+
+  // Vertex bindings, against the model's own rest geometry (so rest is reproduced exactly).
+  std::vector<std::vector<std::vector<Vec3>>> rest_profiles(model.parts.size());
+  std::vector<std::vector<Vec3>> rest_origins(model.parts.size());
+  for (std::size_t i = 0; i < model.parts.size(); ++i) {
+    const PartModel& part = model.parts[i];
+    for (const ProfileModel& profile : part.profiles) {
+      Vec3 origin;
+      const Mat3 axes =
+          Axes(InterpolateSpine(part.spine_points, part.spine_frames, profile.spine_v, &origin));
+      std::vector<Vec3> points;
+      for (const Vec3& q : profile.local_points) points.push_back(origin + axes * q);
+      rest_profiles[i].push_back(std::move(points));
+      rest_origins[i].push_back(origin);
+    }
+  }
+  model.vertices.resize(mesh.welded_positions.size());
+  for (std::size_t v = 0; v < mesh.welded_positions.size(); ++v) {
+    const Vec3& p = mesh.welded_positions[v];
+    VertexAttachment& a = model.vertices[v];
+    a.part = std::uint32_t(rig.vertex_part[v]);
+    const PartModel& part = model.parts[a.part];
+    const double s = ProjectOnSamples(part.spine_points, p);
+    const std::size_t last = part.profiles.size() - 1;
+    std::size_t pair = 0;
+    while (pair + 1 < last && part.profiles[pair + 1].spine_v <= s) ++pair;
+    a.cap = s <= part.profiles.front().spine_v || s >= part.profiles.back().spine_v;
+    if (a.cap) ++built.report.cap_vertices;
+    if (!a.cap) {
+      a.profile = std::uint32_t(pair);
+      const WirePolyline wire_i{rest_profiles[a.part][pair], part.profiles[pair].closed};
+      const WirePolyline wire_j{rest_profiles[a.part][pair + 1], part.profiles[pair + 1].closed};
+      if (BindToWirePair(p, wire_i, wire_j, rest_origins[a.part][pair],
+                         rest_origins[a.part][pair + 1], &a.pair)) {
+        built.report.flagged_vertices += a.pair.flags != 0;
+        continue;
+      }
+      ++built.report.fallback_vertices;
+      a.cap = true;
+    }
+    // Rigidly with a profile's frame: the nearer end profile for caps; for a pair the binding
+    // refused, the nearer profile of the pair.
+    if (s <= part.profiles.front().spine_v) {
+      a.profile = 0;
+    } else if (s >= part.profiles.back().spine_v) {
+      a.profile = std::uint32_t(last);
+    } else {
+      const bool lower = s - part.profiles[pair].spine_v <= part.profiles[pair + 1].spine_v - s;
+      a.profile = std::uint32_t(lower ? pair : pair + 1);
+    }
+    Vec3 origin;
+    const Mat3 axes = Axes(InterpolateSpine(part.spine_points, part.spine_frames,
+                                            part.profiles[a.profile].spine_v, &origin));
+    a.cap_local = axes.transpose() * (p - origin);
+  }
+  return built;
+}
+
+}  // namespace wirerig

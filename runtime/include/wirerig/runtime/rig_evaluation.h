@@ -1,0 +1,72 @@
+// Per-frame evaluation of a RigModel: part poses and spine loads in, deformed mesh positions
+// and normals out, into buffers the caller owns. No allocation per frame: the workspace is made
+// once per model and reused; a const model may be evaluated from several threads, each with its
+// own workspace.
+//
+// Order: parts from the root down. A part's rest geometry first bends and stretches under its
+// spine loads (deformable parts; displacements in the spine's local frames: bending components
+// along the rest normal and binormal, axial along the tangent), then moves rigidly by its pose
+// (rotation about its spine's root point, then translation), then follows its parent: the
+// parent's deformed frame at the attachment replaces its rest frame there. A child never moves
+// its parent. Profiles ride on their spine frames; vertices follow the profiles.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "wirerig/runtime/axial_job.h"
+#include "wirerig/runtime/bending_job.h"
+#include "wirerig/runtime/rig_model.h"
+
+namespace wirerig {
+
+// Loads on one part's spine. Bending forces are in the spine's local axes: x along the rest
+// normal, y along the rest binormal (z, along the tangent, is ignored: axial loads carry it).
+struct SpineLoads {
+  BoundaryCondition boundary = BoundaryCondition::kCantileverFree;
+  std::span<const PointLoad> bending_point_loads;
+  std::span<const LineLoad> bending_line_loads;
+  Vec3 tip_force = Vec3::Zero();  // local axes, cantilevers only
+  double axial_fixed_at = 0.0;
+  std::span<const AxialPointLoad> axial_point_loads;
+  std::span<const AxialLineLoad> axial_line_loads;
+};
+
+struct PartPose {
+  Quat rotation = Quat::Identity();  // about the spine's root point (rest), world axes
+  Vec3 translation = Vec3::Zero();   // m, world axes
+  SpineLoads loads;                  // used by deformable parts
+};
+
+// The rigid pose that moves a body from its rest mass properties to `state` (for rigid parts
+// driven by RigidBodyStepJob): rotation = q q0^-1, translation so the centre lands on x_c.
+PartPose PoseFromRigidBody(const PartModel& part, const RigidBodyState& state);
+// The rest state of a part's rigid body (centre of mass, principal orientation, at rest).
+RigidBodyState RestRigidBodyState(const PartModel& part);
+
+// Scratch buffers sized for one model; make once, reuse every frame.
+struct RigWorkspace {
+  std::vector<std::vector<Vec3>> spine_points;                 // per part, deformed, world
+  std::vector<std::vector<Frame>> spine_frames;                // per part, deformed, world
+  std::vector<std::vector<std::vector<Vec3>>> profile_points;  // per part, per profile, world
+  std::vector<std::vector<Vec3>> profile_origins;  // per part, per profile: spine point, world
+  std::vector<double> samples;                     // v of the longest spine's samples
+  std::vector<Vec3> slope;                         // scratch for the bending job's slope
+  std::vector<Vec3> bending;                       // scratch for the bending job
+  std::vector<double> axial;                       // scratch for the axial job
+  std::vector<Vec3> normal_accumulator;            // per vertex
+};
+RigWorkspace MakeRigWorkspace(const RigModel& model);
+
+struct EvaluateRigJob {
+  const RigModel* model = nullptr;
+  std::span<const PartPose> poses;  // one per part
+  RigWorkspace* workspace = nullptr;
+  std::span<Vec3> positions;  // #W welded vertices, m
+  std::span<Vec3> normals;    // #W, unit (area-weighted); may be empty
+
+  Status Validate() const;
+  Status Run() const;  // validates, then evaluates; never allocates
+};
+
+}  // namespace wirerig

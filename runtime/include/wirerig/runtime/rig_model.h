@@ -1,0 +1,57 @@
+// RigModel: the runtime's immutable rig, built once (by wirerig::rig's BuildRigModel) and read
+// by every frame's evaluation. Per part: the spine at rest (samples at equal arc length with
+// rotation-minimizing frames), its stiffness and mass, and its profile wires expressed in the
+// spine's frame; per welded mesh vertex: how it follows the wires (the precomputed binding of
+// PHYSICS.md section 6 between two adjacent profiles, or rigidly an end profile's frame for
+// vertices beyond the first or last profile: the end caps).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "wirerig/runtime/curve.h"
+#include "wirerig/runtime/rigid_body.h"
+#include "wirerig/runtime/section.h"
+#include "wirerig/runtime/skin_binding.h"
+
+namespace wirerig {
+
+struct ProfileModel {
+  double spine_v = 0.0;  // where the profile sits on its part's spine, in [0, 1]
+  bool closed = true;
+  std::vector<Vec3> local_points;  // rest points in the spine frame at spine_v: (normal,
+                                   // binormal, tangent) coordinates relative to the spine point
+  WireStiffness stiffness;
+};
+
+enum class SpineKind : int { kRigid = 0, kDeformable = 1 };
+
+struct PartModel {
+  std::string name;
+  int parent = -1;          // parents come first; -1 for the root
+  double attachment = 0.0;  // v on the parent's spine where this part hangs
+  SpineKind kind = SpineKind::kDeformable;
+  std::vector<Vec3> spine_points;   // rest samples at v_k = k / (n - 1), equal arc length, n >= 2
+  std::vector<Frame> spine_frames;  // rest rotation-minimizing frames at the samples
+  double spine_length = 0.0;        // m
+  WireStiffness spine_stiffness;
+  MassProperties mass;                 // of the part's enclosed volume (rigid parts), from its skin
+  std::vector<ProfileModel> profiles;  // in order along the spine, at least 2
+};
+
+struct VertexAttachment {
+  std::uint32_t part = 0;
+  std::uint32_t profile = 0;  // between profiles: the pair (profile, profile + 1); cap: the end
+  bool cap = false;
+  PairBinding pair;               // between profiles
+  Vec3 cap_local = Vec3::Zero();  // cap: rest position in the end profile's spine frame
+};
+
+struct RigModel {
+  std::vector<PartModel> parts;
+  std::vector<VertexAttachment> vertices;  // one per welded mesh vertex
+  std::vector<Triangle> triangles;         // welded triangles, for normals
+};
+
+}  // namespace wirerig

@@ -1,0 +1,23 @@
+// Interpolation along a sampled spine (samples at v_k = k / (n - 1)): the point by linear
+// interpolation, the frame by slerp between the neighbouring samples' frames. The same function
+// serves rest and deformed spines, so rest geometry is reproduced exactly.
+#pragma once
+
+#include <span>
+
+#include "wirerig/runtime/curve.h"
+
+namespace wirerig {
+
+// Needs points.size() == frames.size() >= 2; v is clamped to [0, 1].
+Frame InterpolateSpine(std::span<const Vec3> points, std::span<const Frame> frames, double v,
+                       Vec3* point);
+
+// Rotation-minimizing frames along sampled `points` (double reflection between samples),
+// starting from `start` turned minimally onto the first segment's direction. Rest and deformed
+// spines both take their frames from here, so an undeformed spine keeps its frames exactly.
+// Needs frames.size() == points.size() >= 2.
+void PropagateSpineFrames(std::span<const Vec3> points, const Frame& start,
+                          std::span<Frame> frames);
+
+}  // namespace wirerig
