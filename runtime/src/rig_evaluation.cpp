@@ -33,6 +33,8 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
   RigWorkspace w;
   std::size_t longest = 2;
   for (const PartModel& part : model.parts) {
+    w.strain.emplace_back(part.spine_points.size(), 0.0);
+    w.profile_scale.emplace_back(part.profiles.size(), 1.0);
     w.spine_points.emplace_back(part.spine_points.size());
     w.spine_frames.emplace_back(part.spine_frames.size());
     std::vector<std::vector<Vec3>> profiles;
@@ -47,6 +49,12 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
   w.slope.resize(longest);
   w.axial.resize(longest);
   w.normal_accumulator.resize(model.vertices.size());
+  std::size_t widest = 1;
+  for (const PartModel& part : model.parts)
+    for (const ProfileModel& profile : part.profiles)
+      widest = std::max(widest, profile.local_points.size());
+  w.profile_samples.resize(widest + 1);
+  w.profile_displacement.resize(widest + 1);
   return w;
 }
 
@@ -89,6 +97,13 @@ Status EvaluateRigJob::Validate() const {
       return Status::Invalid("poses", "translations must be finite");
     if (Status s = ValidateLoads(pose.loads); !s) return s;
   }
+  for (const ProfileLoads& loads : profile_loads) {
+    if (loads.part >= model->parts.size() ||
+        loads.profile >= model->parts[loads.part].profiles.size())
+      return Status::Invalid("profile_loads", "names a profile the model does not have");
+    if (!(loads.from >= 0.0 && loads.to <= 1.0 && loads.from < loads.to))
+      return Status::Invalid("profile_loads", "needs 0 <= from < to <= 1");
+  }
   return Status::Ok();
 }
 
@@ -126,7 +141,9 @@ Status EvaluateRigJob::Run() const {
       axial.line_loads = pose.loads.axial_line_loads;
       axial.samples = samples;
       axial.displacement = std::span<double>(w.axial.data(), n);
+      axial.normal_force = w.strain[i];
       if (Status s = axial.Run(); !s) return Status::Invalid("poses", s.reason);
+      for (double& strain : w.strain[i]) strain /= part.spine_stiffness.axial;
       // Each frame turns minimally onto the exact deformed tangent (closed-form slope).
       for (std::size_t k = 0; k < n; ++k) {
         const Frame& f = part.spine_frames[k];
@@ -163,12 +180,23 @@ Status EvaluateRigJob::Run() const {
       }
     }
 
-    // 4. Profiles ride on the spine frames.
+    // 4. Profiles ride on the spine frames (scaled in their plane to keep the volume).
     for (std::size_t p = 0; p < part.profiles.size(); ++p) {
       const ProfileModel& profile = part.profiles[p];
       Vec3 origin;
       const Frame frame = InterpolateSpine(points, frames, profile.spine_v, &origin);
-      const Mat3 axes = FrameMatrix(frame);
+      Mat3 axes = FrameMatrix(frame);
+      w.profile_scale[i][p] = 1.0;
+      if (preserve_volume && part.kind == SpineKind::kDeformable) {
+        const double x = profile.spine_v * double(n - 1);
+        const std::size_t k = std::min(static_cast<std::size_t>(x), n - 2);
+        const double f = x - double(k);
+        const double strain = (1.0 - f) * w.strain[i][k] + f * w.strain[i][k + 1];
+        const double scale = 1.0 / std::sqrt(std::max(1.0 + strain, 1e-6));
+        w.profile_scale[i][p] = scale;
+        axes.col(0) *= scale;
+        axes.col(1) *= scale;
+      }
       w.profile_origins[i][p] = origin;
       std::vector<Vec3>& out = w.profile_points[i][p];
       for (std::size_t q = 0; q < profile.local_points.size(); ++q)
@@ -176,7 +204,47 @@ Status EvaluateRigJob::Run() const {
     }
   }
 
-  // 5. Vertices follow the profiles.
+  // 5. Profile wires bend under their own loads, in their spine frames.
+  for (const ProfileLoads& loads : profile_loads) {
+    const PartModel& part = model->parts[loads.part];
+    const ProfileModel& profile = part.profiles[loads.profile];
+    std::vector<Vec3>& points = w.profile_points[loads.part][loads.profile];
+    const std::size_t m = profile.local_points.size();
+    const double segments = double(profile.closed ? m : m - 1);
+    // The stretch's points (and their parameter on the stretch) and its rest arc length.
+    std::size_t count = 0;
+    double length = 0.0;
+    for (std::size_t q = 0; q <= (profile.closed ? m : m - 1); ++q) {
+      const double u = double(q) / segments;
+      if (q > 0 && u > loads.from && double(q - 1) / segments < loads.to)
+        length += (profile.local_points[q % m] - profile.local_points[q - 1]).norm() *
+                  (std::min(u, loads.to) - std::max(double(q - 1) / segments, loads.from)) *
+                  segments;
+      if (u >= loads.from && u <= loads.to && !(profile.closed && q == m && loads.from == 0.0))
+        w.profile_samples[count++] = (u - loads.from) / (loads.to - loads.from);
+    }
+    if (count == 0 || !(length > 0.0)) continue;
+    BendingJob bending;
+    bending.boundary = loads.boundary;
+    bending.length = length;
+    bending.bending_stiffness = profile.stiffness.bending;
+    bending.point_loads = loads.point_loads;
+    bending.line_loads = loads.line_loads;
+    bending.samples = std::span<const double>(w.profile_samples.data(), count);
+    bending.displacement = std::span<Vec3>(w.profile_displacement.data(), count);
+    if (Status s = bending.Run(); !s) return Status::Invalid("profile_loads", s.reason);
+    Vec3 origin;
+    const Mat3 axes = FrameMatrix(InterpolateSpine(
+        w.spine_points[loads.part], w.spine_frames[loads.part], profile.spine_v, &origin));
+    std::size_t k = 0;
+    for (std::size_t q = 0; q <= (profile.closed ? m : m - 1) && k < count; ++q) {
+      const double u = double(q) / segments;
+      if (u >= loads.from && u <= loads.to && !(profile.closed && q == m && loads.from == 0.0))
+        points[q % m] += axes * w.profile_displacement[k++];
+    }
+  }
+
+  // 6. Vertices follow the profiles.
   for (std::size_t v = 0; v < model->vertices.size(); ++v) {
     const VertexAttachment& a = model->vertices[v];
     const PartModel& part = model->parts[a.part];
@@ -184,7 +252,14 @@ Status EvaluateRigJob::Run() const {
       Vec3 origin;
       const Frame frame = InterpolateSpine(w.spine_points[a.part], w.spine_frames[a.part],
                                            part.profiles[a.profile].spine_v, &origin);
-      positions[v] = origin + FrameMatrix(frame) * a.cap_local;
+      Mat3 axes = FrameMatrix(frame);
+      // In-plane like its end profile, and 1/scale^2 along the tangent: the cap keeps its
+      // volume and meets the profile's plane continuously.
+      const double scale = w.profile_scale[a.part][a.profile];
+      axes.col(0) *= scale;
+      axes.col(1) *= scale;
+      axes.col(2) /= scale * scale;
+      positions[v] = origin + axes * a.cap_local;
       continue;
     }
     const WirePolyline wire_i{w.profile_points[a.part][a.profile], part.profiles[a.profile].closed};
@@ -194,7 +269,7 @@ Status EvaluateRigJob::Run() const {
                                     w.profile_origins[a.part][a.profile + 1]);
   }
 
-  // 6. Area-weighted vertex normals.
+  // 7. Area-weighted vertex normals.
   if (normals.empty()) return Status::Ok();
   std::fill(w.normal_accumulator.begin(), w.normal_accumulator.end(), Vec3::Zero());
   for (const Triangle& t : model->triangles) {

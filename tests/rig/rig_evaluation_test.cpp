@@ -11,6 +11,7 @@
 #include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_model_builder.h"
+#include "wirerig/runtime/spine_interpolation.h"
 
 #ifndef WIRERIG_ASSET_DIR
 #define WIRERIG_ASSET_DIR "/work/main/.cache/assets"
@@ -155,7 +156,7 @@ TEST(RigEvaluation, CantileverSpineBendsByTheClosedForm) {
   poses[0].loads.tip_force = Vec3(force, 0, 0);
   RigWorkspace workspace = MakeRigWorkspace(scene.model);
   std::vector<Vec3> positions(scene.model.vertices.size());
-  EvaluateRigJob job{&scene.model, poses, &workspace, positions, {}};
+  EvaluateRigJob job{&scene.model, poses, {}, &workspace, positions, {}};
   ASSERT_TRUE(job.Run().ok());
   const double expected =
       force * std::pow(part.spine_length, 3) / (3.0 * part.spine_stiffness.bending);
@@ -201,7 +202,7 @@ TEST(RigEvaluation, InvalidJobsAreRefused) {
   RigWorkspace workspace = MakeRigWorkspace(human.model);
   std::vector<Vec3> positions(human.model.vertices.size());
   std::vector<PartPose> poses(human.model.parts.size());
-  EvaluateRigJob job{&human.model, poses, &workspace, positions, {}};
+  EvaluateRigJob job{&human.model, poses, {}, &workspace, positions, {}};
   ASSERT_TRUE(job.Validate().ok());
   job.poses = std::span<const PartPose>(poses).first(1);
   EXPECT_EQ(job.Validate().field, "poses");
@@ -214,6 +215,97 @@ TEST(RigEvaluation, InvalidJobsAreRefused) {
   job.positions = positions;
   job.workspace = nullptr;
   EXPECT_EQ(job.Validate().field, "workspace");
+}
+
+}  // namespace
+}  // namespace wirerig
+
+namespace wirerig {
+namespace {
+
+// Six times the volume the welded triangles enclose.
+double Volume6(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles) {
+  double volume = 0.0;
+  for (const Triangle& t : triangles)
+    volume += positions[t[0]].dot(positions[t[1]].cross(positions[t[2]]));
+  return volume;
+}
+
+const Scene& Capsule() {
+  static const Scene scene = [] {
+    RigDescription description;
+    description.parts.push_back({"body", {Vec3(0, 0, 0), Vec3(0, 1, 0)}, 10, 32, "", {}});
+    return Build(MakeCapsule(0.1, 1.0, 64, 40, 8), description, SpineKind::kDeformable);
+  }();
+  return scene;
+}
+
+TEST(RigEvaluation, VolumePreservationKeepsAStretchedPartsVolume) {
+  const Scene& capsule = Capsule();
+  const PartModel& part = capsule.model.parts[0];
+  // A 20% axial strain along the whole spine: an end force of 0.2 EA, fixed at the root.
+  const std::array<AxialPointLoad, 1> pull{{{1.0, 0.2 * part.spine_stiffness.axial}}};
+  std::vector<PartPose> poses(1);
+  poses[0].loads.axial_point_loads = pull;
+  const double rest = Volume6(capsule.mesh.welded_positions, capsule.mesh.welded_triangles);
+  RigWorkspace workspace = MakeRigWorkspace(capsule.model);
+  std::vector<Vec3> positions(capsule.model.vertices.size());
+  EvaluateRigJob job{&capsule.model, poses, {}, &workspace, positions, {}};
+  ASSERT_TRUE(job.Run().ok());
+  const double stretched = Volume6(positions, capsule.mesh.welded_triangles);
+  job.preserve_volume = true;
+  ASSERT_TRUE(job.Run().ok());
+  const double preserved = Volume6(positions, capsule.mesh.welded_triangles);
+  EXPECT_GT(stretched / rest - 1.0, 0.1);  // plain stretching adds volume
+  EXPECT_LT(std::abs(preserved / rest - 1.0), 0.01);
+  // The spine still stretched: the tip moved by the closed form F L / EA = 0.2 L.
+  EXPECT_NEAR((workspace.spine_points[0].back() - part.spine_points.back()).norm(),
+              0.2 * part.spine_length, 1e-9);
+}
+
+TEST(RigEvaluation, AProfileLoadMovesOnlyTheVerticesNextToItsProfile) {
+  const Scene& capsule = Capsule();
+  const PartModel& part = capsule.model.parts[0];
+  const std::uint32_t loaded = 5;
+  const ProfileModel& profile = part.profiles[loaded];
+  // A clamped stretch over a quarter of the loop, pushed outwards (along the normal) at its middle.
+  const double force = 1e-4 * profile.stiffness.bending;
+  const std::array<PointLoad, 1> push{{{0.5, Vec3(force, 0, 0)}}};
+  const std::array<ProfileLoads, 1> loads{
+      {{0, loaded, 0.0, 0.25, BoundaryCondition::kClamped, push, {}}}};
+  std::vector<PartPose> poses(1);
+  const std::vector<Vec3> rest = Evaluate(capsule, poses);
+  RigWorkspace workspace = MakeRigWorkspace(capsule.model);
+  std::vector<Vec3> positions(capsule.model.vertices.size());
+  EvaluateRigJob job{&capsule.model, poses, loads, &workspace, positions, {}};
+  ASSERT_TRUE(job.Run().ok());
+  std::size_t moved_near = 0;
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    const VertexAttachment& a = capsule.model.vertices[v];
+    const bool next_to = !a.cap && (a.profile == loaded || a.profile + 1 == loaded);
+    const double moved = (positions[v] - rest[v]).norm();
+    if (next_to) {
+      moved_near += moved > 1e-9;
+    } else {
+      EXPECT_EQ(positions[v], rest[v]) << "vertex " << v;
+    }
+  }
+  EXPECT_GT(moved_near, 10u);
+  // The loaded profile's points follow the closed form: the stretch's middle point moves by
+  // F L^3 / 192 EI along the normal, L the stretch's rest arc length.
+  const std::size_t m = profile.local_points.size();
+  double length = 0.0;
+  for (std::size_t q = 1; q <= m / 4; ++q)
+    length += (profile.local_points[q] - profile.local_points[q - 1]).norm();
+  const double expected = force * length * length * length / (192.0 * profile.stiffness.bending);
+  Vec3 origin;
+  const Frame frame = InterpolateSpine(workspace.spine_points[0], workspace.spine_frames[0],
+                                       profile.spine_v, &origin);
+  const Vec3 moved = workspace.profile_points[0][loaded][m / 8] -
+                     (origin + frame.normal * profile.local_points[m / 8].x() +
+                      frame.binormal * profile.local_points[m / 8].y() +
+                      frame.tangent * profile.local_points[m / 8].z());
+  EXPECT_NEAR(moved.dot(frame.normal), expected, 1e-9 * expected + 1e-15);
 }
 
 }  // namespace

@@ -125,7 +125,7 @@ TEST(NoAllocation, RigEvaluationWithLoadsAndNormals) {
   poses[0].rotation = Quat(Eigen::AngleAxisd(0.2, Vec3::UnitX()));
   poses[0].loads.bending_point_loads = loads;
   poses[0].loads.axial_point_loads = axial;
-  EvaluateRigJob job{&model.value().model, poses, &workspace, positions, normals};
+  EvaluateRigJob job{&model.value().model, poses, {}, &workspace, positions, normals};
   const long before = g_allocations;
   const Status status = job.Run();
   const long after = g_allocations;

@@ -32,6 +32,21 @@ struct SpineLoads {
   std::span<const AxialLineLoad> axial_line_loads;
 };
 
+// Loads bending one profile wire (paper Fig. 8: the whole or a stretch of all or some profile
+// wires). The stretch [from, to] of the profile's parameter (0 at its first point, 1 at its
+// last, or back at the first for a closed loop) deforms as a wire held by `boundary` at the
+// stretch's ends; point and line loads are placed along the stretch (v in [0, 1]) with forces in
+// the profile's spine frame: x along the normal, y along the binormal, z along the tangent.
+struct ProfileLoads {
+  std::uint32_t part = 0;
+  std::uint32_t profile = 0;
+  double from = 0.0;
+  double to = 1.0;
+  BoundaryCondition boundary = BoundaryCondition::kClamped;
+  std::span<const PointLoad> point_loads;
+  std::span<const LineLoad> line_loads;
+};
+
 struct PartPose {
   Quat rotation = Quat::Identity();  // about the spine's root point (rest), world axes
   Vec3 translation = Vec3::Zero();   // m, world axes
@@ -54,16 +69,25 @@ struct RigWorkspace {
   std::vector<Vec3> slope;                         // scratch for the bending job's slope
   std::vector<Vec3> bending;                       // scratch for the bending job
   std::vector<double> axial;                       // scratch for the axial job
+  std::vector<std::vector<double>> strain;         // per part, per spine sample: N / EA
+  std::vector<std::vector<double>> profile_scale;  // per part, per profile: in-plane scale
   std::vector<Vec3> normal_accumulator;            // per vertex
+  std::vector<double> profile_samples;             // per point of the longest profile
+  std::vector<Vec3> profile_displacement;          // likewise
 };
 RigWorkspace MakeRigWorkspace(const RigModel& model);
 
 struct EvaluateRigJob {
   const RigModel* model = nullptr;
-  std::span<const PartPose> poses;  // one per part
+  std::span<const PartPose> poses;              // one per part
+  std::span<const ProfileLoads> profile_loads;  // any number
   RigWorkspace* workspace = nullptr;
   std::span<Vec3> positions;  // #W welded vertices, m
   std::span<Vec3> normals;    // #W, unit (area-weighted); may be empty
+  // Keep the volume between adjacent profiles when spines stretch or compress (paper section 7):
+  // each profile scales in its plane by 1 / sqrt(1 + strain), strain = N / EA of the closed
+  // form at the profile.
+  bool preserve_volume = false;
 
   Status Validate() const;
   Status Run() const;  // validates, then evaluates; never allocates
