@@ -65,7 +65,7 @@ T Check(Result<T> result, const char* what) {
 // cut along its shorter diagonal), with 1 becomes 2. Children follow their parent's place, so
 // mesh parts stay contiguous triangle ranges; orientation is kept.
 struct EdgeTable {
-  std::vector<std::array<std::uint32_t, 2>> edges;   // unique, by welded vertex
+  std::vector<std::array<std::uint32_t, 2>> edges;        // unique, by welded vertex
   std::vector<std::array<std::uint32_t, 3>> of_triangle;  // edges (t0 t1), (t1 t2), (t2 t0)
 };
 
@@ -78,8 +78,8 @@ EdgeTable MakeEdgeTable(const std::vector<Triangle>& triangles) {
     std::array<std::uint32_t, 3> e{};
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t a = std::min(t[k], t[(k + 1) % 3]), b = std::max(t[k], t[(k + 1) % 3]);
-      const auto [it, added] = index.try_emplace((std::uint64_t(a) << 32) | b,
-                                                 std::uint32_t(table.edges.size()));
+      const auto [it, added] =
+          index.try_emplace((std::uint64_t(a) << 32) | b, std::uint32_t(table.edges.size()));
       if (added) table.edges.push_back({a, b});
       e[k] = it->second;
     }
@@ -171,8 +171,7 @@ Mesh Subdivide(const Mesh& mesh, std::size_t target) {
       by_length.push_back(
           {-(once.welded_positions[a] - once.welded_positions[b]).squaredNorm(), std::uint32_t(e)});
   }
-  const std::size_t splits =
-      std::min(by_length.size(), target - once.welded_positions.size());
+  const std::size_t splits = std::min(by_length.size(), target - once.welded_positions.size());
   std::nth_element(by_length.begin(), by_length.begin() + long(splits), by_length.end());
   std::vector<bool> marked(table.edges.size(), false);
   for (std::size_t i = 0; i < splits; ++i) marked[by_length[i].second] = true;
@@ -250,18 +249,18 @@ LinearBlendSkin MakeSkin(const RigModel& model, const Mesh& mesh) {
     for (std::size_t k = 0; k < n; ++k) {
       int parent = int(skin.joint_rest.size()) - 1;
       if (k == 0)
-        parent = part.parent < 0
-                     ? -1
-                     : int(first_joint[std::size_t(part.parent)] +
-                           std::size_t(std::lround(
-                               part.attachment *
-                               double(model.parts[std::size_t(part.parent)].spine_points.size() -
-                                      1))));
+        parent =
+            part.parent < 0
+                ? -1
+                : int(first_joint[std::size_t(part.parent)] +
+                      std::size_t(std::lround(
+                          part.attachment *
+                          double(model.parts[std::size_t(part.parent)].spine_points.size() - 1))));
       skin.joint_parent.push_back(parent);
       skin.joint_rest.push_back(part.spine_points[k]);
-      skin.joint_offset.push_back(parent < 0 ? Vec3::Zero()
-                                             : Vec3(part.spine_points[k] -
-                                                    skin.joint_rest[std::size_t(parent)]));
+      skin.joint_offset.push_back(
+          parent < 0 ? Vec3::Zero()
+                     : Vec3(part.spine_points[k] - skin.joint_rest[std::size_t(parent)]));
     }
   }
   skin.rest_positions = mesh.welded_positions;
@@ -319,18 +318,19 @@ const RigDescription& HumanDescription() {
 }
 
 const Mesh& HumanMesh() {
-  static const Mesh mesh = Check(ImportMesh(std::string(WIRERIG_ASSET_DIR) +
-                                                "/assimp/Collada/human.zae",
-                                            HumanDescription().import),
-                                 "human.zae")
-                               .mesh;
+  static const Mesh mesh =
+      Check(ImportMesh(std::string(WIRERIG_ASSET_DIR) + "/assimp/Collada/human.zae",
+                       HumanDescription().import),
+            "human.zae")
+          .mesh;
   return mesh;
 }
 
 // A small rotation of every part (about an axis that differs from part to part), the root
-// moved a little, and a bending point load on every spine at v = 0.7 (tip deflection a few
-// percent of the spine's length). The skin gets the same rotations at each part's first
-// joint, and its other joints share a bend of 0.15 rad per part.
+// moved a little, and a bending point load of 0.05 EI / L^3 (the size the evaluation tests use)
+// on every spine at v = 0.7, along the normal and half as much along the binormal. The skin gets
+// the same rotations at each part's first joint, and its other joints share a bend of 0.15 rad per
+// part.
 void Pose(Scene& scene) {
   const std::size_t parts = scene.model.parts.size();
   scene.loads.resize(parts);
@@ -341,7 +341,7 @@ void Pose(Scene& scene) {
     const double x = double(i);
     const Vec3 axis = Vec3(std::sin(1.7 * x + 0.3), std::cos(1.1 * x), 0.5).normalized();
     const Quat rotation(Eigen::AngleAxisd(0.1 + 0.02 * x, axis));
-    const double force = 0.1 * part.spine_stiffness.bending / std::pow(part.spine_length, 3);
+    const double force = 0.05 * part.spine_stiffness.bending / std::pow(part.spine_length, 3);
     scene.loads[i] = {{{0.7, Vec3(force, 0.5 * force, 0.0)}}};
     scene.poses[i].rotation = rotation;
     scene.poses[i].loads.bending_point_loads = scene.loads[i];
@@ -381,15 +381,20 @@ const Scene& Subdivided() {
 
 void SetVertexCounters(benchmark::State& state, std::size_t vertices) {
   state.counters["vertices"] = double(vertices);
-  state.counters["vertices/s"] =
-      benchmark::Counter(double(state.iterations()) * double(vertices), benchmark::Counter::kIsRate);
+  state.counters["vertices/s"] = benchmark::Counter(double(state.iterations()) * double(vertices),
+                                                    benchmark::Counter::kIsRate);
 }
 
 void BM_WireEvaluation(benchmark::State& state, const Scene& (*get)()) {
   const Scene& scene = get();
   RigWorkspace workspace = MakeRigWorkspace(scene.model);
   std::vector<Vec3> positions(scene.model.vertices.size()), normals(positions.size());
-  const EvaluateRigJob job{&scene.model, scene.poses, &workspace, positions, normals};
+  EvaluateRigJob job;
+  job.model = &scene.model;
+  job.poses = scene.poses;
+  job.workspace = &workspace;
+  job.positions = positions;
+  job.normals = normals;
   for (auto _ : state) {
     const Status status = job.Run();
     if (!status) {
@@ -435,8 +440,7 @@ void BM_BindingPrecompute(benchmark::State& state, const Scene& (*get)()) {
 BENCHMARK_CAPTURE(BM_WireEvaluation, human, &Human)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_LinearBlendSkinning, human, &Human)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_WireEvaluation, subdivided, &Subdivided)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_LinearBlendSkinning, subdivided, &Subdivided)
-    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_LinearBlendSkinning, subdivided, &Subdivided)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_BindingPrecompute, subdivided, &Subdivided)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -103,8 +103,10 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
       Vec3 origin;
       const Mat3 axes =
           Axes(InterpolateSpine(out.spine_points, out.spine_frames, profile.spine_v, &origin));
-      for (const Vec3& q : part.profiles[p].points)
+      for (const Vec3& q : part.profiles[p].points) {
         profile.local_points.push_back(axes.transpose() * (q - origin));
+        out.max_radius = std::max(out.max_radius, profile.local_points.back().head<2>().norm());
+      }
       out.profiles.push_back(std::move(profile));
     }
     model.parts.push_back(std::move(out));

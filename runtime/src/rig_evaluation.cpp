@@ -42,6 +42,7 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
       profiles.emplace_back(profile.local_points.size());
     w.profile_points.push_back(std::move(profiles));
     w.profile_origins.emplace_back(part.profiles.size());
+    w.profile_normals.emplace_back(part.profiles.size());
     longest = std::max(longest, part.spine_points.size());
   }
   w.samples.resize(longest);
@@ -82,6 +83,8 @@ Status EvaluateRigJob::Validate() const {
     return Status::Invalid("poses", "needs one pose per part");
   if (positions.size() != model->vertices.size())
     return Status::Invalid("positions", "needs one element per vertex");
+  if (!warnings.empty() && warnings.size() != model->parts.size())
+    return Status::Invalid("warnings", "must be empty or have one element per part");
   if (!normals.empty() && normals.size() != model->vertices.size())
     return Status::Invalid("normals", "must be empty or have one element per vertex");
   if (workspace->spine_points.size() != model->parts.size() ||
@@ -144,6 +147,16 @@ Status EvaluateRigJob::Run() const {
       axial.normal_force = w.strain[i];
       if (Status s = axial.Run(); !s) return Status::Invalid("poses", s.reason);
       for (double& strain : w.strain[i]) strain /= part.spine_stiffness.axial;
+      if (!warnings.empty()) {
+        PartWarnings& warn = warnings[i];
+        warn = PartWarnings{};
+        for (std::size_t k = 0; k < n; ++k) {
+          warn.max_slope = std::max(warn.max_slope, std::atan(w.slope[k].head<2>().norm()));
+          warn.max_deflection_ratio = std::max(warn.max_deflection_ratio,
+                                               w.bending[k].head<2>().norm() / part.spine_length);
+        }
+        warn.beyond_small_deflection = warn.max_slope > 0.3 || warn.max_deflection_ratio > 0.1;
+      }
       // Each frame turns minimally onto the exact deformed tangent (closed-form slope).
       for (std::size_t k = 0; k < n; ++k) {
         const Frame& f = part.spine_frames[k];
@@ -155,6 +168,7 @@ Status EvaluateRigJob::Run() const {
       }
     } else {
       std::copy(part.spine_frames.begin(), part.spine_frames.end(), frames.begin());
+      if (!warnings.empty()) warnings[i] = PartWarnings{};
     }
 
     // 2. The part's own rigid pose, about its rest root point.
@@ -198,6 +212,7 @@ Status EvaluateRigJob::Run() const {
         axes.col(1) *= scale;
       }
       w.profile_origins[i][p] = origin;
+      w.profile_normals[i][p] = frame.tangent;
       std::vector<Vec3>& out = w.profile_points[i][p];
       for (std::size_t q = 0; q < profile.local_points.size(); ++q)
         out[q] = origin + axes * profile.local_points[q];
@@ -241,6 +256,31 @@ Status EvaluateRigJob::Run() const {
       const double u = double(q) / segments;
       if (u >= loads.from && u <= loads.to && !(profile.closed && q == m && loads.from == 0.0))
         points[q % m] += axes * w.profile_displacement[k++];
+    }
+  }
+
+  // Warnings: tight bends (radius of curvature below the spine-to-surface distance) and
+  // crossing adjacent profiles, on the final geometry.
+  for (std::size_t i = 0; i < warnings.size(); ++i) {
+    const PartModel& part = model->parts[i];
+    const std::vector<Vec3>& points = w.spine_points[i];
+    const std::vector<Frame>& frames = w.spine_frames[i];
+    for (std::size_t k = 1; k < points.size(); ++k) {
+      const double step = (points[k] - points[k - 1]).norm();
+      const double turn =
+          std::acos(std::clamp(frames[k].tangent.dot(frames[k - 1].tangent), -1.0, 1.0));
+      if (turn * part.max_radius > step) ++warnings[i].tight_bends;
+    }
+    for (std::size_t p = 0; p + 1 < part.profiles.size(); ++p) {
+      // Profile p must stay behind p + 1's plane and p + 1 ahead of p's.
+      const Vec3& a_origin = w.profile_origins[i][p];
+      const Vec3& b_origin = w.profile_origins[i][p + 1];
+      bool crossing = false;
+      for (const Vec3& q : w.profile_points[i][p])
+        crossing |= (q - b_origin).dot(w.profile_normals[i][p + 1]) > 0.0;
+      for (const Vec3& q : w.profile_points[i][p + 1])
+        crossing |= (q - a_origin).dot(w.profile_normals[i][p]) < 0.0;
+      warnings[i].crossing_profiles += crossing;
     }
   }
 

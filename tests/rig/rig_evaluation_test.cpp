@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <thread>
 
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/procedural_mesh.h"
@@ -156,7 +157,11 @@ TEST(RigEvaluation, CantileverSpineBendsByTheClosedForm) {
   poses[0].loads.tip_force = Vec3(force, 0, 0);
   RigWorkspace workspace = MakeRigWorkspace(scene.model);
   std::vector<Vec3> positions(scene.model.vertices.size());
-  EvaluateRigJob job{&scene.model, poses, {}, &workspace, positions, {}};
+  EvaluateRigJob job;
+  job.model = &scene.model;
+  job.poses = poses;
+  job.workspace = &workspace;
+  job.positions = positions;
   ASSERT_TRUE(job.Run().ok());
   const double expected =
       force * std::pow(part.spine_length, 3) / (3.0 * part.spine_stiffness.bending);
@@ -202,7 +207,11 @@ TEST(RigEvaluation, InvalidJobsAreRefused) {
   RigWorkspace workspace = MakeRigWorkspace(human.model);
   std::vector<Vec3> positions(human.model.vertices.size());
   std::vector<PartPose> poses(human.model.parts.size());
-  EvaluateRigJob job{&human.model, poses, {}, &workspace, positions, {}};
+  EvaluateRigJob job;
+  job.model = &human.model;
+  job.poses = poses;
+  job.workspace = &workspace;
+  job.positions = positions;
   ASSERT_TRUE(job.Validate().ok());
   job.poses = std::span<const PartPose>(poses).first(1);
   EXPECT_EQ(job.Validate().field, "poses");
@@ -250,7 +259,11 @@ TEST(RigEvaluation, VolumePreservationKeepsAStretchedPartsVolume) {
   const double rest = Volume6(capsule.mesh.welded_positions, capsule.mesh.welded_triangles);
   RigWorkspace workspace = MakeRigWorkspace(capsule.model);
   std::vector<Vec3> positions(capsule.model.vertices.size());
-  EvaluateRigJob job{&capsule.model, poses, {}, &workspace, positions, {}};
+  EvaluateRigJob job;
+  job.model = &capsule.model;
+  job.poses = poses;
+  job.workspace = &workspace;
+  job.positions = positions;
   ASSERT_TRUE(job.Run().ok());
   const double stretched = Volume6(positions, capsule.mesh.welded_triangles);
   job.preserve_volume = true;
@@ -277,7 +290,12 @@ TEST(RigEvaluation, AProfileLoadMovesOnlyTheVerticesNextToItsProfile) {
   const std::vector<Vec3> rest = Evaluate(capsule, poses);
   RigWorkspace workspace = MakeRigWorkspace(capsule.model);
   std::vector<Vec3> positions(capsule.model.vertices.size());
-  EvaluateRigJob job{&capsule.model, poses, loads, &workspace, positions, {}};
+  EvaluateRigJob job;
+  job.model = &capsule.model;
+  job.poses = poses;
+  job.profile_loads = loads;
+  job.workspace = &workspace;
+  job.positions = positions;
   ASSERT_TRUE(job.Run().ok());
   std::size_t moved_near = 0;
   for (std::size_t v = 0; v < positions.size(); ++v) {
@@ -306,6 +324,71 @@ TEST(RigEvaluation, AProfileLoadMovesOnlyTheVerticesNextToItsProfile) {
                       frame.binormal * profile.local_points[m / 8].y() +
                       frame.tangent * profile.local_points[m / 8].z());
   EXPECT_NEAR(moved.dot(frame.normal), expected, 1e-9 * expected + 1e-15);
+}
+
+}  // namespace
+}  // namespace wirerig
+
+namespace wirerig {
+namespace {
+
+std::vector<PartWarnings> WarningsFor(const Scene& scene, double tip_force) {
+  std::vector<PartPose> poses(scene.model.parts.size());
+  poses[0].loads.tip_force = Vec3(tip_force, 0, 0);
+  RigWorkspace workspace = MakeRigWorkspace(scene.model);
+  std::vector<Vec3> positions(scene.model.vertices.size());
+  std::vector<PartWarnings> warnings(scene.model.parts.size());
+  EvaluateRigJob job;
+  job.model = &scene.model;
+  job.poses = poses;
+  job.workspace = &workspace;
+  job.positions = positions;
+  job.warnings = warnings;
+  EXPECT_TRUE(job.Run().ok());
+  return warnings;
+}
+
+TEST(RigEvaluationWarnings, SmallLoadsWarnAboutNothing) {
+  const Scene& capsule = Capsule();
+  const PartModel& part = capsule.model.parts[0];
+  const double small = 0.01 * part.spine_stiffness.bending / std::pow(part.spine_length, 2);
+  const PartWarnings w = WarningsFor(capsule, small)[0];
+  EXPECT_FALSE(w.any());
+  // Tip slope of a cantilever: F L^2 / 2EI.
+  EXPECT_NEAR(w.max_slope, std::atan(0.005), 1e-9);
+}
+
+TEST(RigEvaluationWarnings, LargeLoadsLeaveTheLinearRangeAndFoldTheSkin) {
+  const Scene& capsule = Capsule();
+  const PartModel& part = capsule.model.parts[0];
+  // Curvature at the clamp F L / EI = 60 / L: far tighter than the 0.1 m radius allows, and
+  // the second profile tilts by atan(F s (L - s/2) / EI) ~ 1.4 rad: it crosses the first.
+  const double large = 60.0 * part.spine_stiffness.bending / std::pow(part.spine_length, 2);
+  const PartWarnings w = WarningsFor(capsule, large)[0];
+  EXPECT_TRUE(w.beyond_small_deflection);
+  EXPECT_NEAR(w.max_deflection_ratio,
+              large * std::pow(part.spine_length, 2) / (3.0 * part.spine_stiffness.bending), 1e-9);
+  EXPECT_GT(w.tight_bends, 0u);
+  EXPECT_GT(w.crossing_profiles, 0u);
+}
+
+TEST(RigEvaluation, ConcurrentEvaluationsOfOneModelAgreeWithSequentialOnes) {
+  const Scene& human = Human();
+  std::vector<PartPose> a(human.model.parts.size()), b(human.model.parts.size());
+  a[2].rotation = Quat(Eigen::AngleAxisd(0.4, Vec3::UnitZ()));
+  b[0].translation = Vec3(0.1, 0.2, 0.3);
+  const std::vector<Vec3> expected_a = Evaluate(human, a), expected_b = Evaluate(human, b);
+  std::vector<Vec3> got_a, got_b;
+  std::thread first([&] {
+    for (int i = 0; i < 20; ++i) got_a = Evaluate(human, a);
+  });
+  std::thread second([&] {
+    for (int i = 0; i < 20; ++i) got_b = Evaluate(human, b);
+  });
+  first.join();
+  second.join();
+  EXPECT_EQ(got_a, expected_a);
+  EXPECT_EQ(got_b, expected_b);
 }
 
 }  // namespace

@@ -125,7 +125,12 @@ TEST(NoAllocation, RigEvaluationWithLoadsAndNormals) {
   poses[0].rotation = Quat(Eigen::AngleAxisd(0.2, Vec3::UnitX()));
   poses[0].loads.bending_point_loads = loads;
   poses[0].loads.axial_point_loads = axial;
-  EvaluateRigJob job{&model.value().model, poses, {}, &workspace, positions, normals};
+  EvaluateRigJob job;
+  job.model = &model.value().model;
+  job.poses = poses;
+  job.workspace = &workspace;
+  job.positions = positions;
+  job.normals = normals;
   const long before = g_allocations;
   const Status status = job.Run();
   const long after = g_allocations;

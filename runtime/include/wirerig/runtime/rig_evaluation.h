@@ -59,12 +59,27 @@ PartPose PoseFromRigidBody(const PartModel& part, const RigidBodyState& state);
 // The rest state of a part's rigid body (centre of mass, principal orientation, at rest).
 RigidBodyState RestRigidBodyState(const PartModel& part);
 
+// What a frame's evaluation found about one part, so the modeller can act (paper section 7).
+struct PartWarnings {
+  double max_slope = 0.0;             // rad, of the spine's bending (deformable parts)
+  double max_deflection_ratio = 0.0;  // largest bending deflection / spine length
+  // Beyond the range where linear beam theory holds: slope above 0.3 rad or deflection above
+  // 10% of the length.
+  bool beyond_small_deflection = false;
+  // Spine samples whose radius of curvature is below the distance from the spine to the
+  // surface (the skin folds into itself there).
+  std::size_t tight_bends = 0;
+  std::size_t crossing_profiles = 0;  // adjacent profile pairs whose wires cross
+  bool any() const { return beyond_small_deflection || tight_bends > 0 || crossing_profiles > 0; }
+};
+
 // Scratch buffers sized for one model; make once, reuse every frame.
 struct RigWorkspace {
   std::vector<std::vector<Vec3>> spine_points;                 // per part, deformed, world
   std::vector<std::vector<Frame>> spine_frames;                // per part, deformed, world
   std::vector<std::vector<std::vector<Vec3>>> profile_points;  // per part, per profile, world
   std::vector<std::vector<Vec3>> profile_origins;  // per part, per profile: spine point, world
+  std::vector<std::vector<Vec3>> profile_normals;  // per part, per profile: its plane's normal
   std::vector<double> samples;                     // v of the longest spine's samples
   std::vector<Vec3> slope;                         // scratch for the bending job's slope
   std::vector<Vec3> bending;                       // scratch for the bending job
@@ -88,6 +103,8 @@ struct EvaluateRigJob {
   // each profile scales in its plane by 1 / sqrt(1 + strain), strain = N / EA of the closed
   // form at the profile.
   bool preserve_volume = false;
+  // Optional, one per part: filled with what this frame's deformation warns about.
+  std::span<PartWarnings> warnings;
 
   Status Validate() const;
   Status Run() const;  // validates, then evaluates; never allocates

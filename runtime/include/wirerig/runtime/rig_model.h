@@ -38,6 +38,7 @@ struct PartModel {
   WireStiffness spine_stiffness;
   MassProperties mass;                 // of the part's enclosed volume (rigid parts), from its skin
   std::vector<ProfileModel> profiles;  // in order along the spine, at least 2
+  double max_radius = 0.0;  // largest distance from the spine to a profile point at rest, m
 };
 
 struct VertexAttachment {
