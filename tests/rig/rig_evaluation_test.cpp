@@ -181,25 +181,64 @@ TEST(RigEvaluation, CantileverSpineBendsByTheClosedForm) {
   EXPECT_GT(top_moved, 20u);
 }
 
-TEST(RigEvaluation, BendingAnArmKeepsTheMeshSound) {
+TEST(RigEvaluation, BendingAnArmAndBulgingTheChestKeepTheMeshSound) {
   const Scene& human = Human();
-  const int arm = PartIndex(human, "arm_left");
+  const int arm = PartIndex(human, "arm_left"), torso = PartIndex(human, "torso");
   std::vector<PartPose> poses(human.model.parts.size());
-  const PartModel& part = human.model.parts[arm];
-  const double force = 0.05 * part.spine_stiffness.bending / std::pow(part.spine_length, 3);
+  const PartModel& arm_part = human.model.parts[arm];
+  const double force = 0.05 * arm_part.spine_stiffness.bending / std::pow(arm_part.spine_length, 3);
   const std::array<PointLoad, 1> load{{{0.8, Vec3(force, 0, 0)}}};
   poses[arm].loads.bending_point_loads = load;
-  std::vector<Vec3> normals;
-  const std::vector<Vec3> positions = Evaluate(human, poses, &normals);
-  std::size_t flipped = 0;
+  // The chest: the upper torso profiles, their front halves pushed outwards (along +z, which
+  // the rays of each profile start towards: the rest normal), 1 cm at most.
+  std::vector<ProfileLoads> bulges;
+  const PartModel& torso_part = human.model.parts[torso];
+  std::vector<std::array<LineLoad, 1>> pushes;
+  pushes.reserve(torso_part.profiles.size());
+  for (std::uint32_t p = 9; p < 14; ++p) {
+    const ProfileModel& profile = torso_part.profiles[p];
+    const double stretch = 0.4;  // of the loop
+    double length = 0.0;
+    const std::size_t m = profile.local_points.size();
+    for (std::size_t q = 1; q <= m; ++q)
+      length += (profile.local_points[q % m] - profile.local_points[q - 1]).norm();
+    length *= stretch;
+    // Uniform q on a clamped stretch: peak q L^4 / 384 EI = 1 cm.
+    const double q_load = 0.01 * 384.0 * profile.stiffness.bending / std::pow(length, 4);
+    pushes.push_back({{{0.0, 1.0, Vec3(q_load, 0, 0)}}});
+    bulges.push_back(
+        {std::uint32_t(torso), p, 0.0, stretch, BoundaryCondition::kClamped, {}, pushes.back()});
+  }
+  RigWorkspace workspace = MakeRigWorkspace(human.model);
+  std::vector<Vec3> positions(human.model.vertices.size()), normals(positions.size());
+  EvaluateRigJob job;
+  job.model = &human.model;
+  job.poses = poses;
+  job.profile_loads = bulges;
+  job.workspace = &workspace;
+  job.positions = positions;
+  job.normals = normals;
+  ASSERT_TRUE(job.Run().ok());
   std::vector<Vec3> rest_normals;
-  Evaluate(human, std::vector<PartPose>(human.model.parts.size()), &rest_normals);
+  const std::vector<Vec3> rest =
+      Evaluate(human, std::vector<PartPose>(human.model.parts.size()), &rest_normals);
+  std::size_t flipped = 0, chest_moved = 0;
+  double largest = 0.0;
   for (std::size_t v = 0; v < positions.size(); ++v) {
     ASSERT_TRUE(std::isfinite(positions[v].x()) && std::isfinite(positions[v].y()) &&
                 std::isfinite(positions[v].z()));
     flipped += normals[v].dot(rest_normals[v]) < 0.0;
+    if (int(human.model.vertices[v].part) == torso) {
+      const double moved = (positions[v] - rest[v]).norm();
+      chest_moved += moved > 1e-3;
+      largest = std::max(largest, moved);
+    }
   }
+  // The mesh keeps its triangles (topology is never touched, so no new boundary edges): what
+  // can go wrong is folding, which flips normals. Report and bound it.
   EXPECT_LT(flipped, positions.size() / 100) << flipped << " vertex normals flipped";
+  EXPECT_GT(chest_moved, 20u);
+  EXPECT_LT(largest, 0.011);  // nothing moves further than the bulge's 1 cm peak (+ rounding)
 }
 
 TEST(RigEvaluation, InvalidJobsAreRefused) {
