@@ -23,14 +23,6 @@ double ProjectOnSamples(const std::vector<Vec3>& samples, const Vec3& p) {
   return best_v;
 }
 
-Mat3 Axes(const Frame& f) {
-  Mat3 m;
-  m.col(0) = f.normal;
-  m.col(1) = f.binormal;
-  m.col(2) = f.tangent;
-  return m;
-}
-
 // Mass properties of the solid the part's closed profiles enclose (a tube of their loops with
 // fan caps); an empty MassProperties when the profiles are open or differ in point count.
 MassProperties ProfileSolid(const RigPart& part, double density) {
@@ -102,7 +94,7 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
           ComputeStiffness(part.profile_wires[p].material, part.profile_wires[p].section);
       Vec3 origin;
       const Mat3 axes =
-          Axes(InterpolateSpine(out.spine_points, out.spine_frames, profile.spine_v, &origin));
+          FrameAxes(InterpolateSpine(out.spine_points, out.spine_frames, profile.spine_v, &origin));
       for (const Vec3& q : part.profiles[p].points) {
         profile.local_points.push_back(axes.transpose() * (q - origin));
         out.max_radius = std::max(out.max_radius, profile.local_points.back().head<2>().norm());
@@ -119,8 +111,8 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
     const PartModel& part = model.parts[i];
     for (const ProfileModel& profile : part.profiles) {
       Vec3 origin;
-      const Mat3 axes =
-          Axes(InterpolateSpine(part.spine_points, part.spine_frames, profile.spine_v, &origin));
+      const Mat3 axes = FrameAxes(
+          InterpolateSpine(part.spine_points, part.spine_frames, profile.spine_v, &origin));
       std::vector<Vec3> points;
       for (const Vec3& q : profile.local_points) points.push_back(origin + axes * q);
       rest_profiles[i].push_back(std::move(points));
@@ -162,8 +154,8 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
       a.profile = std::uint32_t(lower ? pair : pair + 1);
     }
     Vec3 origin;
-    const Mat3 axes = Axes(InterpolateSpine(part.spine_points, part.spine_frames,
-                                            part.profiles[a.profile].spine_v, &origin));
+    const Mat3 axes = FrameAxes(InterpolateSpine(part.spine_points, part.spine_frames,
+                                                 part.profiles[a.profile].spine_v, &origin));
     a.cap_local = axes.transpose() * (p - origin);
   }
   return built;

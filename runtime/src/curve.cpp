@@ -31,6 +31,8 @@
 // tangent, so this equals correcting the uncorrected rotation-minimizing frame.
 #include "wirerig/runtime/curve.h"
 
+#include "vector_math.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -57,27 +59,8 @@ constexpr std::array<double, 4> kGaussX = {0.18343464249564980494, 0.52553240991
 constexpr std::array<double, 4> kGaussW = {0.36268378337836198297, 0.31370664587788728734,
                                            0.22238103445337447054, 0.10122853629037625915};
 
-// A unit vector perpendicular to the unit vector t: the world axis least aligned with t
-// (ties go to the lower axis), made perpendicular by Gram-Schmidt. Its component along t
-// is at most 1/sqrt(3), so the result has length at least sqrt(2/3) before normalising.
-Vec3 PerpendicularTo(const Vec3& t) {
-  const Vec3 a = t.cwiseAbs();
-  int axis = 0;
-  if (a.y() < a(axis)) axis = 1;
-  if (a.z() < a(axis)) axis = 2;
-  const Vec3 e = Vec3::Unit(axis);
-  Vec3 n = e - e.dot(t) * t;
-  const double norm = n.norm();
-  return norm > 0.0 ? Vec3(n / norm) : e;
-}
-
-// Makes r a unit vector perpendicular to the unit vector t (Gram-Schmidt).
-Vec3 OrthonormalizeAgainst(const Vec3& r, const Vec3& t) {
-  const Vec3 n = r - r.dot(t) * t;
-  const double norm = n.norm();
-  if (norm > 1e-8) return n / norm;
-  return PerpendicularTo(t);
-}
+using detail::OrthonormalizeAgainst;
+using detail::PerpendicularTo;
 
 // Rotates the unit vector r (perpendicular to the unit vector t) by `angle` about t.
 Vec3 RotateAbout(const Vec3& r, const Vec3& t, double angle) {

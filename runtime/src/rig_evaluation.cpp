@@ -8,14 +8,6 @@
 namespace wirerig {
 namespace {
 
-Mat3 FrameMatrix(const Frame& f) {
-  Mat3 m;
-  m.col(0) = f.normal;
-  m.col(1) = f.binormal;
-  m.col(2) = f.tangent;
-  return m;
-}
-
 Frame RotateFrame(const Mat3& r, const Frame& f) {
   return {r * f.tangent, r * f.normal, r * f.binormal};
 }
@@ -187,7 +179,7 @@ Status EvaluateRigJob::Run() const {
           InterpolateSpine(parent.spine_points, parent.spine_frames, part.attachment, &rest_origin);
       const Frame moved = InterpolateSpine(w.spine_points[part.parent], w.spine_frames[part.parent],
                                            part.attachment, &moved_origin);
-      const Mat3 follow = FrameMatrix(moved) * FrameMatrix(rest).transpose();
+      const Mat3 follow = FrameAxes(moved) * FrameAxes(rest).transpose();
       for (std::size_t k = 0; k < n; ++k) {
         points[k] = moved_origin + follow * (points[k] - rest_origin);
         frames[k] = RotateFrame(follow, frames[k]);
@@ -199,7 +191,7 @@ Status EvaluateRigJob::Run() const {
       const ProfileModel& profile = part.profiles[p];
       Vec3 origin;
       const Frame frame = InterpolateSpine(points, frames, profile.spine_v, &origin);
-      Mat3 axes = FrameMatrix(frame);
+      Mat3 axes = FrameAxes(frame);
       w.profile_scale[i][p] = 1.0;
       if (preserve_volume && part.kind == SpineKind::kDeformable) {
         const double x = profile.spine_v * double(n - 1);
@@ -249,7 +241,7 @@ Status EvaluateRigJob::Run() const {
     bending.displacement = std::span<Vec3>(w.profile_displacement.data(), count);
     if (Status s = bending.Run(); !s) return Status::Invalid("profile_loads", s.reason);
     Vec3 origin;
-    const Mat3 axes = FrameMatrix(InterpolateSpine(
+    const Mat3 axes = FrameAxes(InterpolateSpine(
         w.spine_points[loads.part], w.spine_frames[loads.part], profile.spine_v, &origin));
     std::size_t k = 0;
     for (std::size_t q = 0; q <= (profile.closed ? m : m - 1) && k < count; ++q) {
@@ -292,7 +284,7 @@ Status EvaluateRigJob::Run() const {
       Vec3 origin;
       const Frame frame = InterpolateSpine(w.spine_points[a.part], w.spine_frames[a.part],
                                            part.profiles[a.profile].spine_v, &origin);
-      Mat3 axes = FrameMatrix(frame);
+      Mat3 axes = FrameAxes(frame);
       // In-plane like its end profile, and 1/scale^2 along the tangent: the cap keeps its
       // volume and meets the profile's plane continuously.
       const double scale = w.profile_scale[a.part][a.profile];

@@ -30,6 +30,8 @@
 // the largest component first and reports zero vectors instead of dividing by zero.
 #include "wirerig/runtime/skin_binding.h"
 
+#include "vector_math.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -39,6 +41,11 @@
 
 namespace wirerig {
 namespace {
+
+using detail::MaxAbs;
+using detail::OrthonormalizeAgainst;
+using detail::PerpendicularTo;
+using detail::Unit;
 
 // Coordinates beyond this (m) are refused: squares of lengths must not overflow.
 constexpr double kMaxCoordinate = 1e100;
@@ -64,42 +71,6 @@ bool CoordinatesOk(const Vec3& v) {
   for (int i = 0; i < 3; ++i)
     if (!std::isfinite(v(i)) || std::abs(v(i)) > kMaxCoordinate) return false;
   return true;
-}
-
-double MaxAbs(const Vec3& v) {
-  return std::max({std::abs(v.x()), std::abs(v.y()), std::abs(v.z())});
-}
-
-// Makes *unit the direction of v and returns |v|; returns 0 (and leaves *unit alone) for the
-// zero vector. Scaling by the largest component first avoids overflow and underflow.
-double Unit(const Vec3& v, Vec3* unit) {
-  const double scale = MaxAbs(v);
-  if (!(scale > 0.0)) return 0.0;
-  const Vec3 scaled = v / scale;
-  const double norm = scaled.norm();  // in [1, sqrt(3)]
-  *unit = scaled / norm;
-  return scale * norm;
-}
-
-// A unit vector perpendicular to the unit vector t: the world axis least aligned with t, made
-// perpendicular by Gram-Schmidt (its length is then at least sqrt(2/3)).
-Vec3 PerpendicularTo(const Vec3& t) {
-  const Vec3 a = t.cwiseAbs();
-  int axis = 0;
-  if (a.y() < a(axis)) axis = 1;
-  if (a.z() < a(axis)) axis = 2;
-  const Vec3 e = Vec3::Unit(axis);
-  Vec3 n = e;
-  Unit(e - e.dot(t) * t, &n);
-  return n;
-}
-
-// v made a unit vector perpendicular to the unit vector t (Gram-Schmidt); any perpendicular
-// when v is (nearly) parallel to t.
-Vec3 OrthonormalizeAgainst(const Vec3& v, const Vec3& t) {
-  Vec3 n;
-  if (Unit(v - v.dot(t) * t, &n) > 1e-8 * MaxAbs(v)) return n;
-  return PerpendicularTo(t);
 }
 
 // The minimal rotation taking the unit vector a to the unit vector b, applied to v

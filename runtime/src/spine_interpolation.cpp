@@ -5,6 +5,14 @@
 
 namespace wirerig {
 
+Mat3 FrameAxes(const Frame& frame) {
+  Mat3 m;
+  m.col(0) = frame.normal;
+  m.col(1) = frame.binormal;
+  m.col(2) = frame.tangent;
+  return m;
+}
+
 Frame InterpolateSpine(std::span<const Vec3> points, std::span<const Frame> frames, double v,
                        Vec3* point) {
   const std::size_t n = points.size();
@@ -12,13 +20,7 @@ Frame InterpolateSpine(std::span<const Vec3> points, std::span<const Frame> fram
   const std::size_t k = std::min(static_cast<std::size_t>(x), n - 2);
   const double f = x - double(k);
   *point = (1.0 - f) * points[k] + f * points[k + 1];
-  auto quaternion = [](const Frame& frame) {
-    Mat3 m;
-    m.col(0) = frame.normal;
-    m.col(1) = frame.binormal;
-    m.col(2) = frame.tangent;
-    return Quat(m);
-  };
+  auto quaternion = [](const Frame& frame) { return Quat(FrameAxes(frame)); };
   const Mat3 r = quaternion(frames[k]).slerp(f, quaternion(frames[k + 1])).toRotationMatrix();
   return {r.col(2), r.col(0), r.col(1)};
 }

@@ -9,6 +9,10 @@
 
 namespace wirerig {
 
+// The rotation whose columns are the frame's (normal, binormal, tangent): local spine
+// coordinates to world axes.
+Mat3 FrameAxes(const Frame& frame);
+
 // Needs points.size() == frames.size() >= 2; v is clamped to [0, 1].
 Frame InterpolateSpine(std::span<const Vec3> points, std::span<const Frame> frames, double v,
                        Vec3* point);
