@@ -1,40 +1,107 @@
 #include "wirerig/rig/profile_curves.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numbers>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace wirerig {
 namespace {
 
 constexpr double kFar = std::numeric_limits<double>::max();
 
-// Segment intersection in the plane (2D coordinates), proper crossings only.
-bool SegmentsCross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-  auto orient = [](const Vec2& p, const Vec2& q, const Vec2& r) {
-    return (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
-  };
-  const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a),
-               o4 = orient(c, d, b);
-  return ((o1 > 0) != (o2 > 0)) && ((o3 > 0) != (o4 > 0)) && o1 != 0 && o2 != 0 && o3 != 0 &&
-         o4 != 0;
+// Orientation of r relative to the line pq (2D coordinates): > 0 to the left.
+inline double Orient(double px, double py, double qx, double qy, double rx, double ry) {
+  return (qx - px) * (ry - py) - (qy - py) * (rx - px);
 }
 
-bool SelfIntersects(const ProfileCurve& profile) {
+// Strictly opposite signs.
+inline bool Straddles(double s0, double s1) {
+  return (s0 > 0.0 && s1 < 0.0) || (s0 < 0.0 && s1 > 0.0);
+}
+
+// Whether two non-adjacent edges of the profile's polygon (in the profile plane) properly cross:
+// each edge's endpoints strictly on opposite sides of the other's line. Each edge's line is
+// tested against all later vertices at once (a vectorisable loop); only edges whose endpoints
+// straddle it get the second test. `scratch` is reused between calls.
+bool SelfIntersects(const ProfileCurve& profile, std::vector<double>& scratch) {
   const std::size_t n = profile.points.size();
   if (n < 4) return false;
-  std::vector<Vec2> q(n);
+  scratch.resize(3 * (n + 1));
+  double* x = scratch.data();
+  double* y = x + (n + 1);
+  double* side = y + (n + 1);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 d = profile.points[i] - profile.origin;
-    q[i] = Vec2(d.dot(profile.frame.normal), d.dot(profile.frame.binormal));
+    x[i] = d.dot(profile.frame.normal);
+    y[i] = d.dot(profile.frame.binormal);
   }
+  x[n] = x[0];  // edge n - 1 of a closed profile ends at vertex 0
+  y[n] = y[0];
   const std::size_t edges = profile.closed ? n : n - 1;
-  for (std::size_t i = 0; i < edges; ++i)
-    for (std::size_t j = i + 2; j < edges; ++j) {
-      if (profile.closed && i == 0 && j == n - 1) continue;  // adjacent through the seam
-      if (SegmentsCross(q[i], q[(i + 1) % n], q[j], q[(j + 1) % n])) return true;
+  for (std::size_t i = 0; i < edges; ++i) {
+    // Edges j in [i + 2, end), but not edge n - 1 with edge 0 (adjacent through the seam).
+    const std::size_t end = profile.closed && i == 0 ? n - 1 : edges;
+    if (i + 2 >= end) continue;
+    const double ax = x[i], ay = y[i], bx = x[i + 1], by = y[i + 1];
+    // Edge j straddles edge i's line (side[j], side[j + 1] known); then edge i must straddle
+    // edge j's.
+    auto crosses = [&](std::size_t j) {
+      if (!Straddles(side[j], side[j + 1])) return false;
+      const double o3 = Orient(x[j], y[j], x[j + 1], y[j + 1], ax, ay);
+      const double o4 = Orient(x[j], y[j], x[j + 1], y[j + 1], bx, by);
+      return ((o3 > 0.0) != (o4 > 0.0)) && o3 != 0.0 && o4 != 0.0;
+    };
+    std::size_t k = i + 2;  // next vertex whose side is computed
+#if defined(__SSE2__)
+    // Two vertices at a time; candidate edges j have side[j] * side[j + 1] <= 0, which holds
+    // whenever the two straddle (a product that underflows is still -0).
+    const __m128d vax = _mm_set1_pd(ax), vay = _mm_set1_pd(ay);
+    const __m128d vdx = _mm_set1_pd(bx - ax), vdy = _mm_set1_pd(by - ay);
+    const __m128d zero = _mm_setzero_pd();
+    __m128d previous = _mm_set1_pd(1.0);  // lane 1: side[k - 1]
+    auto sides = [&](std::size_t first) {
+      return _mm_sub_pd(_mm_mul_pd(vdx, _mm_sub_pd(_mm_loadu_pd(y + first), vay)),
+                        _mm_mul_pd(vdy, _mm_sub_pd(_mm_loadu_pd(x + first), vax)));
+    };
+    // Lanes of shuffle(previous, current) * current: (side[k - 1], side[k]) times
+    // (side[k], side[k + 1]), for edges k - 1 and k.
+    for (; k + 3 <= end; k += 4) {
+      const __m128d low = sides(k), high = sides(k + 2);
+      _mm_storeu_pd(side + k, low);
+      _mm_storeu_pd(side + k + 2, high);
+      const __m128d p0 = _mm_mul_pd(_mm_shuffle_pd(previous, low, 1), low);
+      const __m128d p1 = _mm_mul_pd(_mm_shuffle_pd(low, high, 1), high);
+      previous = high;
+      unsigned m = static_cast<unsigned>(_mm_movemask_pd(_mm_cmple_pd(p0, zero))) |
+                   static_cast<unsigned>(_mm_movemask_pd(_mm_cmple_pd(p1, zero))) << 2;
+      for (; m != 0; m &= m - 1) {
+        const std::size_t j = k - 1 + static_cast<std::size_t>(std::countr_zero(m));
+        if (j >= i + 2 && crosses(j)) return true;
+      }
     }
+    for (; k + 1 <= end; k += 2) {
+      const __m128d current = sides(k);
+      _mm_storeu_pd(side + k, current);
+      const __m128d product = _mm_mul_pd(_mm_shuffle_pd(previous, current, 1), current);
+      previous = current;
+      for (unsigned m = static_cast<unsigned>(_mm_movemask_pd(_mm_cmple_pd(product, zero))); m != 0;
+           m &= m - 1) {
+        const std::size_t j = k - 1 + static_cast<std::size_t>(std::countr_zero(m));
+        if (j >= i + 2 && crosses(j)) return true;
+      }
+    }
+#endif
+    for (; k <= end; ++k) {
+      side[k] = Orient(ax, ay, bx, by, x[k], y[k]);
+      if (k >= i + 3 && crosses(k - 1)) return true;
+    }
+  }
   return false;
 }
 
@@ -70,14 +137,15 @@ struct CastResult {
 
 // Casts the profile's rays from its origin. Counts misses and other-part hits into
 // `diagnostics` only when `diagnostics` is given (the final pass).
-CastResult CastRays(const ProfileRequest& request, ProfileCurve& profile, std::vector<Vec3>& hits,
-                    std::vector<bool>& hit, ProfileDiagnostics* diagnostics) {
+// `cosines` and `sines`: of the rays' angles 2 pi j / rays.
+CastResult CastRays(const ProfileRequest& request, ProfileCurve& profile,
+                    const std::vector<double>& cosines, const std::vector<double>& sines,
+                    std::vector<Vec3>& hits, std::vector<bool>& hit,
+                    ProfileDiagnostics* diagnostics) {
   const int rays = request.points_per_profile;
   CastResult result;
   for (int j = 0; j < rays; ++j) {
-    const double angle = 2.0 * std::numbers::pi * j / rays;
-    const Vec3 direction =
-        std::cos(angle) * profile.frame.normal + std::sin(angle) * profile.frame.binormal;
+    const Vec3 direction = cosines[j] * profile.frame.normal + sines[j] * profile.frame.binormal;
     std::optional<RayHit> chosen = request.part_bvh->Raycast(profile.origin, direction, 0.0, kFar);
     const std::optional<RayHit> first =
         request.mesh_bvh ? request.mesh_bvh->Raycast(profile.origin, direction, 0.0, kFar)
@@ -136,13 +204,21 @@ ProfileSet GenerateProfiles(const ProfileRequest& request) {
   const int count = request.profile_count, rays = request.points_per_profile;
   std::vector<Vec3> hits(static_cast<std::size_t>(rays));
   std::vector<bool> hit(static_cast<std::size_t>(rays));
+  std::vector<double> cosines(static_cast<std::size_t>(std::max(rays, 0)));
+  std::vector<double> sines(cosines.size());
+  for (int j = 0; j < rays; ++j) {
+    const double angle = 2.0 * std::numbers::pi * j / rays;
+    cosines[j] = std::cos(angle);
+    sines[j] = std::sin(angle);
+  }
+  std::vector<double> scratch;
   for (int k = 1; k <= count; ++k) {
     ProfileCurve profile;
     profile.v = double(k) / double(count + 1);
     profile.origin = request.central_curve->Position(profile.v);
     profile.frame = request.central_curve->FrameAt(profile.v);
     for (int pass = 0; pass < request.recentre_passes; ++pass) {
-      const CastResult cast = CastRays(request, profile, hits, hit, nullptr);
+      const CastResult cast = CastRays(request, profile, cosines, sines, hits, hit, nullptr);
       // Only a loop wholly on the part's own surface says where the part's centre is.
       if (cast.hits != std::size_t(rays) || cast.entering > 0 || cast.other_part > 0) break;
       profile.points = hits;
@@ -154,7 +230,7 @@ ProfileSet GenerateProfiles(const ProfileRequest& request) {
       for (const Vec3& p : hits) size = std::max(size, (p - profile.origin).norm());
       if (offset.norm() <= 1e-9 * size) break;
     }
-    const CastResult cast = CastRays(request, profile, hits, hit, &set.diagnostics);
+    const CastResult cast = CastRays(request, profile, cosines, sines, hits, hit, &set.diagnostics);
     if (2 * cast.entering > cast.hits) {
       ++set.diagnostics.outside_profiles;
       continue;
@@ -171,7 +247,7 @@ ProfileSet GenerateProfiles(const ProfileRequest& request) {
       ++set.diagnostics.empty_profiles;
       continue;
     }
-    if (SelfIntersects(profile)) ++set.diagnostics.self_intersecting;
+    if (SelfIntersects(profile, scratch)) ++set.diagnostics.self_intersecting;
     set.profiles.push_back(std::move(profile));
     set.foreign_points.push_back(cast.other_part);
   }

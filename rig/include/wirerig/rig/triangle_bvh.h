@@ -48,16 +48,39 @@ class TriangleBvh {
   std::size_t triangle_count() const;
 
  private:
+  // Binary tree, built by binned SAH; used for closest points (and its root box for rays).
   struct Node {
     Vec3 min = Vec3::Zero(), max = Vec3::Zero();  // padded bounds of its triangles
     std::uint32_t first = 0;  // leaf: first index into order_; inner: left child (right: +1)
     std::uint32_t count = 0;  // leaf: number of triangles (1..4); inner: 0
   };
+  // Wide tree collapsed from the binary one, for ray casting: kRayWidth children per node.
+  // Child boxes are floats in "unit" coordinates, (x - unit_centre_) / 2^unit_exponent_,
+  // rounded outwards: box[side * 3 + axis][child] with side 0 the minimum, 1 the maximum.
+  // Unused child slots have empty boxes.
+  static constexpr int kRayWidth = 8;
+  struct alignas(64) RayNode {
+    float box[6][kRayWidth];
+    // Inner node index, or kLeafRef | leaf index (into ray_vertices_ and ray_triangles_).
+    std::uint32_t child[kRayWidth];
+  };
+  void BuildRayTree();
+
   std::span<const Vec3> positions_;
   std::span<const Triangle> triangles_;
   // Triangle indices, leaf ranges contiguous; the top bit marks degenerate triangles.
   std::vector<std::uint32_t> order_;
   std::vector<Node> nodes_;  // nodes_[0] is the root; empty for an empty BVH
+  std::vector<RayNode> ray_nodes_;  // ray_nodes_[0] is the root; empty for an empty BVH
+  // Ray triangles (the non-degenerate ones), four slots per leaf (a leaf with fewer repeats its
+  // last triangle): leaf l's vertices, copied, are the 36 doubles from 36 l, two pairs of
+  // triangles as [pair][vertex][axis][triangle of the pair]; its triangle indices (into the
+  // triangle array) are the four from 4 l.
+  std::vector<double> ray_vertices_;
+  std::vector<std::uint32_t> ray_triangles_;
+  double unit_centre_[3] = {0.0, 0.0, 0.0};
+  int unit_exponent_ = 0;  // unit = 2^unit_exponent_ > half the root box's largest extent
+  double inside_error_ = 0.0;  // bound on the rounding errors of rays starting inside
 };
 
 // Generalised winding number of `point` with respect to the triangles (Jacobson et al. 2013):
