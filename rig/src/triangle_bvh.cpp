@@ -588,8 +588,8 @@ std::optional<RayHit> TriangleBvh::Raycast(const Vec3& origin, const Vec3& direc
     double magnitude = 0.0;
     for (int a = 0; a < 3; ++a) {
       magnitude = std::max({magnitude, std::abs(origin[a]), std::abs(unit_centre_[a])});
-      start[a] = std::clamp(((origin[a] + t0 * direction[a]) - unit_centre_[a]) * to_unit, -2.0,
-                            2.0);
+      start[a] =
+          std::clamp(((origin[a] + t0 * direction[a]) - unit_centre_[a]) * to_unit, -2.0, 2.0);
     }
     error = (magnitude * to_unit + 1.0) * 0x1p-47;
   }
@@ -640,8 +640,7 @@ std::optional<RayHit> TriangleBvh::Raycast(const Vec3& origin, const Vec3& direc
                               _mm_set1_ps(near_offset[2])};
   const __m128 far_off[3] = {_mm_set1_ps(far_offset[0]), _mm_set1_ps(far_offset[1]),
                              _mm_set1_ps(far_offset[2])};
-  const __m128 inv[3] = {_mm_set1_ps(inverse[0]), _mm_set1_ps(inverse[1]),
-                         _mm_set1_ps(inverse[2])};
+  const __m128 inv[3] = {_mm_set1_ps(inverse[0]), _mm_set1_ps(inverse[1]), _mm_set1_ps(inverse[2])};
   const __m128 far_inv[3] = {_mm_set1_ps(far_inverse[0]), _mm_set1_ps(far_inverse[1]),
                              _mm_set1_ps(far_inverse[2])};
   const __m128 lo_v = _mm_set1_ps(u_lo);
@@ -661,8 +660,8 @@ std::optional<RayHit> TriangleBvh::Raycast(const Vec3& origin, const Vec3& direc
         for (int a = 0; a < 3; ++a) {
           t_near[a] =
               _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.box[near_row[a]] + g), near_off[a]), inv[a]);
-          t_far[a] = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.box[far_row[a]] + g), far_off[a]),
-                                far_inv[a]);
+          t_far[a] =
+              _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.box[far_row[a]] + g), far_off[a]), far_inv[a]);
         }
         // Balanced, for a short dependency chain.
         const __m128 tn = _mm_max_ps(_mm_max_ps(t_near[0], t_near[1]), _mm_max_ps(t_near[2], lo_v));
@@ -747,7 +746,8 @@ std::optional<RayHit> TriangleBvh::Raycast(const Vec3& origin, const Vec3& direc
         double p[3][3];
         for (int k = 0; k < 3; ++k) {
           double vertex[3];
-          for (int a = 0; a < 3; ++a) vertex[a] = vertices[18 * (slot / 2) + 6 * k + 2 * a + slot % 2];
+          for (int a = 0; a < 3; ++a)
+            vertex[a] = vertices[18 * (slot / 2) + 6 * k + 2 * a + slot % 2];
           ray.Transform(vertex, p[k]);
           depth[k][slot] = p[k][2];
         }

@@ -70,7 +70,7 @@ class TriangleBvh {
   std::span<const Triangle> triangles_;
   // Triangle indices, leaf ranges contiguous; the top bit marks degenerate triangles.
   std::vector<std::uint32_t> order_;
-  std::vector<Node> nodes_;  // nodes_[0] is the root; empty for an empty BVH
+  std::vector<Node> nodes_;         // nodes_[0] is the root; empty for an empty BVH
   std::vector<RayNode> ray_nodes_;  // ray_nodes_[0] is the root; empty for an empty BVH
   // Ray triangles (the non-degenerate ones), four slots per leaf (a leaf with fewer repeats its
   // last triangle): leaf l's vertices, copied, are the 36 doubles from 36 l, two pairs of
@@ -79,7 +79,7 @@ class TriangleBvh {
   std::vector<double> ray_vertices_;
   std::vector<std::uint32_t> ray_triangles_;
   double unit_centre_[3] = {0.0, 0.0, 0.0};
-  int unit_exponent_ = 0;  // unit = 2^unit_exponent_ > half the root box's largest extent
+  int unit_exponent_ = 0;      // unit = 2^unit_exponent_ > half the root box's largest extent
   double inside_error_ = 0.0;  // bound on the rounding errors of rays starting inside
 };
 
