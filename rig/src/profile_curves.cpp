@@ -1,5 +1,7 @@
 #include "wirerig/rig/profile_curves.h"
 
+#include "wirerig/runtime/spine_interpolation.h"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -102,15 +104,6 @@ bool SelfIntersects(const ProfileCurve& profile, std::vector<double>& scratch) {
       if (k >= i + 3 && crosses(k - 1)) return true;
     }
   }
-  return false;
-}
-
-// Profiles k and k+1 cross when a point of either lies beyond the other's plane.
-bool Cross(const ProfileCurve& a, const ProfileCurve& b) {
-  for (const Vec3& p : a.points)
-    if ((p - b.origin).dot(b.frame.tangent) > 0.0) return true;
-  for (const Vec3& p : b.points)
-    if ((p - a.origin).dot(a.frame.tangent) < 0.0) return true;
   return false;
 }
 
@@ -252,7 +245,10 @@ ProfileSet GenerateProfiles(const ProfileRequest& request) {
     set.foreign_points.push_back(cast.other_part);
   }
   for (std::size_t k = 0; k + 1 < set.profiles.size(); ++k)
-    if (Cross(set.profiles[k], set.profiles[k + 1])) ++set.diagnostics.crossing_neighbour;
+    if (ProfilesCross(set.profiles[k].points, set.profiles[k].origin, set.profiles[k].frame.tangent,
+                      set.profiles[k + 1].points, set.profiles[k + 1].origin,
+                      set.profiles[k + 1].frame.tangent))
+      ++set.diagnostics.crossing_neighbour;
   return set;
 }
 

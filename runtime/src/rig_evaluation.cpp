@@ -264,15 +264,9 @@ Status EvaluateRigJob::Run() const {
       if (turn * part.max_radius > step) ++warnings[i].tight_bends;
     }
     for (std::size_t p = 0; p + 1 < part.profiles.size(); ++p) {
-      // Profile p must stay behind p + 1's plane and p + 1 ahead of p's.
-      const Vec3& a_origin = w.profile_origins[i][p];
-      const Vec3& b_origin = w.profile_origins[i][p + 1];
-      bool crossing = false;
-      for (const Vec3& q : w.profile_points[i][p])
-        crossing |= (q - b_origin).dot(w.profile_normals[i][p + 1]) > 0.0;
-      for (const Vec3& q : w.profile_points[i][p + 1])
-        crossing |= (q - a_origin).dot(w.profile_normals[i][p]) < 0.0;
-      warnings[i].crossing_profiles += crossing;
+      warnings[i].crossing_profiles += ProfilesCross(
+          w.profile_points[i][p], w.profile_origins[i][p], w.profile_normals[i][p],
+          w.profile_points[i][p + 1], w.profile_origins[i][p + 1], w.profile_normals[i][p + 1]);
     }
   }
 

@@ -62,4 +62,13 @@ void PropagateSpineFrames(std::span<const Vec3> points, const Frame& start,
   }
 }
 
+bool ProfilesCross(std::span<const Vec3> a_points, const Vec3& a_origin, const Vec3& a_normal,
+                   std::span<const Vec3> b_points, const Vec3& b_origin, const Vec3& b_normal) {
+  for (const Vec3& p : a_points)
+    if ((p - b_origin).dot(b_normal) > 0.0) return true;
+  for (const Vec3& p : b_points)
+    if ((p - a_origin).dot(a_normal) < 0.0) return true;
+  return false;
+}
+
 }  // namespace wirerig

@@ -24,4 +24,10 @@ Frame InterpolateSpine(std::span<const Vec3> points, std::span<const Frame> fram
 void PropagateSpineFrames(std::span<const Vec3> points, const Frame& start,
                           std::span<Frame> frames);
 
+// Two planar profile loops along a spine, a before b (each with its plane's origin and normal,
+// the normal pointing along the spine): they cross when a point of a lies beyond b's plane or a
+// point of b lies behind a's.
+bool ProfilesCross(std::span<const Vec3> a_points, const Vec3& a_origin, const Vec3& a_normal,
+                   std::span<const Vec3> b_points, const Vec3& b_origin, const Vec3& b_normal);
+
 }  // namespace wirerig
