@@ -12,7 +12,10 @@ asset_dir=${WIRERIG_ASSET_DIR:-$repo_root/.cache/assets}
 packages=(
   cmake ninja-build g++ pkg-config git ca-certificates
   libeigen3-dev libglm-dev nlohmann-json3-dev libcli11-dev libassimp-dev libcgal-dev
+  libtinygltf-dev libstb-dev
+  libglfw3-dev libimgui-dev libegl-dev libgl-dev xvfb xauth
   libgtest-dev libgmock-dev libbenchmark-dev
+  nodejs
   assimp-testmodels
 )
 
@@ -39,6 +42,8 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
+# Debian's npm, unless npm came with nodejs (NodeSource's nodejs bundles it and conflicts).
+command -v npm >/dev/null 2>&1 || missing+=(npm)
 if [ ${#missing[@]} -gt 0 ]; then
   echo "setup: installing ${missing[*]}"
   apt_install "${missing[@]}"
@@ -68,3 +73,14 @@ if [ $need_cgal -eq 1 ]; then
   done
 fi
 ln -sfn /usr/share/assimp/models "$asset_dir/assimp"
+
+# The Khronos glTF validator (npm), pinned by scripts/gltf_validator/package-lock.json; the
+# tests run it through scripts/validate_gltf.mjs.
+validator_dir=$repo_root/.cache/gltf-validator
+if ! cmp -s "$repo_root/scripts/gltf_validator/package-lock.json" "$validator_dir/package-lock.json" ||
+   [ ! -f "$validator_dir/node_modules/gltf-validator/package.json" ]; then
+  echo "setup: installing the glTF validator into $validator_dir"
+  mkdir -p "$validator_dir"
+  cp "$repo_root"/scripts/gltf_validator/package.json "$repo_root"/scripts/gltf_validator/package-lock.json "$validator_dir/"
+  (cd "$validator_dir" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+fi

@@ -122,6 +122,8 @@ Status EvaluateRigJob::Run() const {
       bending.length = part.spine_length;
       bending.bending_stiffness = part.spine_stiffness.bending;
       bending.tip_force = pose.loads.tip_force;
+      bending.start_displacement = pose.loads.start_displacement;
+      bending.end_displacement = pose.loads.end_displacement;
       bending.point_loads = pose.loads.bending_point_loads;
       bending.line_loads = pose.loads.bending_line_loads;
       bending.samples = samples;

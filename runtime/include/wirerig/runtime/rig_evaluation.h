@@ -27,6 +27,10 @@ struct SpineLoads {
   std::span<const PointLoad> bending_point_loads;
   std::span<const LineLoad> bending_line_loads;
   Vec3 tip_force = Vec3::Zero();  // local axes, cantilevers only
+  // Prescribed end displacements X0 (v = 0) and X1 (v = 1), m, local axes like the forces;
+  // X1 is ignored by cantilevers (their free end is an output).
+  Vec3 start_displacement = Vec3::Zero();
+  Vec3 end_displacement = Vec3::Zero();
   double axial_fixed_at = 0.0;
   std::span<const AxialPointLoad> axial_point_loads;
   std::span<const AxialLineLoad> axial_line_loads;

@@ -1,0 +1,154 @@
+// Clips: the tracks that drive one rig over a stretch of time. Raw description (names, as a
+// scene file holds them) -> BuildClip against a RigModel (names resolved to part and profile
+// indices, every track built) -> an immutable Clip that ClipSampler samples at any time.
+//
+// What a clip can drive, per part (every track optional; an absent track is its default):
+//   spine bending: boundary-condition family (step keys), point loads (position v along the
+//     spine, magnitude, direction in the spine's local axes: x normal, y binormal), line loads
+//     (from, to, force per length), tip force (cantilevers), end displacements X0 and X1 (m);
+//   spine axial: point and line loads along the spine, and where it is held (axial_fixed_at);
+//   rigid pose: rotation (axis-angle vector, rad, world axes, about the spine's root point) and
+//     translation (m);
+//   rigid-body dynamics (rigid parts only): forces applied at points of the body and a torque,
+//     world axes, integrated by Playback.
+// and per profile wire (paper Fig. 8): the stretch [from, to] of the loop that deforms, its
+// boundary condition, point and line loads in the profile's spine frame.
+//
+// RawClip rules (ValidateRawClip; BuildClip adds the rig's): a name; duration finite and > 0;
+// every track follows ValidateRawTrack's rules with key times within [0, duration]; boundary
+// keys strictly increasing within [0, duration]; part names known to the rig and each part
+// listed at most once; profile indices within the part; rigid-body forces only on rigid parts.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "wirerig/anim/track.h"
+#include "wirerig/rig/result.h"
+#include "wirerig/runtime/bending_job.h"
+#include "wirerig/runtime/rig_model.h"
+
+namespace wirerig {
+
+enum class LoopMode : int {
+  kOnce = 0,      // times beyond the duration hold the last frame
+  kLoop = 1,      // time wraps around the duration
+  kPingPong = 2,  // time runs forward, then back
+};
+// Names used in files: "once", "loop", "ping_pong".
+std::string_view ToString(LoopMode mode);
+bool ParseLoopMode(std::string_view name, LoopMode* out);
+
+// Channel groups, shared by the raw form (TrackT = RawTrack) and the built form (Track).
+template <template <typename> class TrackT>
+struct PointLoadChannels {
+  TrackT<double> at;         // v in [0, 1] along the wire (clamped when sampled)
+  TrackT<double> magnitude;  // N
+  TrackT<Vec3> direction;    // local axes; normalized when sampled (zero: no force)
+};
+
+template <template <typename> class TrackT>
+struct LineLoadChannels {
+  TrackT<double> from;            // v in [0, 1]; default 0
+  TrackT<double> to;              // v in [0, 1]; default 1 (a stretch of zero width is skipped)
+  TrackT<Vec3> force_per_length;  // N/m, local axes
+};
+
+template <template <typename> class TrackT>
+struct AxialPointLoadChannels {
+  TrackT<double> at;     // v in [0, 1]
+  TrackT<double> force;  // N, positive towards v = 1
+};
+
+template <template <typename> class TrackT>
+struct AxialLineLoadChannels {
+  TrackT<double> from;              // default 0
+  TrackT<double> to;                // default 1
+  TrackT<double> force_per_length;  // N/m, positive towards v = 1
+};
+
+template <template <typename> class TrackT>
+struct RigidForceChannels {
+  Vec3 at = Vec3::Zero();  // the point of the body the force acts on, at rest, world, m
+  TrackT<Vec3> force;      // N, world axes
+};
+
+struct BoundaryKey {
+  double time = 0.0;  // s; the family holds from this key to the next
+  BoundaryCondition boundary = BoundaryCondition::kCantileverFree;
+};
+
+template <template <typename> class TrackT>
+struct PartChannels {
+  std::vector<BoundaryKey> boundary;  // empty: cantilever with a free end
+  std::vector<PointLoadChannels<TrackT>> point_loads;
+  std::vector<LineLoadChannels<TrackT>> line_loads;
+  TrackT<Vec3> tip_force;           // N, local axes, cantilevers only
+  TrackT<Vec3> start_displacement;  // X0, m, local axes
+  TrackT<Vec3> end_displacement;    // X1, m, local axes (simply supported and clamped)
+  double axial_fixed_at = 0.0;      // v where the spine is held axially
+  std::vector<AxialPointLoadChannels<TrackT>> axial_point_loads;
+  std::vector<AxialLineLoadChannels<TrackT>> axial_line_loads;
+  TrackT<Vec3> rotation;     // axis-angle vector, rad, world axes
+  TrackT<Vec3> translation;  // m, world axes
+  std::vector<RigidForceChannels<TrackT>> rigid_forces;
+  TrackT<Vec3> rigid_torque;  // N m, world axes
+};
+
+template <template <typename> class TrackT>
+struct ProfileChannels {
+  std::vector<std::uint32_t> profiles;  // which profile wires of the part; empty: all
+  double from = 0.0;                    // stretch of the loop, 0 <= from < to <= 1
+  double to = 1.0;
+  BoundaryCondition boundary = BoundaryCondition::kClamped;
+  std::vector<PointLoadChannels<TrackT>> point_loads;
+  std::vector<LineLoadChannels<TrackT>> line_loads;
+};
+
+struct RawPartTracks {
+  std::string part;  // the rig part's name
+  PartChannels<RawTrack> channels;
+};
+
+struct RawProfileTracks {
+  std::string part;
+  ProfileChannels<RawTrack> channels;
+};
+
+struct RawClip {
+  std::string name;
+  double duration = 1.0;  // s
+  LoopMode loop = LoopMode::kOnce;
+  std::vector<RawPartTracks> parts;
+  std::vector<RawProfileTracks> profiles;
+};
+
+// Empty when valid, else "<where>: <reason>", e.g. "parts[2].point_loads[0].magnitude.keys[3].
+// time: beyond the clip's duration".
+std::string ValidateRawClip(const RawClip& raw);
+
+struct Clip {
+  std::string name;
+  double duration = 1.0;
+  LoopMode loop = LoopMode::kOnce;
+  std::vector<PartChannels<Track>> parts;  // one per rig part, in the rig's order
+  struct ProfileGroup {
+    std::uint32_t part = 0;
+    ProfileChannels<Track> channels;  // profiles resolved: never empty
+  };
+  std::vector<ProfileGroup> profiles;
+  // Every key time of every track, sorted and unique (for timelines and rigid-body steps).
+  std::vector<double> key_times;
+
+  // The clip-local time for a playback time t (s), by the loop mode.
+  double LocalTime(double t) const;
+  // True if any part is driven by rigid-body dynamics (needs Playback's integration).
+  bool HasDynamics() const;
+};
+
+// Resolves names against the model; errors read "<where>: <reason>".
+Result<Clip> BuildClip(const RawClip& raw, const RigModel& model);
+
+}  // namespace wirerig

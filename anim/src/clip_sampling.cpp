@@ -1,0 +1,149 @@
+#include "wirerig/anim/clip_sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace wirerig {
+namespace {
+
+double Clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
+
+template <typename Channels>
+std::size_t SamplePointLoads(const std::vector<Channels>& channels, double t,
+                             std::vector<PointLoad>& out) {
+  std::size_t n = 0;
+  for (const auto& c : channels) {
+    const Vec3 direction = c.direction.Sample(t);
+    const double length = direction.norm();
+    const double magnitude = c.magnitude.Sample(t);
+    if (!(length > 1e-12) || magnitude == 0.0) continue;
+    out[n++] = {Clamp01(c.at.Sample(t)), direction * (magnitude / length)};
+  }
+  return n;
+}
+
+template <typename Channels>
+std::size_t SampleLineLoads(const std::vector<Channels>& channels, double t,
+                            std::vector<LineLoad>& out) {
+  std::size_t n = 0;
+  for (const auto& c : channels) {
+    const double from = c.from.IsEmpty() ? 0.0 : Clamp01(c.from.Sample(t));
+    const double to = c.to.IsEmpty() ? 1.0 : Clamp01(c.to.Sample(t));
+    if (!(to > from)) continue;
+    out[n++] = {from, to, c.force_per_length.Sample(t)};
+  }
+  return n;
+}
+
+BoundaryCondition BoundaryAt(const std::vector<BoundaryKey>& keys, double t) {
+  BoundaryCondition boundary = BoundaryCondition::kCantileverFree;
+  for (const BoundaryKey& key : keys) {
+    if (key.time > t) break;
+    boundary = key.boundary;
+  }
+  return boundary;
+}
+
+Quat FromAxisAngle(const Vec3& v) {
+  const double angle = v.norm();
+  if (!(angle > 1e-15)) return Quat::Identity();
+  return Quat(Eigen::AngleAxisd(angle, v / angle));
+}
+
+}  // namespace
+
+ClipSample MakeClipSample(const Clip& clip, const RigModel& model) {
+  ClipSample s;
+  const std::size_t parts = model.parts.size();
+  s.poses.resize(parts);
+  s.point_loads.resize(parts + clip.profiles.size());
+  s.line_loads.resize(parts + clip.profiles.size());
+  s.axial_point_loads.resize(parts);
+  s.axial_line_loads.resize(parts);
+  for (std::size_t p = 0; p < parts && p < clip.parts.size(); ++p) {
+    s.point_loads[p].resize(clip.parts[p].point_loads.size());
+    s.line_loads[p].resize(clip.parts[p].line_loads.size());
+    s.axial_point_loads[p].resize(clip.parts[p].axial_point_loads.size());
+    s.axial_line_loads[p].resize(clip.parts[p].axial_line_loads.size());
+  }
+  std::size_t profile_loads = 0;
+  for (std::size_t g = 0; g < clip.profiles.size(); ++g) {
+    s.point_loads[parts + g].resize(clip.profiles[g].channels.point_loads.size());
+    s.line_loads[parts + g].resize(clip.profiles[g].channels.line_loads.size());
+    profile_loads += clip.profiles[g].channels.profiles.size();
+  }
+  s.profile_loads.resize(profile_loads);
+  return s;
+}
+
+void SampleClip(const Clip& clip, double t, ClipSample* sample) {
+  ClipSample& s = *sample;
+  const std::size_t parts = s.poses.size();
+  for (std::size_t p = 0; p < parts; ++p) {
+    const PartChannels<Track>& c = clip.parts[p];
+    PartPose& pose = s.poses[p];
+    pose.rotation = FromAxisAngle(c.rotation.Sample(t));
+    pose.translation = c.translation.Sample(t);
+    SpineLoads& loads = pose.loads;
+    loads.boundary = BoundaryAt(c.boundary, t);
+    loads.bending_point_loads = std::span<const PointLoad>(
+        s.point_loads[p].data(), SamplePointLoads(c.point_loads, t, s.point_loads[p]));
+    loads.bending_line_loads = std::span<const LineLoad>(
+        s.line_loads[p].data(), SampleLineLoads(c.line_loads, t, s.line_loads[p]));
+    loads.tip_force = IsCantilever(loads.boundary) ? c.tip_force.Sample(t) : Vec3::Zero();
+    loads.start_displacement = c.start_displacement.Sample(t);
+    loads.end_displacement = c.end_displacement.Sample(t);
+    loads.axial_fixed_at = c.axial_fixed_at;
+    std::vector<AxialPointLoad>& axial_points = s.axial_point_loads[p];
+    for (std::size_t k = 0; k < axial_points.size(); ++k)
+      axial_points[k] = {Clamp01(c.axial_point_loads[k].at.Sample(t)),
+                         c.axial_point_loads[k].force.Sample(t)};
+    loads.axial_point_loads = axial_points;
+    std::vector<AxialLineLoad>& axial_lines = s.axial_line_loads[p];
+    std::size_t n = 0;
+    for (const AxialLineLoadChannels<Track>& a : c.axial_line_loads) {
+      const double from = a.from.IsEmpty() ? 0.0 : Clamp01(a.from.Sample(t));
+      const double to = a.to.IsEmpty() ? 1.0 : Clamp01(a.to.Sample(t));
+      if (to > from) axial_lines[n++] = {from, to, a.force_per_length.Sample(t)};
+    }
+    loads.axial_line_loads = std::span<const AxialLineLoad>(axial_lines.data(), n);
+  }
+  std::size_t next = 0;
+  for (std::size_t g = 0; g < clip.profiles.size(); ++g) {
+    const Clip::ProfileGroup& group = clip.profiles[g];
+    std::vector<PointLoad>& points = s.point_loads[parts + g];
+    std::vector<LineLoad>& lines = s.line_loads[parts + g];
+    const std::size_t point_count = SamplePointLoads(group.channels.point_loads, t, points);
+    const std::size_t line_count = SampleLineLoads(group.channels.line_loads, t, lines);
+    for (std::uint32_t profile : group.channels.profiles) {
+      ProfileLoads& loads = s.profile_loads[next++];
+      loads.part = group.part;
+      loads.profile = profile;
+      loads.from = group.channels.from;
+      loads.to = group.channels.to;
+      loads.boundary = group.channels.boundary;
+      loads.point_loads = std::span<const PointLoad>(points.data(), point_count);
+      loads.line_loads = std::span<const LineLoad>(lines.data(), line_count);
+    }
+  }
+}
+
+Wrench SampleRigidWrench(const Clip& clip, const PartModel& model_part, std::size_t part, double t,
+                         const RigidBodyState& state, const Vec3& gravity) {
+  const PartChannels<Track>& c = clip.parts[part];
+  Wrench wrench;
+  wrench.force = model_part.mass.mass * gravity;
+  wrench.torque = c.rigid_torque.Sample(t);
+  // A body point at rest p0 is, in the body frame, R0^T (p0 - c0); now x_c + q (that).
+  const Mat3 rest_to_body = model_part.mass.principal_axes.transpose();
+  for (const RigidForceChannels<Track>& f : c.rigid_forces) {
+    const Vec3 force = f.force.Sample(t);
+    const Vec3 point =
+        state.position + state.orientation * (rest_to_body * (f.at - model_part.mass.center));
+    wrench.force += force;
+    wrench.torque += TorqueAbout(state.position, point, force);
+  }
+  return wrench;
+}
+
+}  // namespace wirerig

@@ -1,0 +1,126 @@
+#include "wirerig/anim/playback.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace wirerig {
+
+Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
+                                const PlaybackOptions& options) {
+  if (!(std::isfinite(options.rigid_step) && options.rigid_step > 0.0))
+    return Error{"rigid_step: must be finite and positive (s)"};
+  if (options.checkpoint_interval == 0) return Error{"checkpoint_interval: must be at least 1"};
+  if (!(std::isfinite(options.gravity.x()) && std::isfinite(options.gravity.y()) &&
+        std::isfinite(options.gravity.z())))
+    return Error{"gravity: must be finite"};
+  if (clip.parts.size() != model.parts.size())
+    return Error{"clip: was built for another rig (part counts differ)"};
+  const double steps = std::ceil(clip.duration / options.rigid_step);
+  if (steps > 1e8) return Error{"rigid_step: too small for the clip's duration (over 1e8 steps)"};
+  Playback playback;
+  playback.model_ = &model;
+  playback.clip_ = &clip;
+  playback.options_ = options;
+  playback.workspace_ = MakeRigWorkspace(model);
+  playback.sample_ = MakeClipSample(clip, model);
+  playback.bodies_.resize(model.parts.size());
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    playback.bodies_[p] = RestRigidBodyState(model.parts[p]);
+    const PartChannels<Track>& c = clip.parts[p];
+    if (model.parts[p].kind == SpineKind::kRigid &&
+        (!c.rigid_forces.empty() || !c.rigid_torque.IsEmpty() || options.gravity != Vec3::Zero()))
+      playback.dynamic_parts_.push_back(p);
+  }
+  if (!playback.dynamic_parts_.empty()) {
+    const auto count =
+        static_cast<std::size_t>(steps / static_cast<double>(options.checkpoint_interval)) + 2;
+    playback.checkpoints_.resize(count * playback.dynamic_parts_.size());
+    for (std::size_t d = 0; d < playback.dynamic_parts_.size(); ++d)
+      playback.checkpoints_[d] = playback.bodies_[playback.dynamic_parts_[d]];
+    playback.checkpoints_done_ = 1;
+  }
+  return playback;
+}
+
+Status Playback::StepBodies(double dt) {
+  for (std::size_t p : dynamic_parts_) {
+    const PartModel& part = model_->parts[p];
+    RigidBodyState& state = bodies_[p];
+    const double t0 = state.time;
+    RigidBodyStepJob step;
+    step.integrator = options_.integrator;
+    step.mass = part.mass.mass;
+    step.principal_moments = part.mass.principal_moments;
+    step.dt = dt;
+    step.at_start = SampleRigidWrench(*clip_, part, p, t0, state, options_.gravity);
+    step.at_middle = SampleRigidWrench(*clip_, part, p, t0 + 0.5 * dt, state, options_.gravity);
+    step.at_end = SampleRigidWrench(*clip_, part, p, t0 + dt, state, options_.gravity);
+    step.state = &state;
+    if (Status s = step.Run(); !s) return s;
+  }
+  return Status::Ok();
+}
+
+// Brings the dynamic bodies to clip time t: from the latest checkpoint at or before t (making
+// the missing checkpoints on the way), then whole steps, then one partial step to land on t.
+Status Playback::AdvanceBodies(double t) {
+  const std::size_t parts = dynamic_parts_.size();
+  const double h = options_.rigid_step;
+  const double span = h * static_cast<double>(options_.checkpoint_interval);
+  const std::size_t capacity = checkpoints_.size() / parts;
+  const std::size_t wanted = std::min(static_cast<std::size_t>(std::floor(t / span)), capacity - 1);
+  auto load = [&](std::size_t c) {
+    for (std::size_t d = 0; d < parts; ++d)
+      bodies_[dynamic_parts_[d]] = checkpoints_[c * parts + d];
+  };
+  if (wanted < checkpoints_done_) {
+    load(wanted);
+  } else {
+    load(checkpoints_done_ - 1);
+    for (std::size_t c = checkpoints_done_; c <= wanted; ++c) {
+      for (std::size_t k = 0; k < options_.checkpoint_interval; ++k)
+        if (Status s = StepBodies(h); !s) return s;
+      // Fixed step times: restart each checkpoint from its exact time, not a rounded sum.
+      for (std::size_t d = 0; d < parts; ++d) {
+        bodies_[dynamic_parts_[d]].time = static_cast<double>(c) * span;
+        checkpoints_[c * parts + d] = bodies_[dynamic_parts_[d]];
+      }
+      checkpoints_done_ = c + 1;
+    }
+  }
+  const double start = static_cast<double>(wanted) * span;
+  const auto whole = static_cast<std::size_t>(std::floor((t - start) / h));
+  for (std::size_t k = 0; k < whole; ++k)
+    if (Status s = StepBodies(h); !s) return s;
+  const double rest = t - (start + static_cast<double>(whole) * h);
+  if (rest > 1e-12 * h)
+    if (Status s = StepBodies(rest); !s) return s;
+  return Status::Ok();
+}
+
+Status Playback::Evaluate(double t, std::span<Vec3> positions, std::span<Vec3> normals,
+                          std::span<PartWarnings> warnings) {
+  if (!std::isfinite(t)) return Status::Invalid("t", "must be finite");
+  const double local = clip_->LocalTime(t);
+  SampleClip(*clip_, local, &sample_);
+  if (!dynamic_parts_.empty()) {
+    if (Status s = AdvanceBodies(local); !s) return s;
+    for (std::size_t p : dynamic_parts_) {
+      const SpineLoads loads = sample_.poses[p].loads;
+      sample_.poses[p] = PoseFromRigidBody(model_->parts[p], bodies_[p]);
+      sample_.poses[p].loads = loads;
+    }
+  }
+  EvaluateRigJob job;
+  job.model = model_;
+  job.poses = sample_.poses;
+  job.profile_loads = sample_.profile_loads;
+  job.workspace = &workspace_;
+  job.positions = positions;
+  job.normals = normals;
+  job.preserve_volume = options_.preserve_volume;
+  job.warnings = warnings;
+  return job.Run();
+}
+
+}  // namespace wirerig
