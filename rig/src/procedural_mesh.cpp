@@ -17,6 +17,8 @@
 //     0 < minor < major; a capsule's height may be 0, making it a sphere).
 #include "wirerig/rig/procedural_mesh.h"
 
+#include "wirerig/runtime/curve.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -192,6 +194,88 @@ Mesh MakeTorus(double major_radius, double minor_radius, int ring_segments, int 
   }
   Finish(mesh, "torus");
   return mesh;
+}
+
+}  // namespace wirerig
+
+namespace wirerig {
+
+Mesh MakeSweptTube(const std::vector<Vec3>& centres, const std::vector<double>& radii,
+                   int radial_segments, const std::string& name) {
+  const std::size_t count = centres.size();
+  if (count < 2 || radii.size() != count) return {};
+  const bool pole0 = radii.front() == 0.0, pole1 = radii.back() == 0.0;
+  if (count < (pole0 || pole1 ? 3u : 2u)) return {};
+  for (std::size_t k = 0; k < count; ++k) {
+    const bool end_pole = (k == 0 && pole0) || (k + 1 == count && pole1);
+    if (!end_pole && !(radii[k] > 0.0)) return {};
+  }
+  Curve curve;
+  if (!Curve::Build(centres, false, CurveInterpolation::kCubic, &curve).ok()) return {};
+  const auto n = static_cast<std::size_t>(std::max(radial_segments, 3));
+  // Frames at the centres: the curve's frame at the centre's arc-length parameter.
+  std::vector<double> v(count, 0.0);
+  double total = 0.0;
+  for (std::size_t k = 1; k < count; ++k) v[k] = total += (centres[k] - centres[k - 1]).norm();
+  Mesh mesh;
+  std::vector<std::size_t> first(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    first[k] = mesh.positions.size();
+    if (radii[k] == 0.0) {
+      mesh.positions.push_back(centres[k]);
+      continue;
+    }
+    const Frame frame = curve.FrameAt(v[k] / total);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double phi = 2.0 * kPi * static_cast<double>(i) / static_cast<double>(n);
+      mesh.positions.push_back(
+          centres[k] + radii[k] * (std::cos(phi) * frame.normal + std::sin(phi) * frame.binormal));
+    }
+  }
+  for (std::size_t k = 0; k + 1 < count; ++k) {
+    const bool p0 = radii[k] == 0.0, p1 = radii[k + 1] == 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t i1 = (i + 1) % n;
+      const std::uint32_t v00 = Index(first[k] + (p0 ? 0 : i));
+      const std::uint32_t v10 = Index(first[k] + (p0 ? 0 : i1));
+      const std::uint32_t v01 = Index(first[k + 1] + (p1 ? 0 : i));
+      const std::uint32_t v11 = Index(first[k + 1] + (p1 ? 0 : i1));
+      // Ring order turns about the tangent as Revolve's turns about +Y: same windings.
+      if (p0) {
+        mesh.triangles.push_back({v00, v11, v01});
+      } else if (p1) {
+        mesh.triangles.push_back({v00, v10, v11});
+      } else {
+        AddQuad(mesh, v00, v10, v11, v01);
+      }
+    }
+  }
+  Finish(mesh, name);
+  return mesh;
+}
+
+void AppendMesh(Mesh& mesh, const Mesh& piece) {
+  const auto render_offset = Index(mesh.positions.size());
+  const auto welded_offset = Index(mesh.welded_positions.size());
+  const auto triangle_offset = Index(mesh.triangles.size());
+  mesh.positions.insert(mesh.positions.end(), piece.positions.begin(), piece.positions.end());
+  mesh.normals.insert(mesh.normals.end(), piece.normals.begin(), piece.normals.end());
+  mesh.uvs.insert(mesh.uvs.end(), piece.uvs.begin(), piece.uvs.end());
+  for (Triangle t : piece.triangles) {
+    for (std::uint32_t& i : t) i += render_offset;
+    mesh.triangles.push_back(t);
+  }
+  for (MeshPart part : piece.parts) {
+    part.first_triangle += triangle_offset;
+    mesh.parts.push_back(part);
+  }
+  for (std::uint32_t w : piece.weld_map) mesh.weld_map.push_back(w + welded_offset);
+  mesh.welded_positions.insert(mesh.welded_positions.end(), piece.welded_positions.begin(),
+                               piece.welded_positions.end());
+  for (Triangle t : piece.welded_triangles) {
+    for (std::uint32_t& i : t) i += welded_offset;
+    mesh.welded_triangles.push_back(t);
+  }
 }
 
 }  // namespace wirerig
