@@ -1,0 +1,87 @@
+// ExportGltf: writes a BakedAnimation of a Mesh as an animated glTF 2.0 asset (tinygltf), either
+// a single binary `.glb` or a `.gltf` JSON file with its `.bin` buffer next to it (same stem).
+// Conventions of the asset are glTF's and wirerig's: metres, +Y up, column-major matrices,
+// quaternions (x, y, z, w). Keys become animation keyframes at BakedAnimation::times, LINEAR.
+//
+// Two modes:
+//  * kMorph: the mesh's rest (Mesh::positions / normals) is the base; every key k is a morph
+//    target (POSITION and NORMAL deltas, bake - rest) and the mesh node's `weights` are animated
+//    with weight k = 1 at key k and 0 elsewhere. At the keys the asset reproduces the bake up to
+//    float rounding; between keys positions interpolate linearly.
+//  * kSkin: a joint per spine sample (BakedSpine), chained along each spine; a child spine's first
+//    joint hangs from its parent spine's joint `parent_joint`. Joint nodes are animated with
+//    translation + rotation keys taken from the baked spine frames; vertices are skinned with
+//    BakedAnimation::skin_joints / skin_weights. Linear blend skinning only approximates the
+//    wire deformation: the report gives the error at every key. With residual morph targets the
+//    asset also carries, per key, the delta that makes the skinned mesh match the bake exactly
+//    (up to float rounding) at that key.
+//
+// Files are written atomically (temporary file in the same folder, then renamed); on any error
+// no output file is created or left half-written.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "wirerig/anim/baked_animation.h"
+#include "wirerig/rig/mesh.h"
+#include "wirerig/rig/result.h"
+
+namespace wirerig {
+
+enum class GltfAnimationMode : int { kMorph = 0, kSkin = 1 };
+
+struct GltfExportOptions {
+  GltfAnimationMode mode = GltfAnimationMode::kMorph;
+  // kSkin only: add one residual morph target per key (bake minus the skinned reconstruction).
+  bool residual_morph_targets = false;
+  // Name of the mesh node (and mesh); empty: the clip's name, or "mesh" when that is empty.
+  std::string node_name;
+  // Folder the mesh's MeshMaterial::base_color_texture paths are relative to (the source file's
+  // folder). Textures are referenced, not copied: the image URI is the texture's path relative
+  // to the output file's folder. A texture that does not exist, is not PNG or JPEG, or whose
+  // mesh has no UVs is left out with a report warning. Empty: no textures are exported.
+  std::filesystem::path texture_dir;
+};
+
+struct GltfExportReport {
+  std::vector<std::filesystem::path> files;  // every file written: the .glb, or .gltf and .bin
+  std::uintmax_t bytes_written = 0;          // sum of their sizes, bytes
+  std::size_t vertex_count = 0;              // #V
+  std::size_t triangle_count = 0;            // #F
+  std::size_t primitive_count = 0;           // one per mesh part with triangles
+  std::size_t key_count = 0;                 // #K
+  std::size_t morph_target_count = 0;        // #K in kMorph, #K or 0 in kSkin
+  std::size_t joint_count = 0;               // kSkin: sum of the spines' sample counts
+  std::size_t material_count = 0;
+  std::size_t texture_count = 0;
+  std::vector<std::string> warnings;  // what was left out, and why
+
+  // kSkin: error of the linear-blend-skinned positions against the bake at every key, computed
+  // with the glTF skinning formula from the values as stored in the file (float). Metres, and
+  // relative to the rest mesh's bounding-box diagonal (ComputeBounds). Max over keys and
+  // vertices; RMS over all #K x #V vertex distances.
+  double skin_max_error = 0.0;
+  double skin_rms_error = 0.0;
+  double skin_max_error_relative = 0.0;
+  double skin_rms_error_relative = 0.0;
+  // kSkin with residual morph targets: the same max error once the residuals are applied, m.
+  double residual_max_error = 0.0;
+};
+
+// Exports `bake` of `mesh` to `out` (".glb", or ".gltf" plus "<stem>.bin"; the extension is
+// matched case-insensitively). Refuses, naming the field: another extension; a mesh without
+// positions or triangles, or with non-finite coordinates, out-of-range triangle indices or
+// normals/uvs of the wrong size; a bake with zero keys, non-finite or non-increasing times
+// (also once rounded to float), vertex_count or positions/normals sizes that do not match the
+// mesh, non-finite positions or normals; in kSkin: missing or mis-sized spines, skin_joints or
+// skin_weights, joint indices out of range, negative or non-finite weights or ones summing to
+// zero, non-finite spine points or rotations, a parent or parent_joint out of range.
+Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake,
+                                    const GltfExportOptions& options,
+                                    const std::filesystem::path& out);
+
+}  // namespace wirerig

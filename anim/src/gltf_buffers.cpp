@@ -1,0 +1,107 @@
+#include "gltf_buffers.h"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+namespace wirerig::gltf {
+namespace {
+
+int Components(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR:
+      return 1;
+    case TINYGLTF_TYPE_VEC2:
+      return 2;
+    case TINYGLTF_TYPE_VEC3:
+      return 3;
+    case TINYGLTF_TYPE_VEC4:
+      return 4;
+    case TINYGLTF_TYPE_MAT4:
+      return 16;
+    default:
+      return 0;
+  }
+}
+
+// Appends `bytes` to buffer 0 (created when missing) at a 4-byte aligned offset, as a new view.
+int AddBufferView(tinygltf::Model& model, const void* bytes, std::size_t size, int target) {
+  if (model.buffers.empty()) model.buffers.emplace_back();
+  std::vector<unsigned char>& data = model.buffers[0].data;
+  data.resize((data.size() + 3) / 4 * 4, 0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = data.size();
+  view.byteLength = size;
+  view.target = target;
+  data.resize(data.size() + size);
+  if (size > 0) std::memcpy(data.data() + view.byteOffset, bytes, size);
+  model.bufferViews.push_back(view);
+  return static_cast<int>(model.bufferViews.size()) - 1;
+}
+
+int AddAccessor(tinygltf::Model& model, int view, int component_type, int type, std::size_t count) {
+  tinygltf::Accessor accessor;
+  accessor.bufferView = view;
+  accessor.componentType = component_type;
+  accessor.type = type;
+  accessor.count = count;
+  model.accessors.push_back(accessor);
+  return static_cast<int>(model.accessors.size()) - 1;
+}
+
+}  // namespace
+
+int AddFloatAccessor(tinygltf::Model& model, std::span<const float> values, int type, int target,
+                     bool min_max) {
+  const auto components = static_cast<std::size_t>(Components(type));
+  const std::size_t count = values.size() / components;
+  const int view = AddBufferView(model, values.data(), values.size_bytes(), target);
+  const int index = AddAccessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT, type, count);
+  if (min_max && count > 0) {
+    std::vector<double> low(components, std::numeric_limits<double>::max());
+    std::vector<double> high(components, std::numeric_limits<double>::lowest());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      low[i % components] = std::min(low[i % components], static_cast<double>(values[i]));
+      high[i % components] = std::max(high[i % components], static_cast<double>(values[i]));
+    }
+    model.accessors[static_cast<std::size_t>(index)].minValues = std::move(low);
+    model.accessors[static_cast<std::size_t>(index)].maxValues = std::move(high);
+  }
+  return index;
+}
+
+int AddIndexAccessor(tinygltf::Model& model, std::span<const std::uint32_t> indices,
+                     std::uint32_t vertex_count) {
+  const int target = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
+  if (vertex_count <= std::numeric_limits<std::uint16_t>::max()) {
+    std::vector<std::uint16_t> narrow(indices.begin(), indices.end());
+    const int view =
+        AddBufferView(model, narrow.data(), narrow.size() * sizeof(std::uint16_t), target);
+    return AddAccessor(model, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR,
+                       indices.size());
+  }
+  const int view = AddBufferView(model, indices.data(), indices.size_bytes(), target);
+  return AddAccessor(model, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
+                     indices.size());
+}
+
+int AddJointAccessor(tinygltf::Model& model, std::span<const std::uint16_t> joints,
+                     std::size_t joint_count) {
+  const int target = TINYGLTF_TARGET_ARRAY_BUFFER;
+  const std::size_t count = joints.size() / 4;
+  if (joint_count <= 256) {
+    std::vector<std::uint8_t> narrow(joints.size());
+    std::transform(joints.begin(), joints.end(), narrow.begin(),
+                   [](std::uint16_t j) { return static_cast<std::uint8_t>(j); });
+    const int view = AddBufferView(model, narrow.data(), narrow.size(), target);
+    return AddAccessor(model, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4,
+                       count);
+  }
+  const int view = AddBufferView(model, joints.data(), joints.size_bytes(), target);
+  return AddAccessor(model, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4,
+                     count);
+}
+
+}  // namespace wirerig::gltf

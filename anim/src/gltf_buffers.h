@@ -1,0 +1,30 @@
+// Appending binary data to a tinygltf model: every accessor gets its own buffer view in the
+// model's single buffer (buffer 0), 4-byte aligned, so accessors of any component type are
+// aligned as glTF requires.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include <tiny_gltf.h>
+
+namespace wirerig::gltf {
+
+// Float accessor of `values.size() / components` elements; `type` is TINYGLTF_TYPE_SCALAR,
+// VEC2, VEC3, VEC4 or MAT4 (components 1, 2, 3, 4, 16). `target` is
+// TINYGLTF_TARGET_ARRAY_BUFFER for vertex attributes, 0 for animation and skin data. With
+// `min_max`, the per-component min and max of the values are stored (glTF requires them for
+// POSITION and animation inputs). Returns the accessor's index.
+int AddFloatAccessor(tinygltf::Model& model, std::span<const float> values, int type, int target,
+                     bool min_max);
+
+// Triangle indices (#F x 3 flat), as unsigned short when every index fits, else unsigned int.
+int AddIndexAccessor(tinygltf::Model& model, std::span<const std::uint32_t> indices,
+                     std::uint32_t vertex_count);
+
+// Unsigned VEC4 joint indices (#V x 4 flat), as unsigned byte when joint_count <= 256, else
+// unsigned short (joint_count <= 65536).
+int AddJointAccessor(tinygltf::Model& model, std::span<const std::uint16_t> joints,
+                     std::size_t joint_count);
+
+}  // namespace wirerig::gltf

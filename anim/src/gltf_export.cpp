@@ -1,0 +1,151 @@
+// ExportGltf: checks the input, builds the tinygltf model (mesh and materials, then the mode's
+// morph targets or skeleton and skin, all keyed on one time accessor) and writes it.
+#include "wirerig/anim/gltf_export.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "gltf_buffers.h"
+#include "gltf_input.h"
+#include "gltf_material.h"
+#include "gltf_mesh.h"
+#include "gltf_morph.h"
+#include "gltf_skin.h"
+#include "gltf_skinning.h"
+#include "gltf_write.h"
+
+namespace wirerig {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Position and normal deltas of every key against the base (#K x #V x 3 each; normals empty
+// when either side has none).
+void KeyDeltas(const gltf::BaseVertices& base, const BakedAnimation& bake,
+               std::vector<float>* positions, std::vector<float>* normals) {
+  const std::size_t vertices = base.Count();
+  for (std::size_t k = 0; k < bake.KeyCount(); ++k) {
+    for (std::size_t v = 0; v < vertices; ++v) {
+      for (int c = 0; c < 3; ++c) {
+        const std::size_t i = v * 3 + static_cast<std::size_t>(c);
+        positions->push_back(bake.positions[k * vertices + v][c] - base.positions[i]);
+        if (!base.normals.empty() && !bake.normals.empty()) {
+          normals->push_back(bake.normals[k * vertices + v][c] - base.normals[i]);
+        }
+      }
+    }
+  }
+}
+
+// Adds the skeleton, skin and (optionally) residual targets; fills the skin numbers of `report`.
+void AddSkinMode(tinygltf::Model& model, tinygltf::Animation& animation, const Mesh& mesh,
+                 const BakedAnimation& bake, const gltf::BaseVertices& base, bool residuals,
+                 int mesh_index, int time_accessor, GltfExportReport* report) {
+  const gltf::Skeleton skeleton = gltf::BuildSkeleton(bake);
+  const gltf::SkinInfluences influences = gltf::MakeSkinInfluences(bake);
+  std::vector<int> roots;
+  model.nodes[0].skin = gltf::AddSkeleton(model, animation, skeleton, time_accessor, &roots);
+  model.scenes[0].nodes.insert(model.scenes[0].nodes.end(), roots.begin(), roots.end());
+  gltf::AddSkinAttributes(model, mesh_index, influences, skeleton.JointCount());
+  const gltf::SkinFit fit = gltf::FitSkin(skeleton, influences, base, bake, residuals);
+  report->joint_count = skeleton.JointCount();
+  report->skin_max_error = fit.max_error;
+  report->skin_rms_error = fit.rms_error;
+  const double diagonal = ComputeBounds(mesh).Diagonal();
+  if (diagonal > 0.0) {
+    report->skin_max_error_relative = fit.max_error / diagonal;
+    report->skin_rms_error_relative = fit.rms_error / diagonal;
+  }
+  if (residuals) {
+    gltf::AddMorphTargets(model, mesh_index, fit.residual_positions, fit.residual_normals,
+                          bake.KeyCount());
+    gltf::AddKeyWeightsChannel(model, animation, 0, time_accessor, bake.KeyCount());
+    report->morph_target_count = bake.KeyCount();
+    report->residual_max_error = fit.residual_max_error;
+  }
+}
+
+std::string Lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+}  // namespace
+
+Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake,
+                                    const GltfExportOptions& options, const fs::path& out) {
+  const std::string extension = Lower(out.extension().string());
+  if (extension != ".glb" && extension != ".gltf") {
+    std::string message = out.string();
+    message.append(": unsupported extension '")
+        .append(out.extension().string())
+        .append("' (use .glb or .gltf)");
+    return Error{std::move(message)};
+  }
+  if (auto problem = gltf::CheckExportInput(mesh, bake, options.mode)) {
+    return Error{out.string() + ": " + *problem};
+  }
+  const fs::path out_dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
+  const std::string name =
+      !options.node_name.empty() ? options.node_name : (!bake.name.empty() ? bake.name : "mesh");
+
+  GltfExportReport report;
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "wirerig";
+  const gltf::MaterialsAdded materials =
+      gltf::AddMaterials(model, mesh, options.texture_dir, out_dir, &report.warnings);
+  const gltf::BaseVertices base = gltf::MakeBaseVertices(mesh);
+  if (base.zero_normals > 0) {
+    report.warnings.push_back(std::to_string(base.zero_normals) +
+                              " zero-length normals written as +Y");
+  }
+  if (!bake.normals.empty() && mesh.normals.empty()) {
+    report.warnings.emplace_back("bake.normals left out: the mesh has no normals");
+  }
+  const int mesh_index = gltf::AddBaseMesh(model, mesh, base, materials.material, name);
+  tinygltf::Node node;
+  node.name = name;
+  node.mesh = mesh_index;
+  model.nodes.push_back(std::move(node));
+  model.scenes.emplace_back();
+  model.scenes[0].nodes.push_back(0);
+  model.defaultScene = 0;
+
+  std::vector<float> times;
+  for (double t : bake.times) times.push_back(static_cast<float>(t));
+  const int time_accessor =
+      gltf::AddFloatAccessor(model, times, TINYGLTF_TYPE_SCALAR, 0, /*min_max=*/true);
+  tinygltf::Animation animation;
+  animation.name = bake.name.empty() ? name : bake.name;
+  if (options.mode == GltfAnimationMode::kMorph) {
+    std::vector<float> positions;
+    std::vector<float> normals;
+    KeyDeltas(base, bake, &positions, &normals);
+    gltf::AddMorphTargets(model, mesh_index, positions, normals, bake.KeyCount());
+    gltf::AddKeyWeightsChannel(model, animation, 0, time_accessor, bake.KeyCount());
+    report.morph_target_count = bake.KeyCount();
+  } else {
+    AddSkinMode(model, animation, mesh, bake, base, options.residual_morph_targets, mesh_index,
+                time_accessor, &report);
+  }
+  model.animations.push_back(std::move(animation));
+
+  Result<std::vector<fs::path>> files = gltf::WriteModel(model, out, extension == ".glb");
+  if (!files) return Error{files.error()};
+  report.files = std::move(files.value());
+  for (const fs::path& file : report.files) {
+    std::error_code error;
+    report.bytes_written += fs::file_size(file, error);
+  }
+  report.vertex_count = mesh.positions.size();
+  report.triangle_count = mesh.triangles.size();
+  report.primitive_count = model.meshes[static_cast<std::size_t>(mesh_index)].primitives.size();
+  report.key_count = bake.KeyCount();
+  report.material_count = model.materials.size();
+  report.texture_count = materials.texture_count;
+  return report;
+}
+
+}  // namespace wirerig

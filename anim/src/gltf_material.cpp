@@ -1,0 +1,127 @@
+#include "gltf_material.h"
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <system_error>
+
+namespace wirerig::gltf {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+std::string MimeType(const fs::path& file) {
+  const std::string ext = Lower(file.extension().string());
+  if (ext == ".png") return "image/png";
+  if (ext == ".jpg" || ext == ".jpeg") return "image/jpeg";
+  return {};
+}
+
+// The image for `texture`, or the reason it is left out.
+struct ImageRef {
+  std::string uri;
+  std::string mime_type;
+  std::string problem;
+};
+
+ImageRef ResolveTexture(const Mesh& mesh, const std::string& texture, const fs::path& texture_dir,
+                        const fs::path& out_dir) {
+  ImageRef ref;
+  const fs::path file = texture_dir / texture;
+  std::error_code error;
+  if (mesh.uvs.empty()) {
+    ref.problem = "the mesh has no UVs";
+  } else if (!fs::is_regular_file(file, error)) {
+    ref.problem = "file not found";
+  } else if (ref.mime_type = MimeType(file); ref.mime_type.empty()) {
+    ref.problem = "not PNG or JPEG";
+  } else {
+    const fs::path relative =
+        fs::relative(fs::absolute(file, error), fs::absolute(out_dir, error), error);
+    if (error || relative.empty()) {
+      ref.problem = "no path relative to the output folder";
+    } else {
+      ref.uri = PathToUri(relative);
+    }
+  }
+  return ref;
+}
+
+}  // namespace
+
+std::string PathToUri(const fs::path& path) {
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  std::string uri;
+  for (unsigned char c : path.generic_string()) {
+    if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/') {
+      uri.push_back(static_cast<char>(c));
+    } else {
+      uri.push_back('%');
+      uri.push_back(kHex[c >> 4]);
+      uri.push_back(kHex[c & 15]);
+    }
+  }
+  return uri;
+}
+
+MaterialsAdded AddMaterials(tinygltf::Model& model, const Mesh& mesh, const fs::path& texture_dir,
+                            const fs::path& out_dir, std::vector<std::string>* warnings) {
+  MaterialsAdded added;
+  std::map<std::string, int> texture_of_uri;  // one image and texture per distinct file
+  for (std::size_t m = 0; m < mesh.materials.size(); ++m) {
+    const MeshMaterial& source = mesh.materials[m];
+    tinygltf::Material material;
+    material.name = source.name;
+    const Vec4 color = source.base_color.cwiseMax(0.0).cwiseMin(1.0);
+    if (color != source.base_color) {
+      warnings->push_back("material '" + source.name + "': base colour clamped to [0, 1]");
+    }
+    material.pbrMetallicRoughness.baseColorFactor = {color[0], color[1], color[2], color[3]};
+    material.pbrMetallicRoughness.metallicFactor = 0.0;
+    material.pbrMetallicRoughness.roughnessFactor = 1.0;
+    if (!texture_dir.empty() && !source.base_color_texture.empty()) {
+      const ImageRef ref = ResolveTexture(mesh, source.base_color_texture, texture_dir, out_dir);
+      if (!ref.problem.empty()) {
+        std::string warning = "material '";
+        warning.append(source.name)
+            .append("': texture '")
+            .append(source.base_color_texture)
+            .append("' left out: ")
+            .append(ref.problem);
+        warnings->push_back(std::move(warning));
+      } else {
+        auto [it, inserted] = texture_of_uri.try_emplace(ref.uri, -1);
+        if (inserted) {
+          if (model.samplers.empty()) {
+            tinygltf::Sampler sampler;
+            sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+            sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+            model.samplers.push_back(sampler);
+          }
+          tinygltf::Image image;
+          image.uri = ref.uri;
+          image.mimeType = ref.mime_type;
+          model.images.push_back(image);
+          tinygltf::Texture texture;
+          texture.sampler = 0;
+          texture.source = static_cast<int>(model.images.size()) - 1;
+          model.textures.push_back(texture);
+          it->second = static_cast<int>(model.textures.size()) - 1;
+        }
+        material.pbrMetallicRoughness.baseColorTexture.index = it->second;
+      }
+    }
+    model.materials.push_back(std::move(material));
+    added.material.push_back(static_cast<int>(model.materials.size()) - 1);
+  }
+  added.texture_count = model.textures.size();
+  return added;
+}
+
+}  // namespace wirerig::gltf

@@ -1,0 +1,34 @@
+// Materials of the source mesh as glTF PBR materials: the base colour factor (clamped to
+// [0, 1]), metallic 0 and roughness 1 (wirerig meshes carry no PBR parameters; a matte,
+// non-metal surface shows the base colour as authored), and the base colour texture as an
+// external image referenced by a URI relative to the output file (never copied).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "wirerig/rig/mesh.h"
+
+namespace wirerig::gltf {
+
+struct MaterialsAdded {
+  std::vector<int> material;  // glTF material index per Mesh::materials entry
+  std::size_t texture_count = 0;
+};
+
+// `texture_dir`: the folder MeshMaterial::base_color_texture is relative to (empty: no
+// textures); `out_dir`: the output file's folder. A texture is left out, with a warning, when
+// the mesh has no UVs, the file does not exist, or it is not PNG or JPEG.
+MaterialsAdded AddMaterials(tinygltf::Model& model, const Mesh& mesh,
+                            const std::filesystem::path& texture_dir,
+                            const std::filesystem::path& out_dir,
+                            std::vector<std::string>* warnings);
+
+// `path` as a URI reference: '/' separators, bytes other than unreserved characters and '/'
+// percent-encoded (RFC 3986).
+std::string PathToUri(const std::filesystem::path& path);
+
+}  // namespace wirerig::gltf

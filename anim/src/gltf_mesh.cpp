@@ -1,0 +1,67 @@
+#include "gltf_mesh.h"
+
+#include "gltf_buffers.h"
+
+namespace wirerig::gltf {
+
+BaseVertices MakeBaseVertices(const Mesh& mesh) {
+  BaseVertices base;
+  for (const Vec3& p : mesh.positions) {
+    for (int c = 0; c < 3; ++c) base.positions.push_back(static_cast<float>(p[c]));
+  }
+  for (const Vec3& n : mesh.normals) {
+    const double length = n.norm();
+    Vec3 unit = Vec3::UnitY();
+    if (length > 1e-12) {
+      unit = n / length;
+    } else {
+      ++base.zero_normals;
+    }
+    for (int c = 0; c < 3; ++c) base.normals.push_back(static_cast<float>(unit[c]));
+  }
+  for (const Vec2& uv : mesh.uvs) {
+    for (int c = 0; c < 2; ++c) base.uvs.push_back(static_cast<float>(uv[c]));
+  }
+  return base;
+}
+
+int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& base,
+                const std::vector<int>& materials, const std::string& name) {
+  const int target = TINYGLTF_TARGET_ARRAY_BUFFER;
+  std::map<std::string, int> attributes;
+  attributes["POSITION"] =
+      AddFloatAccessor(model, base.positions, TINYGLTF_TYPE_VEC3, target, /*min_max=*/true);
+  if (!base.normals.empty()) {
+    attributes["NORMAL"] = AddFloatAccessor(model, base.normals, TINYGLTF_TYPE_VEC3, target, false);
+  }
+  if (!base.uvs.empty()) {
+    attributes["TEXCOORD_0"] = AddFloatAccessor(model, base.uvs, TINYGLTF_TYPE_VEC2, target, false);
+  }
+
+  std::vector<MeshPart> parts = mesh.parts;
+  if (parts.empty()) {
+    parts.push_back(MeshPart{name, 0, static_cast<std::uint32_t>(mesh.triangles.size()), -1});
+  }
+  tinygltf::Mesh gltf_mesh;
+  gltf_mesh.name = name;
+  const auto vertex_count = static_cast<std::uint32_t>(base.Count());
+  for (const MeshPart& part : parts) {
+    if (part.triangle_count == 0) continue;
+    std::vector<std::uint32_t> indices;
+    indices.reserve(std::size_t{part.triangle_count} * 3);
+    for (std::uint32_t f = 0; f < part.triangle_count; ++f) {
+      const Triangle& t = mesh.triangles[part.first_triangle + f];
+      indices.insert(indices.end(), t.begin(), t.end());
+    }
+    tinygltf::Primitive primitive;
+    primitive.attributes = attributes;
+    primitive.indices = AddIndexAccessor(model, indices, vertex_count);
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    if (part.material >= 0) primitive.material = materials[static_cast<std::size_t>(part.material)];
+    gltf_mesh.primitives.push_back(std::move(primitive));
+  }
+  model.meshes.push_back(std::move(gltf_mesh));
+  return static_cast<int>(model.meshes.size()) - 1;
+}
+
+}  // namespace wirerig::gltf

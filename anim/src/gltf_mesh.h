@@ -1,0 +1,32 @@
+// The exported mesh at rest: its vertex attributes as stored in the file (float) and the glTF
+// mesh with one triangle primitive per mesh part.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "wirerig/rig/mesh.h"
+
+namespace wirerig::gltf {
+
+// The rest mesh's render vertices as written: #V x 3 positions, #V x 3 unit normals (empty when
+// the mesh has none; a zero normal becomes +Y), #V x 2 uvs (or empty).
+struct BaseVertices {
+  std::vector<float> positions;
+  std::vector<float> normals;
+  std::vector<float> uvs;
+  std::size_t zero_normals = 0;  // normals replaced by +Y
+  std::size_t Count() const { return positions.size() / 3; }
+};
+BaseVertices MakeBaseVertices(const Mesh& mesh);
+
+// Adds the mesh named `name`: POSITION (with min/max), NORMAL and TEXCOORD_0 when present,
+// shared by one primitive per part with triangles (one primitive for all triangles when the
+// mesh has no parts), each with its part's material (`materials`: glTF index per
+// Mesh::materials entry). Returns the mesh index.
+int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& base,
+                const std::vector<int>& materials, const std::string& name);
+
+}  // namespace wirerig::gltf
