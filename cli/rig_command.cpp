@@ -5,7 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "wirerig/rig/curve_skeleton.h"
+#include "wirerig/rig/automatic_description.h"
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/mesh_statistics.h"
 #include "wirerig/rig/rig_builder.h"
@@ -105,21 +105,10 @@ int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostr
   PrintMeshSummary(out, options.mesh, imported.value());
 
   if (options.description.empty()) {
-    if (!mesh.joints.empty()) {
-      Result<RigDescription> from_skeleton = DescribeFromSkeleton(mesh);
-      if (!from_skeleton) return fail(options.mesh + ": " + from_skeleton.error());
-      description = std::move(from_skeleton).value();
-      source = "the skeleton (" + std::to_string(mesh.joints.size()) + " joints)";
-    } else {
-      Result<CurveSkeleton> skeleton = ExtractCurveSkeleton(mesh);
-      if (!skeleton)
-        return fail(options.mesh +
-                    ": no skeleton, no description, and no curve skeleton: " + skeleton.error());
-      Result<RigDescription> automatic = DescribeFromCurveSkeleton(mesh, skeleton.value());
-      if (!automatic) return fail(options.mesh + ": " + automatic.error());
-      description = std::move(automatic).value();
-      source = "the mesh's curve skeleton";
-    }
+    Result<AutomaticDescription> automatic = DescribeAutomatically(mesh);
+    if (!automatic) return fail(options.mesh + ": " + automatic.error());
+    source = automatic.value().source;
+    description = std::move(automatic).value().description;
     description.import = import;
   }
   RigBuildOptions build_options;

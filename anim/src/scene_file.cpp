@@ -1,0 +1,332 @@
+// Reading and writing scene files (docs/scene-format.md).
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "wirerig/anim/clip_json.h"
+#include "wirerig/anim/scene.h"
+#include "wirerig/rig/atomic_file.h"
+#include "wirerig/rig/json_physics.h"
+
+namespace wirerig {
+namespace {
+
+using nlohmann::json;
+
+constexpr const char* kFormat = "wirerig.scene";
+
+// Component-wise, so no arithmetic touches an infinity (tests trap floating-point exceptions).
+bool IsFinite(const Vec3& v) {
+  return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
+}
+
+// The generators and the parameters each accepts.
+const std::map<std::string, std::vector<std::string>>& ProceduralParameters() {
+  static const std::map<std::string, std::vector<std::string>> table = {
+      {"octopus",
+       {"mantle_radius", "mantle_height", "tentacle_count", "tentacle_length", "tentacle_radius",
+        "tip_radius", "spread", "radial_segments", "rings", "profile_count", "points_per_profile"}},
+      {"cylinder", {"radius", "height", "radial_segments", "height_segments"}},
+      {"cone", {"r0", "r1", "height", "radial_segments", "height_segments"}},
+      {"capsule", {"radius", "height", "radial_segments", "height_segments", "cap_rings"}},
+      {"torus", {"major_radius", "minor_radius", "ring_segments", "tube_segments"}},
+  };
+  return table;
+}
+
+MeshSource ReadMeshSource(const JsonObject& o) {
+  o.RejectUnknownKeys({"file", "up_axis", "unit_scale", "procedural", "parameters"});
+  MeshSource mesh;
+  if (o.Has("file") == o.Has("procedural"))
+    throw FieldError(o.path(), "needs exactly one of \"file\" and \"procedural\"");
+  if (o.Has("file")) {
+    mesh.file = o.String("file");
+    if (o.Has("up_axis")) {
+      UpAxis axis;
+      if (!ParseUpAxis(o.String("up_axis"), &axis))
+        throw FieldError(o.PathOf("up_axis"), "must be \"x\", \"y\" or \"z\"");
+      mesh.import.up_axis = axis;
+    }
+    if (o.Has("unit_scale")) {
+      const double scale = o.Number("unit_scale");
+      if (!(std::isfinite(scale) && scale > 0.0))
+        throw FieldError(o.PathOf("unit_scale"), "must be positive (metres per unit)");
+      mesh.import.unit_scale = scale;
+    }
+    return mesh;
+  }
+  mesh.procedural = o.String("procedural");
+  const auto generator = ProceduralParameters().find(mesh.procedural);
+  if (generator == ProceduralParameters().end())
+    throw FieldError(o.PathOf("procedural"),
+                     "unknown generator (octopus, cylinder, cone, capsule, torus)");
+  if (o.Has("parameters")) {
+    const JsonObject parameters = o.Object("parameters");
+    for (const auto& item : o.Required("parameters").items()) {
+      const auto& names = generator->second;
+      if (std::find(names.begin(), names.end(), item.key()) == names.end())
+        throw FieldError(parameters.PathOf(item.key()), "unknown parameter of " + mesh.procedural);
+      mesh.parameters[item.key()] = parameters.Number(item.key());
+    }
+  }
+  return mesh;
+}
+
+json MeshSourceToJson(const MeshSource& mesh) {
+  if (!mesh.procedural.empty()) {
+    json out = {{"procedural", mesh.procedural}};
+    if (!mesh.parameters.empty()) out["parameters"] = mesh.parameters;
+    return out;
+  }
+  json out = {{"file", mesh.file.generic_string()}};
+  if (mesh.import.up_axis) out["up_axis"] = std::string(ToString(*mesh.import.up_axis));
+  if (mesh.import.unit_scale) out["unit_scale"] = *mesh.import.unit_scale;
+  return out;
+}
+
+RigSource ReadRigSource(const JsonObject& o) {
+  o.RejectUnknownKeys({"file", "description", "from"});
+  if (int(o.Has("file")) + int(o.Has("description")) + int(o.Has("from")) != 1)
+    throw FieldError(o.path(), "needs exactly one of \"file\", \"description\" and \"from\"");
+  RigSource rig;
+  if (o.Has("file")) {
+    rig.kind = RigSourceKind::kRigFile;
+    rig.file = o.String("file");
+  } else if (o.Has("from")) {
+    const std::string from = o.String("from");
+    if (from == "automatic") {
+      rig.kind = RigSourceKind::kAutomatic;
+    } else if (from == "procedural") {
+      rig.kind = RigSourceKind::kProcedural;
+    } else {
+      throw FieldError(o.PathOf("from"), "must be \"automatic\" or \"procedural\"");
+    }
+  } else if (o.Required("description").is_string()) {
+    rig.kind = RigSourceKind::kDescriptionFile;
+    rig.file = o.String("description");
+  } else {
+    rig.kind = RigSourceKind::kDescription;
+    const json& inline_description = o.Required("description");
+    Result<RigDescription> parsed = ParseRigDescription(inline_description);
+    if (!parsed) throw FieldError(o.PathOf("description"), parsed.error());
+    rig.description = std::move(parsed).value();
+    rig.description_json = inline_description.dump();
+  }
+  return rig;
+}
+
+json RigSourceToJson(const RigSource& rig) {
+  switch (rig.kind) {
+    case RigSourceKind::kRigFile:
+      return {{"file", rig.file.generic_string()}};
+    case RigSourceKind::kDescriptionFile:
+      return {{"description", rig.file.generic_string()}};
+    case RigSourceKind::kDescription:
+      return {{"description", json::parse(rig.description_json)}};
+    case RigSourceKind::kAutomatic:
+      return {{"from", "automatic"}};
+    case RigSourceKind::kProcedural:
+      return {{"from", "procedural"}};
+  }
+  return {};
+}
+
+SpineKind ReadKind(const JsonObject& o, std::string_view key) {
+  const std::string kind = o.String(key);
+  if (kind == "rigid") return SpineKind::kRigid;
+  if (kind == "deformable") return SpineKind::kDeformable;
+  throw FieldError(o.PathOf(key), "must be \"rigid\" or \"deformable\"");
+}
+const char* KindName(SpineKind kind) { return kind == SpineKind::kRigid ? "rigid" : "deformable"; }
+
+PartSettings ReadPartSettings(const JsonObject& o) {
+  o.RejectUnknownKeys({"kind", "spine", "profiles"});
+  PartSettings settings;
+  if (o.Has("kind")) settings.kind = ReadKind(o, "kind");
+  auto read_wire = [&](std::string_view key, std::optional<Material>* material,
+                       std::optional<Section>* section) {
+    if (!o.Has(key)) return;
+    const JsonObject wire = o.Object(key);
+    wire.RejectUnknownKeys({"material", "section"});
+    if (wire.Has("material")) *material = ReadMaterial(wire, "material");
+    if (wire.Has("section")) *section = ReadSection(wire, "section");
+  };
+  read_wire("spine", &settings.spine_material, &settings.spine_section);
+  read_wire("profiles", &settings.profile_material, &settings.profile_section);
+  return settings;
+}
+
+json PartSettingsToJson(const PartSettings& settings) {
+  json out = json::object();
+  if (settings.kind) out["kind"] = KindName(*settings.kind);
+  auto write_wire = [&](const char* key, const std::optional<Material>& material,
+                        const std::optional<Section>& section) {
+    if (!material && !section) return;
+    json wire = json::object();
+    if (material) wire["material"] = MaterialToJson(*material);
+    if (section) wire["section"] = SectionToJson(*section);
+    out[key] = wire;
+  };
+  write_wire("spine", settings.spine_material, settings.spine_section);
+  write_wire("profiles", settings.profile_material, settings.profile_section);
+  return out;
+}
+
+PlaybackOptions ReadPlayback(const JsonObject& o) {
+  o.RejectUnknownKeys(
+      {"rigid_step", "integrator", "checkpoint_interval", "gravity", "preserve_volume"});
+  PlaybackOptions playback;
+  playback.rigid_step = o.Number("rigid_step", playback.rigid_step);
+  if (!(std::isfinite(playback.rigid_step) && playback.rigid_step > 0.0 &&
+        playback.rigid_step <= 1.0))
+    throw FieldError(o.PathOf("rigid_step"), "must be in (0, 1] s");
+  if (o.Has("integrator")) {
+    const std::string name = o.String("integrator");
+    if (name == "rk4") {
+      playback.integrator = RigidIntegrator::kRk4;
+    } else if (name == "momentum") {
+      playback.integrator = RigidIntegrator::kMomentum;
+    } else {
+      throw FieldError(o.PathOf("integrator"), "must be \"rk4\" or \"momentum\"");
+    }
+  }
+  const int interval = o.Integer("checkpoint_interval", 24);
+  if (interval < 1) throw FieldError(o.PathOf("checkpoint_interval"), "must be at least 1");
+  playback.checkpoint_interval = static_cast<std::size_t>(interval);
+  playback.gravity = o.Vector3("gravity", Vec3::Zero());
+  if (!IsFinite(playback.gravity)) throw FieldError(o.PathOf("gravity"), "must be finite");
+  if (o.Has("preserve_volume")) {
+    const json& value = o.Required("preserve_volume");
+    if (!value.is_boolean()) throw FieldError(o.PathOf("preserve_volume"), "must be true or false");
+    playback.preserve_volume = value.get<bool>();
+  }
+  return playback;
+}
+
+json PlaybackToJson(const PlaybackOptions& p) {
+  return {{"rigid_step", p.rigid_step},
+          {"integrator", p.integrator == RigidIntegrator::kRk4 ? "rk4" : "momentum"},
+          {"checkpoint_interval", p.checkpoint_interval},
+          {"gravity", {p.gravity.x(), p.gravity.y(), p.gravity.z()}},
+          {"preserve_volume", p.preserve_volume}};
+}
+
+CameraHint ReadCamera(const JsonObject& o) {
+  o.RejectUnknownKeys({"target", "yaw", "pitch", "distance", "fov"});
+  CameraHint camera;
+  camera.target = o.Vector3("target", camera.target);
+  camera.yaw = o.Number("yaw", camera.yaw);
+  camera.pitch = o.Number("pitch", camera.pitch);
+  camera.distance = o.Number("distance", camera.distance);
+  camera.fov = o.Number("fov", camera.fov);
+  if (!IsFinite(camera.target)) throw FieldError(o.PathOf("target"), "must be finite");
+  if (!std::isfinite(camera.yaw)) throw FieldError(o.PathOf("yaw"), "must be finite");
+  if (!(camera.pitch > -1.57 && camera.pitch < 1.57))
+    throw FieldError(o.PathOf("pitch"), "must lie within (-pi/2, pi/2)");
+  if (!(camera.distance >= 0.0 && camera.distance < 1e6))
+    throw FieldError(o.PathOf("distance"), "must be 0 (frame the model) or positive");
+  if (!(camera.fov > 0.01 && camera.fov < 3.0))
+    throw FieldError(o.PathOf("fov"), "must lie within (0.01, 3) rad");
+  return camera;
+}
+
+json CameraToJson(const CameraHint& c) {
+  return {{"target", {c.target.x(), c.target.y(), c.target.z()}},
+          {"yaw", c.yaw},
+          {"pitch", c.pitch},
+          {"distance", c.distance},
+          {"fov", c.fov}};
+}
+
+}  // namespace
+
+Result<SceneDescription> ParseScene(const nlohmann::json& document,
+                                    const std::filesystem::path& folder) {
+  try {
+    const JsonObject root(document, "");
+    root.RejectUnknownKeys({"format", "version", "name", "mesh", "rig", "skin_thickness",
+                            "default_kind", "parts", "playback", "clips", "camera"});
+    if (root.String("format") != kFormat)
+      throw FieldError("/format", std::string("must be \"") + kFormat + "\"");
+    const int version = root.Integer("version", -1);
+    if (version != SceneDescription::kFormatVersion)
+      throw FieldError("/version", "must be 1 (this wirerig reads scene format version 1)");
+    SceneDescription scene;
+    scene.folder = folder;
+    scene.name = root.String("name");
+    scene.mesh = ReadMeshSource(root.Object("mesh"));
+    scene.rig = ReadRigSource(root.Object("rig"));
+    if (scene.rig.kind == RigSourceKind::kProcedural && scene.mesh.procedural != "octopus")
+      throw FieldError("/rig/from", "\"procedural\" needs a procedural octopus mesh");
+    scene.skin_thickness = root.Number("skin_thickness", scene.skin_thickness);
+    if (!(std::isfinite(scene.skin_thickness) && scene.skin_thickness > 0.0))
+      throw FieldError("/skin_thickness", "must be positive (m)");
+    if (root.Has("default_kind")) scene.default_kind = ReadKind(root, "default_kind");
+    if (root.Has("parts")) {
+      const JsonObject parts = root.Object("parts");
+      for (const auto& item : root.Required("parts").items())
+        scene.parts[item.key()] = ReadPartSettings(parts.Object(item.key()));
+    }
+    if (root.Has("playback")) scene.playback = ReadPlayback(root.Object("playback"));
+    std::size_t index = 0;
+    ForEachElement(root, "clips", [&](const JsonObject& clip) {
+      RawClip raw = ReadClip(clip);
+      if (std::string error = ValidateRawClip(raw); !error.empty())
+        throw FieldError(clip.path(), error);
+      for (const RawClip& earlier : scene.clips)
+        if (earlier.name == raw.name)
+          throw FieldError(clip.path() + "/name", "another clip has this name");
+      scene.clips.push_back(std::move(raw));
+      ++index;
+    });
+    if (root.Has("camera")) scene.camera = ReadCamera(root.Object("camera"));
+    return scene;
+  } catch (const FieldError& e) {
+    return Error{e.what()};
+  } catch (const nlohmann::json::exception& e) {
+    return Error{std::string("/: ") + e.what()};
+  }
+}
+
+Result<SceneDescription> LoadScene(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error{path.string() + ": cannot open the scene file"};
+  std::stringstream text;
+  text << in.rdbuf();
+  const json document = json::parse(text.str(), nullptr, false);
+  if (document.is_discarded()) return Error{path.string() + ": not valid JSON"};
+  Result<SceneDescription> scene = ParseScene(document, path.parent_path());
+  if (!scene) return Error{path.string() + ": " + scene.error()};
+  return scene;
+}
+
+nlohmann::json SceneToJson(const SceneDescription& scene) {
+  json out = {{"format", kFormat},
+              {"version", SceneDescription::kFormatVersion},
+              {"name", scene.name},
+              {"mesh", MeshSourceToJson(scene.mesh)},
+              {"rig", RigSourceToJson(scene.rig)},
+              {"skin_thickness", scene.skin_thickness},
+              {"default_kind", KindName(scene.default_kind)},
+              {"playback", PlaybackToJson(scene.playback)}};
+  if (!scene.parts.empty()) {
+    json parts = json::object();
+    for (const auto& [name, settings] : scene.parts) parts[name] = PartSettingsToJson(settings);
+    out["parts"] = parts;
+  }
+  json clips = json::array();
+  for (const RawClip& clip : scene.clips) clips.push_back(ClipToJson(clip));
+  out["clips"] = clips;
+  if (scene.camera) out["camera"] = CameraToJson(*scene.camera);
+  return out;
+}
+
+Result<std::filesystem::path> SaveScene(const SceneDescription& scene,
+                                        const std::filesystem::path& path) {
+  return WriteFileAtomically(path, SceneToJson(scene).dump(2) + "\n");
+}
+
+}  // namespace wirerig

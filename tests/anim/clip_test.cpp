@@ -1,0 +1,206 @@
+// Clips: the raw rules and the rig's rules name what is wrong; loop modes map time; sampling
+// turns tracks into the runtime's loads exactly as documented.
+#include "wirerig/anim/clip.h"
+
+#include <gtest/gtest.h>
+
+#include "anim_test_rigs.h"
+#include "wirerig/anim/clip_sampling.h"
+
+namespace wirerig {
+namespace {
+
+RawScalarTrack Keys(std::initializer_list<std::pair<double, double>> keys,
+                    Interpolation interpolation = Interpolation::kLinear) {
+  RawScalarTrack raw;
+  for (auto [t, v] : keys) raw.keys.push_back({t, v, interpolation});
+  return raw;
+}
+
+RawVectorTrack Constant(const Vec3& v) {
+  RawVectorTrack raw;
+  raw.keys.push_back({0.0, v, Interpolation::kStep});
+  return raw;
+}
+
+RawClip PointLoadClip() {
+  RawClip raw;
+  raw.name = "push";
+  raw.duration = 2.0;
+  RawPartTracks part;
+  part.part = "beam";
+  PointLoadChannels<RawTrack> load;
+  load.at = Keys({{0.0, 1.0}});
+  load.magnitude = Keys({{0.0, 0.0}, {2.0, 10.0}});
+  load.direction = Constant(Vec3(2, 0, 0));
+  part.channels.point_loads.push_back(load);
+  raw.parts.push_back(part);
+  return raw;
+}
+
+const testing::TestRig& Beam() {
+  static const testing::TestRig rig = testing::MakeCylinderRig(SpineKind::kDeformable);
+  return rig;
+}
+
+TEST(Clip, BuildsAgainstTheRigAndCollectsKeyTimes) {
+  Result<Clip> clip = BuildClip(PointLoadClip(), Beam().model);
+  ASSERT_TRUE(clip.ok()) << clip.error();
+  EXPECT_EQ(clip.value().parts.size(), 1u);
+  EXPECT_EQ(clip.value().key_times, (std::vector<double>{0.0, 2.0}));
+  EXPECT_FALSE(clip.value().HasDynamics());
+}
+
+TEST(Clip, RefusesUnknownPartsAndProfilesByName) {
+  RawClip raw = PointLoadClip();
+  raw.parts[0].part = "tentacle";
+  EXPECT_EQ(BuildClip(raw, Beam().model).error(),
+            "parts[0].part: no part of the rig is named \"tentacle\"");
+  raw = PointLoadClip();
+  RawProfileTracks bulge;
+  bulge.part = "beam";
+  bulge.channels.profiles = {1, 99};
+  raw.profiles.push_back(bulge);
+  const std::string error = BuildClip(raw, Beam().model).error();
+  EXPECT_EQ(error.rfind("profiles[0].profiles[1]: part \"beam\" has", 0), 0u) << error;
+}
+
+TEST(Clip, RefusesKeysOutsideTheDuration) {
+  RawClip raw = PointLoadClip();
+  raw.parts[0].channels.point_loads[0].magnitude = Keys({{0.0, 0.0}, {2.5, 1.0}});
+  EXPECT_EQ(ValidateRawClip(raw),
+            "parts[0].point_loads[0].magnitude.keys[1].time: must lie within the clip, [0, "
+            "duration]");
+}
+
+TEST(Clip, RefusesBrokenTracksDurationsAndDuplicates) {
+  RawClip raw = PointLoadClip();
+  raw.parts[0].channels.point_loads[0].at = Keys({{1.0, 0.5}, {0.5, 0.5}});
+  EXPECT_EQ(ValidateRawClip(raw),
+            "parts[0].point_loads[0].at.keys[1].time: key times must be strictly increasing");
+  raw = PointLoadClip();
+  raw.duration = 0.0;
+  EXPECT_EQ(ValidateRawClip(raw), "duration: must be finite and positive (s)");
+  raw = PointLoadClip();
+  raw.parts.push_back(raw.parts[0]);
+  EXPECT_EQ(ValidateRawClip(raw), "parts[1].part: this part already has tracks in the clip");
+  raw = PointLoadClip();
+  raw.name.clear();
+  EXPECT_EQ(ValidateRawClip(raw), "name: a clip needs a name");
+  raw = PointLoadClip();
+  raw.parts[0].channels.boundary = {{1.0, BoundaryCondition::kClamped},
+                                    {1.0, BoundaryCondition::kSimplySupported}};
+  EXPECT_EQ(ValidateRawClip(raw),
+            "parts[0].boundary[1].time: key times must be strictly increasing");
+}
+
+TEST(Clip, RefusesRigidBodyForcesOnDeformableParts) {
+  RawClip raw = PointLoadClip();
+  raw.parts[0].channels.rigid_torque = Constant(Vec3(0, 1, 0));
+  EXPECT_EQ(BuildClip(raw, Beam().model).error(),
+            "parts[0].rigid_forces: rigid-body forces and torques need a rigid part");
+}
+
+TEST(Clip, LoopModesMapPlaybackTime) {
+  Clip clip;
+  clip.duration = 2.0;
+  clip.loop = LoopMode::kOnce;
+  EXPECT_EQ(clip.LocalTime(-1.0), 0.0);
+  EXPECT_EQ(clip.LocalTime(1.5), 1.5);
+  EXPECT_EQ(clip.LocalTime(3.0), 2.0);
+  clip.loop = LoopMode::kLoop;
+  EXPECT_DOUBLE_EQ(clip.LocalTime(5.5), 1.5);
+  clip.loop = LoopMode::kPingPong;
+  EXPECT_DOUBLE_EQ(clip.LocalTime(2.5), 1.5);
+  EXPECT_DOUBLE_EQ(clip.LocalTime(4.5), 0.5);
+  for (LoopMode m : {LoopMode::kOnce, LoopMode::kLoop, LoopMode::kPingPong}) {
+    LoopMode parsed = LoopMode::kOnce;
+    ASSERT_TRUE(ParseLoopMode(ToString(m), &parsed));
+    EXPECT_EQ(parsed, m);
+  }
+}
+
+TEST(ClipSampling, PointLoadIsMagnitudeAlongTheUnitDirection) {
+  const Clip clip = BuildClip(PointLoadClip(), Beam().model).value();
+  ClipSample sample = MakeClipSample(clip, Beam().model);
+  SampleClip(clip, 0.5, &sample);
+  const SpineLoads& loads = sample.poses[0].loads;
+  ASSERT_EQ(loads.bending_point_loads.size(), 1u);
+  EXPECT_EQ(loads.bending_point_loads[0].at, 1.0);
+  EXPECT_TRUE(loads.bending_point_loads[0].force.isApprox(Vec3(2.5, 0, 0), 1e-15));
+  EXPECT_EQ(loads.boundary, BoundaryCondition::kCantileverFree);
+  // At t = 0 the magnitude is zero: no load at all.
+  SampleClip(clip, 0.0, &sample);
+  EXPECT_TRUE(sample.poses[0].loads.bending_point_loads.empty());
+}
+
+TEST(ClipSampling, BoundaryKeysSwitchFamiliesAndDropTipForcesOffCantilevers) {
+  RawClip raw = PointLoadClip();
+  raw.parts[0].channels.boundary = {{0.0, BoundaryCondition::kCantileverFree},
+                                    {1.0, BoundaryCondition::kSimplySupported}};
+  raw.parts[0].channels.tip_force = Constant(Vec3(0, 0, 3));
+  const Clip clip = BuildClip(raw, Beam().model).value();
+  ClipSample sample = MakeClipSample(clip, Beam().model);
+  SampleClip(clip, 0.99, &sample);
+  EXPECT_EQ(sample.poses[0].loads.boundary, BoundaryCondition::kCantileverFree);
+  EXPECT_EQ(sample.poses[0].loads.tip_force, Vec3(0, 0, 3));
+  SampleClip(clip, 1.0, &sample);
+  EXPECT_EQ(sample.poses[0].loads.boundary, BoundaryCondition::kSimplySupported);
+  EXPECT_EQ(sample.poses[0].loads.tip_force, Vec3::Zero());
+}
+
+TEST(ClipSampling, LineLoadsOfZeroWidthAreSkippedAndPositionsClamped) {
+  RawClip raw = PointLoadClip();
+  LineLoadChannels<RawTrack> line;
+  line.from = Keys({{0.0, 0.2}, {2.0, 0.8}});
+  line.to = Keys({{0.0, 0.6}});
+  line.force_per_length = Constant(Vec3(0, 1, 0));
+  raw.parts[0].channels.line_loads.push_back(line);
+  raw.parts[0].channels.point_loads[0].at = Keys({{0.0, 0.5}, {2.0, 1.5}});
+  const Clip clip = BuildClip(raw, Beam().model).value();
+  ClipSample sample = MakeClipSample(clip, Beam().model);
+  SampleClip(clip, 0.5, &sample);  // from 0.35 < to 0.6
+  ASSERT_EQ(sample.poses[0].loads.bending_line_loads.size(), 1u);
+  EXPECT_DOUBLE_EQ(sample.poses[0].loads.bending_line_loads[0].from, 0.35);
+  SampleClip(clip, 2.0, &sample);  // from 0.8 > to 0.6: skipped; at 1.5 clamped to 1
+  EXPECT_TRUE(sample.poses[0].loads.bending_line_loads.empty());
+  EXPECT_EQ(sample.poses[0].loads.bending_point_loads[0].at, 1.0);
+}
+
+TEST(ClipSampling, ProfileGroupsExpandToEveryProfileWhenNoneAreListed) {
+  RawClip raw = PointLoadClip();
+  RawProfileTracks bulge;
+  bulge.part = "beam";
+  bulge.channels.from = 0.25;
+  bulge.channels.to = 0.75;
+  PointLoadChannels<RawTrack> push;
+  push.at = Keys({{0.0, 0.5}});
+  push.magnitude = Keys({{0.0, 4.0}});
+  push.direction = Constant(Vec3(1, 0, 0));
+  bulge.channels.point_loads.push_back(push);
+  raw.profiles.push_back(bulge);
+  const Clip clip = BuildClip(raw, Beam().model).value();
+  ClipSample sample = MakeClipSample(clip, Beam().model);
+  SampleClip(clip, 1.0, &sample);
+  ASSERT_EQ(sample.profile_loads.size(), Beam().model.parts[0].profiles.size());
+  for (std::size_t k = 0; k < sample.profile_loads.size(); ++k) {
+    EXPECT_EQ(sample.profile_loads[k].profile, k);
+    EXPECT_EQ(sample.profile_loads[k].from, 0.25);
+    ASSERT_EQ(sample.profile_loads[k].point_loads.size(), 1u);
+    EXPECT_EQ(sample.profile_loads[k].point_loads[0].force, Vec3(4, 0, 0));
+  }
+}
+
+TEST(ClipSampling, PoseIsTheAxisAngleRotationAndTranslation) {
+  RawClip raw = PointLoadClip();
+  raw.parts[0].channels.rotation = Constant(Vec3(0, 0, 0.5));
+  raw.parts[0].channels.translation = Constant(Vec3(1, 2, 3));
+  const Clip clip = BuildClip(raw, Beam().model).value();
+  ClipSample sample = MakeClipSample(clip, Beam().model);
+  SampleClip(clip, 1.0, &sample);
+  EXPECT_TRUE(sample.poses[0].rotation.isApprox(Quat(Eigen::AngleAxisd(0.5, Vec3::UnitZ()))));
+  EXPECT_EQ(sample.poses[0].translation, Vec3(1, 2, 3));
+}
+
+}  // namespace
+}  // namespace wirerig
