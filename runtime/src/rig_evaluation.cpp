@@ -2,11 +2,121 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "wirerig/runtime/spine_interpolation.h"
 
 namespace wirerig {
 namespace {
+
+// Vertices, triangles and vertex normals per parallel task: large enough that claiming a task
+// costs nothing next to it, small enough that two threads share out a mesh evenly.
+constexpr std::size_t kTaskSize = 2048;
+
+// The fast path of ApplyPairBinding is used while squared lengths stay within these bounds:
+// then no product below can overflow or underflow into the subnormals that matter.
+constexpr double kMinSquared = 1e-140;
+constexpr double kMaxSquared = 1e140;
+// ApplyPairBinding's kDegenerateSine, squared.
+constexpr double kDegenerateSine2 = 1e-16;
+
+// PHYSICS.md section 6, step "apply", for a regular frame: with e = p2 - p1, d = c - p1 and
+// n = e x d, the unit normal is n / |n|, |e| m_hat = n_hat x e, and the point is
+// p1 + alpha e + beta (n_hat x e) + gamma |e| n_hat. Equal to ApplyPairBinding up to rounding
+// (one square root and one division fewer: no normalisation of e or d). Returns false, writing
+// nothing, where ApplyPairBinding's degenerate-frame handling (or its overflow-safe scaling)
+// is needed.
+inline bool ApplyPairFast(const RigEvaluationLayout::Pair& b, const Vec3* points,
+                          const Vec3* centres, Vec3* out) {
+  const Vec3 p1 = (1.0 - b.lambda1) * points[b.a0] + b.lambda1 * points[b.a1];
+  const Vec3 p2 = (1.0 - b.lambda2) * points[b.b0] + b.lambda2 * points[b.b1];
+  const Vec3 e = p2 - p1;
+  const Vec3 d = centres[b.profile] - p1;
+  const double ee = e.squaredNorm(), dd = d.squaredNorm();
+  if (!(ee >= kMinSquared && ee <= kMaxSquared && dd >= kMinSquared && dd <= kMaxSquared))
+    return false;
+  const Vec3 n = e.cross(d);
+  const double nn = n.squaredNorm();
+  if (!(nn > kDegenerateSine2 * ee * dd)) return false;
+  const Vec3 n_hat = n * (1.0 / std::sqrt(nn));
+  *out = p1 + b.alpha * e + b.beta * n_hat.cross(e) + (b.gamma * std::sqrt(ee)) * n_hat;
+  return true;
+}
+
+// The vertex and normal passes, as tasks over ranges of kTaskSize items.
+struct VertexPass {
+  const EvaluateRigJob* job;
+  RigWorkspace* w;
+
+  static std::size_t Tasks(std::size_t items) { return (items + kTaskSize - 1) / kTaskSize; }
+
+  // Pair vertices [k kTaskSize, (k + 1) kTaskSize), then the caps in the same way.
+  static void Vertices(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const VertexPass*>(context);
+    const RigEvaluationLayout& layout = self.w->layout;
+    const std::size_t pair_tasks = Tasks(layout.pairs.size());
+    Vec3* positions = self.job->positions.data();
+    if (k >= pair_tasks) {
+      const std::size_t end = std::min(layout.caps.size(), (k - pair_tasks + 1) * kTaskSize);
+      for (std::size_t c = (k - pair_tasks) * kTaskSize; c < end; ++c) {
+        const RigEvaluationLayout::Cap& cap = layout.caps[c];
+        positions[cap.vertex] =
+            self.w->cap_origins[cap.profile] + self.w->cap_axes[cap.profile] * cap.local;
+      }
+      return;
+    }
+    const Vec3* points = self.w->wire_points.data();
+    const Vec3* centres = self.w->pair_centres.data();
+    const std::size_t end = std::min(layout.pairs.size(), (k + 1) * kTaskSize);
+    for (std::size_t i = k * kTaskSize; i < end; ++i) {
+      const RigEvaluationLayout::Pair& pair = layout.pairs[i];
+      if (!ApplyPairFast(pair, points, centres, &positions[pair.vertex])) self.Slow(pair);
+    }
+  }
+
+  // ApplyPairBinding itself, on the wires as spans.
+  void Slow(const RigEvaluationLayout::Pair& pair) const {
+    const VertexAttachment& a = job->model->vertices[pair.vertex];
+    const PartModel& part = job->model->parts[a.part];
+    const WirePolyline wire_i{w->profile_points[a.part][a.profile],
+                              part.profiles[a.profile].closed};
+    const WirePolyline wire_j{w->profile_points[a.part][a.profile + 1],
+                              part.profiles[a.profile + 1].closed};
+    job->positions[pair.vertex] =
+        ApplyPairBinding(a.pair, wire_i, wire_j, w->profile_origins[a.part][a.profile],
+                         w->profile_origins[a.part][a.profile + 1]);
+  }
+
+  static void TriangleNormals(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const VertexPass*>(context);
+    const std::vector<Triangle>& triangles = self.job->model->triangles;
+    const Vec3* p = self.job->positions.data();
+    Vec3* out = self.w->triangle_normals.data();
+    const std::size_t end = std::min(triangles.size(), (k + 1) * kTaskSize);
+    for (std::size_t f = k * kTaskSize; f < end; ++f) {
+      const Triangle& t = triangles[f];
+      out[f] = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
+    }
+  }
+
+  // Sums each vertex's triangle normals in increasing triangle order (as accumulating over the
+  // triangles in order would) and normalises.
+  static void VertexNormals(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const VertexPass*>(context);
+    const RigEvaluationLayout& layout = self.w->layout;
+    const std::uint32_t* offsets = layout.vertex_triangle_offsets.data();
+    const std::uint32_t* triangles = layout.vertex_triangles.data();
+    const Vec3* face = self.w->triangle_normals.data();
+    Vec3* normals = self.job->normals.data();
+    const std::size_t end = std::min(self.job->normals.size(), (k + 1) * kTaskSize);
+    for (std::size_t v = k * kTaskSize; v < end; ++v) {
+      Vec3 sum = Vec3::Zero();
+      for (std::uint32_t i = offsets[v]; i < offsets[v + 1]; ++i) sum += face[triangles[i]];
+      const double length = sum.norm();
+      normals[v] = length > 0.0 ? Vec3(sum / length) : Vec3::UnitY();
+    }
+  }
+};
 
 Frame RotateFrame(const Mat3& r, const Frame& f) {
   return {r * f.tangent, r * f.normal, r * f.binormal};
@@ -48,6 +158,60 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
       widest = std::max(widest, profile.local_points.size());
   w.profile_samples.resize(widest + 1);
   w.profile_displacement.resize(widest + 1);
+
+  RigEvaluationLayout& layout = w.layout;
+  std::uint32_t profiles = 0, points = 0;
+  for (const PartModel& part : model.parts) {
+    layout.profile_base.push_back(profiles);
+    for (const ProfileModel& profile : part.profiles) {
+      layout.point_base.push_back(points);
+      points += static_cast<std::uint32_t>(profile.local_points.size());
+      ++profiles;
+    }
+  }
+  w.wire_points.resize(points);
+  w.pair_centres.resize(profiles);
+  w.cap_origins.resize(profiles);
+  w.cap_axes.resize(profiles, Mat3::Identity());
+  // PointOnWire's indices: segment k clamped to the wire, wrapping to point 0 after the last.
+  auto ends = [&](std::uint32_t g, std::size_t count, std::uint32_t k, std::uint32_t* i0,
+                  std::uint32_t* i1) {
+    const std::size_t first = std::min<std::size_t>(k, count - 1);
+    *i0 = layout.point_base[g] + static_cast<std::uint32_t>(first);
+    *i1 = layout.point_base[g] + static_cast<std::uint32_t>(first + 1 < count ? first + 1 : 0);
+  };
+  for (std::size_t v = 0; v < model.vertices.size(); ++v) {
+    const VertexAttachment& a = model.vertices[v];
+    const std::uint32_t g = layout.profile_base[a.part] + a.profile;
+    if (a.cap) {
+      layout.caps.push_back({static_cast<std::uint32_t>(v), g, a.cap_local});
+      continue;
+    }
+    const PartModel& part = model.parts[a.part];
+    RigEvaluationLayout::Pair pair;
+    pair.vertex = static_cast<std::uint32_t>(v);
+    pair.profile = g;
+    ends(g, part.profiles[a.profile].local_points.size(), a.pair.k1, &pair.a0, &pair.a1);
+    ends(g + 1, part.profiles[a.profile + 1].local_points.size(), a.pair.k2, &pair.b0, &pair.b1);
+    pair.lambda1 = a.pair.lambda1;
+    pair.lambda2 = a.pair.lambda2;
+    pair.alpha = a.pair.alpha;
+    pair.beta = a.pair.beta;
+    pair.gamma = a.pair.gamma;
+    layout.pairs.push_back(pair);
+  }
+  layout.vertex_triangle_offsets.assign(model.vertices.size() + 1, 0);
+  for (const Triangle& t : model.triangles)
+    for (std::uint32_t index : t) ++layout.vertex_triangle_offsets[index + 1];
+  for (std::size_t v = 0; v < model.vertices.size(); ++v)
+    layout.vertex_triangle_offsets[v + 1] += layout.vertex_triangle_offsets[v];
+  layout.vertex_triangles.resize(layout.vertex_triangle_offsets.back());
+  std::vector<std::uint32_t> fill(layout.vertex_triangle_offsets.begin(),
+                                  layout.vertex_triangle_offsets.end() - 1);
+  for (std::size_t f = 0; f < model.triangles.size(); ++f)
+    for (std::uint32_t index : model.triangles[f])
+      layout.vertex_triangles[fill[index]++] = static_cast<std::uint32_t>(f);
+  w.triangle_normals.resize(model.triangles.size());
   return w;
 }
 
@@ -80,7 +244,10 @@ Status EvaluateRigJob::Validate() const {
   if (!normals.empty() && normals.size() != model->vertices.size())
     return Status::Invalid("normals", "must be empty or have one element per vertex");
   if (workspace->spine_points.size() != model->parts.size() ||
-      workspace->normal_accumulator.size() != model->vertices.size())
+      workspace->normal_accumulator.size() != model->vertices.size() ||
+      workspace->layout.pairs.size() + workspace->layout.caps.size() != model->vertices.size() ||
+      workspace->layout.profile_base.size() != model->parts.size() ||
+      workspace->triangle_normals.size() != model->triangles.size())
     return Status::Invalid("workspace", "was made for another model");
   for (const PartPose& pose : poses) {
     const Eigen::Vector4d q = pose.rotation.coeffs();
@@ -207,6 +374,12 @@ Status EvaluateRigJob::Run() const {
       }
       w.profile_origins[i][p] = origin;
       w.profile_normals[i][p] = frame.tangent;
+      // The end caps' frame: in-plane like the profile, and 1/scale^2 along the tangent, so a
+      // cap keeps its volume and meets the profile's plane continuously.
+      const std::size_t g = w.layout.profile_base[i] + p;
+      w.cap_origins[g] = origin;
+      w.cap_axes[g] = axes;
+      w.cap_axes[g].col(2) /= w.profile_scale[i][p] * w.profile_scale[i][p];
       std::vector<Vec3>& out = w.profile_points[i][p];
       for (std::size_t q = 0; q < profile.local_points.size(); ++q)
         out[q] = origin + axes * profile.local_points[q];
@@ -272,42 +445,28 @@ Status EvaluateRigJob::Run() const {
     }
   }
 
-  // 6. Vertices follow the profiles.
-  for (std::size_t v = 0; v < model->vertices.size(); ++v) {
-    const VertexAttachment& a = model->vertices[v];
-    const PartModel& part = model->parts[a.part];
-    if (a.cap) {
-      Vec3 origin;
-      const Frame frame = InterpolateSpine(w.spine_points[a.part], w.spine_frames[a.part],
-                                           part.profiles[a.profile].spine_v, &origin);
-      Mat3 axes = FrameAxes(frame);
-      // In-plane like its end profile, and 1/scale^2 along the tangent: the cap keeps its
-      // volume and meets the profile's plane continuously.
-      const double scale = w.profile_scale[a.part][a.profile];
-      axes.col(0) *= scale;
-      axes.col(1) *= scale;
-      axes.col(2) /= scale * scale;
-      positions[v] = origin + axes * a.cap_local;
-      continue;
+  // 6. Vertices follow the profiles: the world wire points and pair centres laid out flat, then
+  // every vertex from its flat binding.
+  for (std::size_t i = 0; i < model->parts.size(); ++i) {
+    const std::size_t profiles = model->parts[i].profiles.size();
+    for (std::size_t p = 0; p < profiles; ++p) {
+      const std::size_t g = w.layout.profile_base[i] + p;
+      std::copy(w.profile_points[i][p].begin(), w.profile_points[i][p].end(),
+                w.wire_points.begin() + w.layout.point_base[g]);
+      if (p + 1 < profiles)
+        w.pair_centres[g] = 0.5 * (w.profile_origins[i][p] + w.profile_origins[i][p + 1]);
     }
-    const WirePolyline wire_i{w.profile_points[a.part][a.profile], part.profiles[a.profile].closed};
-    const WirePolyline wire_j{w.profile_points[a.part][a.profile + 1],
-                              part.profiles[a.profile + 1].closed};
-    positions[v] = ApplyPairBinding(a.pair, wire_i, wire_j, w.profile_origins[a.part][a.profile],
-                                    w.profile_origins[a.part][a.profile + 1]);
   }
+  const VertexPass pass{this, workspace};
+  RunTasks(parallel,
+           VertexPass::Tasks(w.layout.pairs.size()) + VertexPass::Tasks(w.layout.caps.size()),
+           &VertexPass::Vertices, &pass);
 
-  // 7. Area-weighted vertex normals.
+  // 7. Area-weighted vertex normals: every triangle's, then per vertex the sum of its own.
   if (normals.empty()) return Status::Ok();
-  std::fill(w.normal_accumulator.begin(), w.normal_accumulator.end(), Vec3::Zero());
-  for (const Triangle& t : model->triangles) {
-    const Vec3 n = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
-    for (std::uint32_t index : t) w.normal_accumulator[index] += n;
-  }
-  for (std::size_t v = 0; v < normals.size(); ++v) {
-    const double length = w.normal_accumulator[v].norm();
-    normals[v] = length > 0.0 ? Vec3(w.normal_accumulator[v] / length) : Vec3::UnitY();
-  }
+  RunTasks(parallel, VertexPass::Tasks(model->triangles.size()), &VertexPass::TriangleNormals,
+           &pass);
+  RunTasks(parallel, VertexPass::Tasks(normals.size()), &VertexPass::VertexNormals, &pass);
   return Status::Ok();
 }
 

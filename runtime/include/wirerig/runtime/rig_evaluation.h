@@ -11,11 +11,13 @@
 // its parent. Profiles ride on their spine frames; vertices follow the profiles.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
 #include "wirerig/runtime/axial_job.h"
 #include "wirerig/runtime/bending_job.h"
+#include "wirerig/runtime/parallel.h"
 #include "wirerig/runtime/rig_model.h"
 
 namespace wirerig {
@@ -77,6 +79,33 @@ struct PartWarnings {
   bool any() const { return beyond_small_deflection || tight_bends > 0 || crossing_profiles > 0; }
 };
 
+// The model's vertex bindings in the flat layout the per-frame vertex and normal passes read
+// (made by MakeRigWorkspace; internal to the evaluation). Profiles are numbered globally, part
+// by part ("global profile" g = profile_base[part] + profile).
+struct RigEvaluationLayout {
+  // A vertex between profiles g and g + 1: PHYSICS.md section 6 with the wire points p1, p2
+  // resolved to indices into wire_points, as ApplyPairBinding's PointOnWire resolves them.
+  struct Pair {
+    std::uint32_t vertex = 0;
+    std::uint32_t a0 = 0, a1 = 0;  // p1 = (1 - lambda1) wire_points[a0] + lambda1 wire_points[a1]
+    std::uint32_t b0 = 0, b1 = 0;  // p2, likewise on the next profile
+    std::uint32_t profile = 0;     // global profile g: the centre is pair_centres[g]
+    double lambda1 = 0.0, lambda2 = 0.0, alpha = 0.0, beta = 0.0, gamma = 0.0;
+  };
+  struct Cap {
+    std::uint32_t vertex = 0;
+    std::uint32_t profile = 0;  // global profile
+    Vec3 local = Vec3::Zero();
+  };
+  std::vector<std::uint32_t> profile_base;  // per part: its first global profile
+  std::vector<std::uint32_t> point_base;    // per global profile: its first point in wire_points
+  std::vector<Pair> pairs;                  // in vertex order
+  std::vector<Cap> caps;                    // in vertex order
+  // Normals: per vertex, the triangles around it in increasing order (CSR).
+  std::vector<std::uint32_t> vertex_triangle_offsets;  // #W + 1
+  std::vector<std::uint32_t> vertex_triangles;
+};
+
 // Scratch buffers sized for one model; make once, reuse every frame.
 struct RigWorkspace {
   std::vector<std::vector<Vec3>> spine_points;                 // per part, deformed, world
@@ -93,6 +122,15 @@ struct RigWorkspace {
   std::vector<Vec3> normal_accumulator;            // per vertex
   std::vector<double> profile_samples;             // per point of the longest profile
   std::vector<Vec3> profile_displacement;          // likewise
+  // The vertex pass's inputs: the model's bindings laid out flat, and per frame every profile's
+  // world points, each adjacent pair's centre (c_i + c_{i+1}) / 2 and each profile's cap frame
+  // (origin and axes, scaled like the profile), by global profile.
+  RigEvaluationLayout layout;
+  std::vector<Vec3> wire_points;
+  std::vector<Vec3> pair_centres;
+  std::vector<Vec3> cap_origins;
+  std::vector<Mat3> cap_axes;
+  std::vector<Vec3> triangle_normals;  // per triangle: (p1 - p0) x (p2 - p0)
 };
 RigWorkspace MakeRigWorkspace(const RigModel& model);
 
@@ -109,6 +147,10 @@ struct EvaluateRigJob {
   bool preserve_volume = false;
   // Optional, one per part: filled with what this frame's deformation warns about.
   std::span<PartWarnings> warnings;
+  // Optional: runs the vertex and normal passes as parallel tasks (e.g. a ThreadPool made once,
+  // outside the frame loop). Null (the default): everything on the calling thread. The results
+  // are bit-identical either way; Run() allocates nothing if `parallel` does not.
+  const ParallelFor* parallel = nullptr;
 
   Status Validate() const;
   Status Run() const;  // validates, then evaluates; never allocates
