@@ -138,6 +138,35 @@ TEST(NoAllocation, RigEvaluationWithLoadsAndNormals) {
   EXPECT_EQ(after, before);
 }
 
+TEST(NoAllocation, RigEvaluationOnAThreadPool) {
+  // As above, with the vertex and normal passes shared out over a pool made beforehand.
+  RigDescription description;
+  description.parts.push_back({"body", {Vec3(0, 0.05, 0), Vec3(0, 0.95, 0)}, 8, 16, "", {}});
+  const Mesh mesh = MakeCapsule(0.2, 1.0, 96, 48, 6);
+  const Result<BuiltRig> rig = BuildRig(mesh, description, "capsule");
+  ASSERT_TRUE(rig.ok()) << rig.error();
+  const Result<BuiltRigModel> model = BuildRigModel(mesh, rig.value().rig);
+  ASSERT_TRUE(model.ok()) << model.error();
+  RigWorkspace workspace = MakeRigWorkspace(model.value().model);
+  std::vector<Vec3> positions(model.value().model.vertices.size()), normals(positions.size());
+  std::vector<PointLoad> loads = {{0.7, Vec3(1e-4, 0, 0)}};
+  std::vector<PartPose> poses(1);
+  poses[0].loads.bending_point_loads = loads;
+  const ThreadPool pool(2);
+  EvaluateRigJob job;
+  job.model = &model.value().model;
+  job.poses = poses;
+  job.workspace = &workspace;
+  job.positions = positions;
+  job.normals = normals;
+  job.parallel = &pool;
+  ASSERT_TRUE(job.Run().ok());  // the workers have started and run once
+  const long before = g_allocations;
+  for (int frame = 0; frame < 10; ++frame) ASSERT_TRUE(job.Run().ok());
+  const long after = g_allocations;
+  EXPECT_EQ(after, before);
+}
+
 TEST(NoAllocation, RigidBodyStepsWithBothIntegrators) {
   for (RigidIntegrator integrator : {RigidIntegrator::kRk4, RigidIntegrator::kMomentum}) {
     RigidBodyState state;
