@@ -9,9 +9,12 @@
 //    a small bend spread over the rest), skinning matrices, then the vertices.
 //  * /subdivided: the same on human.zae refined to kSubdividedVertices welded vertices (a
 //    midpoint 1-to-4 split of every triangle, then the longest edges split once more).
+//  * /2_threads: the wire evaluation with its vertex and normal passes on a 2-thread pool
+//    (EvaluateRigJob::parallel); wall time.
 //  * BM_BindingPrecompute: BuildRigModel alone on the subdivided mesh. Target: under 200 ms
-//    for 100k vertices.
-// One thread each; meshes, rigs, models and skins are built once, outside the timed loops.
+//    for 100k vertices. BM_MakeWorkspace: MakeRigWorkspace on it (flat binding layout).
+// One thread each unless named; meshes, rigs, models and skins are built once, outside the timed
+// loops.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -385,8 +388,12 @@ void SetVertexCounters(benchmark::State& state, std::size_t vertices) {
                                                     benchmark::Counter::kIsRate);
 }
 
+// state.range(0): threads for the vertex and normal passes (1: no pool, the default).
 void BM_WireEvaluation(benchmark::State& state, const Scene& (*get)()) {
   const Scene& scene = get();
+  const auto threads = static_cast<std::size_t>(state.range(0));
+  const std::unique_ptr<ThreadPool> pool =
+      threads > 1 ? std::make_unique<ThreadPool>(threads) : nullptr;
   RigWorkspace workspace = MakeRigWorkspace(scene.model);
   std::vector<Vec3> positions(scene.model.vertices.size()), normals(positions.size());
   EvaluateRigJob job;
@@ -395,6 +402,7 @@ void BM_WireEvaluation(benchmark::State& state, const Scene& (*get)()) {
   job.workspace = &workspace;
   job.positions = positions;
   job.normals = normals;
+  job.parallel = pool.get();
   for (auto _ : state) {
     const Status status = job.Run();
     if (!status) {
@@ -437,11 +445,33 @@ void BM_BindingPrecompute(benchmark::State& state, const Scene& (*get)()) {
   SetVertexCounters(state, scene.mesh.welded_positions.size());
 }
 
-BENCHMARK_CAPTURE(BM_WireEvaluation, human, &Human)->Unit(benchmark::kMicrosecond);
+// MakeRigWorkspace: the per-model (not per-frame) cost of laying the bindings out flat.
+void BM_MakeWorkspace(benchmark::State& state, const Scene& (*get)()) {
+  const Scene& scene = get();
+  for (auto _ : state) {
+    RigWorkspace workspace = MakeRigWorkspace(scene.model);
+    benchmark::DoNotOptimize(workspace.layout.pairs.data());
+  }
+  SetVertexCounters(state, scene.model.vertices.size());
+}
+
+BENCHMARK_CAPTURE(BM_WireEvaluation, human, &Human)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_LinearBlendSkinning, human, &Human)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_WireEvaluation, subdivided, &Subdivided)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_WireEvaluation, subdivided, &Subdivided)
+    ->Arg(1)
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_LinearBlendSkinning, subdivided, &Subdivided)->Unit(benchmark::kMicrosecond);
+// Two threads (the vertex and normal passes on a ThreadPool): wall time is the figure.
+BENCHMARK_CAPTURE(BM_WireEvaluation, human_2_threads, &Human)
+    ->Arg(2)
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_WireEvaluation, subdivided_2_threads, &Subdivided)
+    ->Arg(2)
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_BindingPrecompute, subdivided, &Subdivided)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_MakeWorkspace, subdivided, &Subdivided)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace wirerig
