@@ -23,10 +23,21 @@ std::string SizeMismatch(const std::string& field, std::size_t expected, std::si
   return s;
 }
 
+// Component by component with std::isfinite: Eigen's allFinite computes x - x, which raises
+// FE_INVALID on an infinity.
+template <typename V>
+bool AllFinite(const V& v) {
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i])) return false;
+  }
+  return true;
+}
+bool AllFinite(const Quat& q) { return AllFinite(q.coeffs()); }
+
 template <typename V>
 Message CheckFinite(const std::vector<V>& values, const std::string& field) {
   for (std::size_t i = 0; i < values.size(); ++i) {
-    if (!values[i].allFinite()) return Indexed(field, i).append(": not finite");
+    if (!AllFinite(values[i])) return Indexed(field, i).append(": not finite");
   }
   return std::nullopt;
 }
@@ -59,7 +70,7 @@ Message CheckMesh(const Mesh& mesh) {
     }
   }
   for (std::size_t m = 0; m < mesh.materials.size(); ++m) {
-    if (!mesh.materials[m].base_color.allFinite()) {
+    if (!AllFinite(mesh.materials[m].base_color)) {
       return Indexed("mesh.materials", m).append(".base_color: not finite");
     }
   }
@@ -78,8 +89,12 @@ Message CheckKeys(const Mesh& mesh, const BakedAnimation& bake) {
   }
   if (bake.times[0] < 0.0) return "bake.times[0]: negative";
   if (bake.vertex_count != v) {
-    return "bake.vertex_count: " + std::to_string(bake.vertex_count) + " but the mesh has " +
-           std::to_string(v) + " render vertices";
+    std::string message = "bake.vertex_count: ";
+    message.append(std::to_string(bake.vertex_count))
+        .append(" but the mesh has ")
+        .append(std::to_string(v))
+        .append(" render vertices");
+    return message;
   }
   if (bake.positions.size() != k * v)
     return SizeMismatch("bake.positions", k * v, bake.positions.size());
@@ -109,12 +124,12 @@ Message CheckSpines(const BakedAnimation& bake) {
     if (Message m = CheckFinite(spine.rest_points, field + ".rest_points")) return m;
     if (Message m = CheckFinite(spine.points, field + ".points")) return m;
     for (std::size_t j = 0; j < s; ++j) {
-      if (!spine.rest_rotations[j].coeffs().allFinite() || spine.rest_rotations[j].norm() < 1e-6) {
+      if (!AllFinite(spine.rest_rotations[j]) || spine.rest_rotations[j].norm() < 1e-6) {
         return Indexed(field + ".rest_rotations", j).append(": not a finite rotation");
       }
     }
     for (std::size_t j = 0; j < k * s; ++j) {
-      if (!spine.rotations[j].coeffs().allFinite() || spine.rotations[j].norm() < 1e-6) {
+      if (!AllFinite(spine.rotations[j]) || spine.rotations[j].norm() < 1e-6) {
         return Indexed(field + ".rotations", j).append(": not a finite rotation");
       }
     }
@@ -142,7 +157,7 @@ Message CheckSkinWeights(const BakedAnimation& bake) {
   }
   for (std::size_t i = 0; i < v; ++i) {
     const Vec4f& w = bake.skin_weights[i];
-    if (!w.allFinite() || (w.array() < 0.0f).any()) {
+    if (!AllFinite(w) || (w.array() < 0.0f).any()) {
       return Indexed("bake.skin_weights", i).append(": negative or not finite");
     }
     if (!(w.sum() > 0.0f)) return Indexed("bake.skin_weights", i).append(": all zero");

@@ -1,0 +1,719 @@
+// ExportGltf on an analytic motion: a capped cylinder (r = 0.1 m, h = 1 m, rings every 1/8 m)
+// bending in the XY plane along circular arcs of growing curvature (the top turns by up to 90
+// degrees), every cross-section moving rigidly with the arc's frame at its height. The spines
+// and skin weights are built here from the same arc (two spines, the second hanging from the
+// first's last joint), so these tests do not depend on the baking code.
+//
+// Every written file is read back with tinygltf and with Assimp, positions are reconstructed from
+// the file alone (morph: base + sum of weighted targets; skin: the glTF skinning formula with the
+// file's joints, weights, inverse bind matrices and sampled animation), and the Khronos
+// validator (scripts/validate_gltf.mjs through node) must report no errors.
+#include "wirerig/anim/gltf_export.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <assimp/scene.h>
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+#include <assimp/Importer.hpp>
+
+#include "wirerig/rig/procedural_mesh.h"
+
+namespace wirerig {
+namespace {
+
+namespace fs = std::filesystem;
+using Mat4d = Eigen::Matrix4d;
+
+constexpr double kRadius = 0.1;
+constexpr double kHeight = 1.0;
+constexpr int kRadial = 16;
+constexpr int kRings = 8;  // height segments: rings at y = j / 8
+
+// ---------------------------------------------------------------------------------------------
+// The analytic bend: at curvature kappa the axis point at height y moves to c(y) and the
+// cross-section turns about +Z by -kappa y (the axis leans towards +X).
+
+Quat BendRotation(double kappa, double y) {
+  return Quat(Eigen::AngleAxisd(-kappa * y, Vec3::UnitZ()));
+}
+
+Vec3 BendCentre(double kappa, double y) {
+  const double theta = kappa * y;
+  if (kappa == 0.0) return {0.0, y, 0.0};
+  return {(1.0 - std::cos(theta)) / kappa, std::sin(theta) / kappa, 0.0};
+}
+
+Vec3 BendPoint(double kappa, const Vec3& rest) {
+  const Vec3 offset(rest.x(), 0.0, rest.z());
+  return BendCentre(kappa, rest.y()) + BendRotation(kappa, rest.y()) * offset;
+}
+
+// Spine frame at rest: columns (normal, binormal, tangent) = (+X, -Z, +Y).
+Quat RestFrame() {
+  Mat3 m;
+  m.col(0) = Vec3::UnitX();
+  m.col(1) = -Vec3::UnitZ();
+  m.col(2) = Vec3::UnitY();
+  return Quat(m);
+}
+
+struct BendCase {
+  int keys = 6;
+  int samples_per_spine = 3;  // 3: joints every 1/4 m (rings between joints); 5: every 1/8 m
+};
+
+// The mesh (with cylindrical UVs and one material) and its bake.
+struct Scene {
+  Mesh mesh;
+  BakedAnimation bake;
+  double diagonal = 0.0;
+};
+
+// Joint numbering: spine 0 covers y in [0, h/2], spine 1 y in [h/2, h], n samples each.
+double JointCoordinate(double y, int n) {
+  return y / (kHeight / 2.0) * static_cast<double>(n - 1);  // on spine 0's scale, may pass n - 1
+}
+
+void SkinVertex(double y, int n, std::array<std::uint32_t, 4>* joints, Vec4f* weights) {
+  const auto last = static_cast<double>(n - 1);
+  double u = JointCoordinate(y, n);
+  std::uint32_t offset = 0;
+  if (u > last) {  // the upper spine
+    u -= last;
+    offset = static_cast<std::uint32_t>(n);
+  }
+  const double lower = std::min(std::floor(u), last - 1.0);
+  const double t = u - lower;
+  *joints = {offset + static_cast<std::uint32_t>(lower),
+             offset + static_cast<std::uint32_t>(lower) + 1, 0, 0};
+  *weights = Vec4f(static_cast<float>(1.0 - t), static_cast<float>(t), 0.0f, 0.0f);
+}
+
+Scene MakeScene(const BendCase& c) {
+  Scene scene;
+  Mesh& mesh = scene.mesh;
+  mesh = MakeCylinder(kRadius, kHeight, kRadial, kRings);
+  for (const Vec3& p : mesh.positions) {
+    const double angle = std::atan2(-p.z(), p.x());
+    mesh.uvs.emplace_back(0.5 + angle / (2.0 * std::numbers::pi), 1.0 - p.y() / kHeight);
+  }
+  mesh.materials.push_back(MeshMaterial{"skin", Vec4(0.8, 0.4, 0.3, 1.0), "textures/logo.png"});
+  mesh.parts[0].material = 0;
+  scene.diagonal = ComputeBounds(mesh).Diagonal();
+
+  BakedAnimation& bake = scene.bake;
+  bake.name = "bend";
+  bake.vertex_count = mesh.positions.size();
+  const double max_kappa = std::numbers::pi / 2.0 / kHeight;
+  for (int k = 0; k < c.keys; ++k) {
+    const double kappa = max_kappa * k / (c.keys - 1);
+    bake.times.push_back(k / 30.0);
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+      bake.positions.push_back(BendPoint(kappa, mesh.positions[v]).cast<float>());
+      bake.normals.push_back(
+          (BendRotation(kappa, mesh.positions[v].y()) * mesh.normals[v]).cast<float>());
+    }
+  }
+  const int n = c.samples_per_spine;
+  for (int i = 0; i < 2; ++i) {
+    BakedSpine spine;
+    spine.name = i == 0 ? "lower" : "upper";
+    spine.parent = i - 1;
+    spine.parent_joint = i == 0 ? 0 : n - 1;
+    std::vector<double> ys;
+    for (int s = 0; s < n; ++s)
+      ys.push_back(kHeight / 2.0 * (i + static_cast<double>(s) / (n - 1)));
+    for (double y : ys) {
+      spine.rest_points.push_back(BendCentre(0.0, y));
+      spine.rest_rotations.push_back(RestFrame());
+    }
+    for (int k = 0; k < c.keys; ++k) {
+      const double kappa = max_kappa * k / (c.keys - 1);
+      for (double y : ys) {
+        spine.points.push_back(BendCentre(kappa, y));
+        spine.rotations.push_back(BendRotation(kappa, y) * RestFrame());
+      }
+    }
+    bake.spines.push_back(std::move(spine));
+  }
+  for (const Vec3& p : mesh.positions) {
+    bake.skin_joints.emplace_back();
+    bake.skin_weights.emplace_back();
+    SkinVertex(p.y(), n, &bake.skin_joints.back(), &bake.skin_weights.back());
+  }
+  return scene;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Files and tools.
+
+// A fresh folder per test, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = "wirerig_gltf_";
+    name.append(info->test_suite_name()).append("_").append(info->name());
+    std::replace(name.begin(), name.end(), '/', '_');
+    path_ = fs::temp_directory_path() / name.append("_").append(std::to_string(::getpid()));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+std::size_t FileCount(const fs::path& dir) {
+  return static_cast<std::size_t>(
+      std::distance(fs::recursive_directory_iterator(dir), fs::recursive_directory_iterator()));
+}
+
+// Copies a real PNG (256 x 256, no colour-space chunks) to <dir>/src/textures/logo.png, the
+// texture_dir being <dir>/src.
+fs::path InstallTexture(const fs::path& dir) {
+  const fs::path png =
+      fs::path(WIRERIG_ASSET_DIR) / "assimp" / "glTF2" / "textureTransform" / "UV.png";
+  EXPECT_TRUE(fs::exists(png)) << png << " missing: run scripts/setup.sh";
+  fs::create_directories(dir / "src" / "textures");
+  fs::copy_file(png, dir / "src" / "textures" / "logo.png");
+  return dir / "src";
+}
+
+struct Validation {
+  int exit_code = -1;
+  std::string output;
+};
+
+// Runs scripts/validate_gltf.mjs on `file`. Fails the test (never skips) when node is missing.
+Validation Validate(const fs::path& file) {
+  Validation result;
+  if (std::system("node --version > /dev/null 2>&1") != 0) {
+    ADD_FAILURE() << "node is not installed: run scripts/setup.sh (the validator test cannot skip)";
+    return result;
+  }
+  std::string command = "node '";
+  command.append(WIRERIG_SOURCE_DIR)
+      .append("/scripts/validate_gltf.mjs' '")
+      .append(file.string())
+      .append("' 2>&1");
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) {
+    ADD_FAILURE() << "cannot run " << command;
+    return result;
+  }
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) result.output.append(buffer);
+  const int status = ::pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+tinygltf::Model LoadWithTinygltf(const fs::path& file) {
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string error;
+  std::string warning;
+  const bool ok = file.extension() == ".glb"
+                      ? loader.LoadBinaryFromFile(&model, &error, &warning, file.string())
+                      : loader.LoadASCIIFromFile(&model, &error, &warning, file.string());
+  EXPECT_TRUE(ok) << file << ": " << error;
+  EXPECT_EQ(warning, "") << file;
+  return model;
+}
+
+// The values of a float accessor, tightly packed (count x components).
+std::vector<float> ReadFloats(const tinygltf::Model& model, int index) {
+  const tinygltf::Accessor& accessor = model.accessors.at(static_cast<std::size_t>(index));
+  EXPECT_EQ(accessor.componentType, TINYGLTF_COMPONENT_TYPE_FLOAT);
+  EXPECT_FALSE(accessor.sparse.isSparse);
+  const tinygltf::BufferView& view =
+      model.bufferViews.at(static_cast<std::size_t>(accessor.bufferView));
+  const std::vector<unsigned char>& data =
+      model.buffers.at(static_cast<std::size_t>(view.buffer)).data;
+  const auto components = static_cast<std::size_t>(
+      tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type)));
+  const std::size_t stride = view.byteStride != 0 ? view.byteStride : components * sizeof(float);
+  std::vector<float> values(accessor.count * components);
+  for (std::size_t i = 0; i < accessor.count; ++i) {
+    std::memcpy(&values[i * components], &data[view.byteOffset + accessor.byteOffset + i * stride],
+                components * sizeof(float));
+  }
+  return values;
+}
+
+// The values of an unsigned-integer accessor (byte, short or int), widened.
+std::vector<std::uint32_t> ReadUints(const tinygltf::Model& model, int index) {
+  const tinygltf::Accessor& accessor = model.accessors.at(static_cast<std::size_t>(index));
+  const tinygltf::BufferView& view =
+      model.bufferViews.at(static_cast<std::size_t>(accessor.bufferView));
+  const std::vector<unsigned char>& data =
+      model.buffers.at(static_cast<std::size_t>(view.buffer)).data;
+  const auto components = static_cast<std::size_t>(
+      tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type)));
+  const auto size = static_cast<std::size_t>(
+      tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(accessor.componentType)));
+  const std::size_t stride = view.byteStride != 0 ? view.byteStride : components * size;
+  std::vector<std::uint32_t> values;
+  for (std::size_t i = 0; i < accessor.count; ++i) {
+    for (std::size_t c = 0; c < components; ++c) {
+      const unsigned char* p = &data[view.byteOffset + accessor.byteOffset + i * stride + c * size];
+      std::uint32_t value = 0;
+      if (size == 1) value = *p;
+      if (size == 2) value = static_cast<std::uint32_t>(p[0] | (p[1] << 8));
+      if (size == 4) std::memcpy(&value, p, 4);
+      values.push_back(value);
+    }
+  }
+  return values;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reconstruction from a loaded file, independent of the exporter's code.
+
+// One animation sampler sampled at time t (LINEAR: lerp, slerp for rotations).
+std::vector<double> Sample(const tinygltf::Model& model, const tinygltf::AnimationSampler& sampler,
+                           double t, bool rotation) {
+  EXPECT_EQ(sampler.interpolation, "LINEAR");
+  const std::vector<float> input = ReadFloats(model, sampler.input);
+  const std::vector<float> output = ReadFloats(model, sampler.output);
+  const std::size_t width = output.size() / input.size();
+  std::size_t i = 0;
+  while (i + 1 < input.size() && static_cast<double>(input[i + 1]) <= t) ++i;
+  const std::size_t j = std::min(i + 1, input.size() - 1);
+  const double u = j == i ? 0.0 : (t - input[i]) / (static_cast<double>(input[j]) - input[i]);
+  std::vector<double> value(width);
+  if (rotation) {
+    const Eigen::Quaterniond a(output[i * 4 + 3], output[i * 4], output[i * 4 + 1],
+                               output[i * 4 + 2]);
+    const Eigen::Quaterniond b(output[j * 4 + 3], output[j * 4], output[j * 4 + 1],
+                               output[j * 4 + 2]);
+    const Eigen::Quaterniond q = a.slerp(u, b);
+    return {q.x(), q.y(), q.z(), q.w()};
+  }
+  for (std::size_t c = 0; c < width; ++c) {
+    value[c] = (1.0 - u) * output[i * width + c] + u * output[j * width + c];
+  }
+  return value;
+}
+
+// Local TRS of every node at time t: the node's own values, overridden by animated channels.
+struct Pose {
+  std::vector<Vec3> translation;
+  std::vector<Quat> rotation;
+  std::vector<double> weights;  // of the mesh node
+};
+
+Pose SamplePose(const tinygltf::Model& model, double t, int mesh_node) {
+  Pose pose;
+  for (const tinygltf::Node& node : model.nodes) {
+    EXPECT_TRUE(node.matrix.empty());
+    EXPECT_TRUE(node.scale.empty());
+    pose.translation.push_back(
+        node.translation.empty()
+            ? Vec3::Zero()
+            : Vec3(node.translation[0], node.translation[1], node.translation[2]));
+    pose.rotation.push_back(node.rotation.empty() ? Quat::Identity()
+                                                  : Quat(node.rotation[3], node.rotation[0],
+                                                         node.rotation[1], node.rotation[2]));
+  }
+  const tinygltf::Mesh& mesh = model.meshes.at(
+      static_cast<std::size_t>(model.nodes[static_cast<std::size_t>(mesh_node)].mesh));
+  pose.weights = mesh.weights;
+  EXPECT_EQ(model.animations.size(), 1u);
+  for (const tinygltf::AnimationChannel& channel : model.animations.at(0).channels) {
+    const tinygltf::AnimationSampler& sampler =
+        model.animations[0].samplers.at(static_cast<std::size_t>(channel.sampler));
+    const auto node = static_cast<std::size_t>(channel.target_node);
+    if (channel.target_path == "translation") {
+      const std::vector<double> v = Sample(model, sampler, t, false);
+      pose.translation[node] = Vec3(v[0], v[1], v[2]);
+    } else if (channel.target_path == "rotation") {
+      const std::vector<double> v = Sample(model, sampler, t, true);
+      pose.rotation[node] = Quat(v[3], v[0], v[1], v[2]);
+    } else if (channel.target_path == "weights") {
+      EXPECT_EQ(static_cast<int>(node), mesh_node);
+      pose.weights = Sample(model, sampler, t, false);
+    } else {
+      ADD_FAILURE() << "unexpected channel path " << channel.target_path;
+    }
+  }
+  return pose;
+}
+
+std::vector<Mat4d> NodeGlobals(const tinygltf::Model& model, const Pose& pose) {
+  std::vector<int> parent(model.nodes.size(), -1);
+  for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+    for (int child : model.nodes[n].children)
+      parent.at(static_cast<std::size_t>(child)) = static_cast<int>(n);
+  }
+  std::vector<Mat4d> global(model.nodes.size());
+  for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+    Mat4d m = Mat4d::Identity();
+    for (int i = static_cast<int>(n); i >= 0; i = parent[static_cast<std::size_t>(i)]) {
+      Mat4d local = Mat4d::Identity();
+      local.topLeftCorner<3, 3>() =
+          pose.rotation[static_cast<std::size_t>(i)].normalized().toRotationMatrix();
+      local.topRightCorner<3, 1>() = pose.translation[static_cast<std::size_t>(i)];
+      m = local * m;
+    }
+    global[n] = m;
+  }
+  return global;
+}
+
+// Positions of the scene's mesh at time t, as a glTF viewer computes them.
+std::vector<Vec3> Reconstruct(const tinygltf::Model& model, double t) {
+  const int mesh_node = 0;
+  const tinygltf::Node& node = model.nodes.at(mesh_node);
+  const tinygltf::Primitive& primitive =
+      model.meshes.at(static_cast<std::size_t>(node.mesh)).primitives.at(0);
+  const Pose pose = SamplePose(model, t, mesh_node);
+  const std::vector<float> base = ReadFloats(model, primitive.attributes.at("POSITION"));
+  std::vector<Vec3> positions(base.size() / 3);
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    positions[v] = Vec3(base[v * 3], base[v * 3 + 1], base[v * 3 + 2]);
+  }
+  EXPECT_EQ(pose.weights.size(), primitive.targets.size());
+  for (std::size_t k = 0; k < primitive.targets.size(); ++k) {
+    if (pose.weights[k] == 0.0) continue;
+    const std::vector<float> delta = ReadFloats(model, primitive.targets[k].at("POSITION"));
+    for (std::size_t v = 0; v < positions.size(); ++v) {
+      positions[v] += pose.weights[k] * Vec3(delta[v * 3], delta[v * 3 + 1], delta[v * 3 + 2]);
+    }
+  }
+  const std::vector<Mat4d> global = NodeGlobals(model, pose);
+  if (node.skin < 0) {
+    for (Vec3& p : positions) p = (global[mesh_node] * p.homogeneous()).head<3>();
+    return positions;
+  }
+  const tinygltf::Skin& skin = model.skins.at(static_cast<std::size_t>(node.skin));
+  const std::vector<float> ibm = ReadFloats(model, skin.inverseBindMatrices);
+  std::vector<Mat4d> joint(skin.joints.size());
+  for (std::size_t j = 0; j < joint.size(); ++j) {
+    joint[j] = global[static_cast<std::size_t>(skin.joints[j])] *
+               Eigen::Map<const Eigen::Matrix4f>(&ibm[j * 16]).cast<double>();
+  }
+  const std::vector<std::uint32_t> joints = ReadUints(model, primitive.attributes.at("JOINTS_0"));
+  const std::vector<float> weights = ReadFloats(model, primitive.attributes.at("WEIGHTS_0"));
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    Mat4d m = Mat4d::Zero();
+    for (std::size_t c = 0; c < 4; ++c)
+      m += static_cast<double>(weights[v * 4 + c]) * joint.at(joints[v * 4 + c]);
+    positions[v] = (m * positions[v].homogeneous()).head<3>();
+  }
+  return positions;
+}
+
+struct Errors {
+  double max = 0.0;
+  double rms = 0.0;
+};
+
+// Distances between the file's reconstruction and the bake at every key.
+Errors ReconstructionErrors(const tinygltf::Model& model, const BakedAnimation& bake) {
+  Errors errors;
+  double sum = 0.0;
+  for (std::size_t k = 0; k < bake.KeyCount(); ++k) {
+    const std::vector<Vec3> positions = Reconstruct(model, static_cast<float>(bake.times[k]));
+    EXPECT_EQ(positions.size(), bake.vertex_count);
+    for (std::size_t v = 0; v < positions.size(); ++v) {
+      const double e =
+          (positions[v] - bake.positions[k * bake.vertex_count + v].cast<double>()).norm();
+      errors.max = std::max(errors.max, e);
+      sum += e * e;
+    }
+  }
+  errors.rms = std::sqrt(sum / static_cast<double>(bake.KeyCount() * bake.vertex_count));
+  return errors;
+}
+
+// Assimp reads the file: one mesh with every vertex, the animation, and per mode the morph
+// targets (checked against the bake: Assimp stores them as absolute positions) or the bones.
+void CheckWithAssimp(const fs::path& file, const Scene& scene, GltfAnimationMode mode,
+                     bool residuals) {
+  SCOPED_TRACE(file.string());
+  Assimp::Importer importer;
+  const aiScene* imported = importer.ReadFile(file.string(), 0);
+  ASSERT_NE(imported, nullptr) << importer.GetErrorString();
+  ASSERT_EQ(imported->mNumMeshes, 1u);
+  const aiMesh* mesh = imported->mMeshes[0];
+  ASSERT_EQ(mesh->mNumVertices, scene.bake.vertex_count);
+  EXPECT_EQ(mesh->mNumFaces, scene.mesh.triangles.size());
+  EXPECT_TRUE(mesh->HasTextureCoords(0));
+  ASSERT_EQ(imported->mNumAnimations, 1u);
+  EXPECT_GE(imported->mNumMaterials, 1u);  // Assimp may add its default material
+  const std::size_t keys = scene.bake.KeyCount();
+  if (mode == GltfAnimationMode::kSkin) {
+    EXPECT_GT(mesh->mNumBones, 0u);
+    EXPECT_GT(imported->mAnimations[0]->mNumChannels, 0u);
+  }
+  if (mode == GltfAnimationMode::kSkin && !residuals) {
+    EXPECT_EQ(mesh->mNumAnimMeshes, 0u);
+    return;
+  }
+  ASSERT_EQ(mesh->mNumAnimMeshes, keys);
+  if (mode != GltfAnimationMode::kMorph) return;
+  double max_error = 0.0;
+  for (std::size_t k = 0; k < keys; ++k) {
+    const aiAnimMesh* target = mesh->mAnimMeshes[k];
+    for (std::size_t v = 0; v < scene.bake.vertex_count; ++v) {
+      const aiVector3D& p = target->mVertices[v];
+      max_error =
+          std::max(max_error, (Vec3(p.x, p.y, p.z) -
+                               scene.bake.positions[k * scene.bake.vertex_count + v].cast<double>())
+                                  .norm());
+    }
+  }
+  EXPECT_LE(max_error, 1e-4 * scene.diagonal);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Round trips: every format and mode.
+
+struct RoundTrip {
+  const char* name;
+  const char* extension;
+  GltfAnimationMode mode;
+  bool residuals;
+};
+
+class GltfExportRoundTrip : public testing::TestWithParam<RoundTrip> {};
+
+TEST_P(GltfExportRoundTrip, ReimportsValidatesAndReproducesTheBake) {
+  const RoundTrip& param = GetParam();
+  TempDir dir;
+  const Scene scene = MakeScene(BendCase{});
+  GltfExportOptions options;
+  options.mode = param.mode;
+  options.residual_morph_targets = param.residuals;
+  options.texture_dir = InstallTexture(dir.path());
+  fs::create_directories(dir.path() / "out");
+  const fs::path out = dir.path() / "out" / (std::string("bend") + param.extension);
+
+  const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
+  ASSERT_TRUE(report.ok()) << report.error();
+  const GltfExportReport& r = report.value();
+  EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+  const bool binary = std::string(param.extension) == ".glb";
+  ASSERT_EQ(r.files.size(), binary ? 1u : 2u);
+  std::uintmax_t bytes = 0;
+  for (const fs::path& f : r.files) {
+    ASSERT_TRUE(fs::exists(f)) << f;
+    bytes += fs::file_size(f);
+  }
+  EXPECT_EQ(r.bytes_written, bytes);
+  EXPECT_EQ(r.files.back(), out);
+  if (!binary) {
+    EXPECT_EQ(r.files.front(), dir.path() / "out" / "bend.bin");
+  }
+  // Only the outputs next to them: no temporary file left behind.
+  EXPECT_EQ(FileCount(dir.path() / "out"), r.files.size());
+  EXPECT_EQ(r.vertex_count, scene.mesh.positions.size());
+  EXPECT_EQ(r.triangle_count, scene.mesh.triangles.size());
+  EXPECT_EQ(r.key_count, scene.bake.KeyCount());
+  EXPECT_EQ(r.material_count, 1u);
+  EXPECT_EQ(r.texture_count, 1u);
+  std::printf(
+      "[ measured ] %s: %ju bytes in %zu file(s), V=%zu F=%zu K=%zu targets=%zu joints=%zu\n",
+      param.name, r.bytes_written, r.files.size(), r.vertex_count, r.triangle_count, r.key_count,
+      r.morph_target_count, r.joint_count);
+
+  const tinygltf::Model model = LoadWithTinygltf(out);
+  ASSERT_EQ(model.meshes.size(), 1u);
+  ASSERT_EQ(model.materials.size(), 1u);
+  const tinygltf::Material& material = model.materials[0];
+  EXPECT_NEAR(material.pbrMetallicRoughness.baseColorFactor[0], 0.8, 1e-12);
+  EXPECT_NEAR(material.pbrMetallicRoughness.baseColorFactor[1], 0.4, 1e-12);
+  ASSERT_EQ(model.images.size(), 1u);
+  EXPECT_EQ(model.images[0].uri, "../src/textures/logo.png");
+  EXPECT_GT(model.images[0].width, 0) << "tinygltf did not load the referenced texture";
+  const Errors errors = ReconstructionErrors(model, scene.bake);
+  std::printf(
+      "[ measured ] %s: reconstruction from the file: max %.3g m, rms %.3g m (diag %.3g m)\n",
+      param.name, errors.max, errors.rms, scene.diagonal);
+  if (param.mode == GltfAnimationMode::kMorph || param.residuals) {
+    EXPECT_LE(errors.max, 1e-4 * scene.diagonal);
+  }
+  if (param.mode == GltfAnimationMode::kSkin) {
+    // The report's skin error is the file's skin without residuals: recompute it independently.
+    EXPECT_EQ(r.joint_count, 6u);
+    if (!param.residuals) {
+      EXPECT_NEAR(r.skin_max_error, errors.max, 1e-6 * scene.diagonal);
+      EXPECT_NEAR(r.skin_rms_error, errors.rms, 1e-6 * scene.diagonal);
+    } else {
+      EXPECT_LE(r.residual_max_error, 1e-5 * scene.diagonal);
+    }
+    EXPECT_NEAR(r.skin_max_error_relative, r.skin_max_error / scene.diagonal, 1e-12);
+    EXPECT_NEAR(r.skin_rms_error_relative, r.skin_rms_error / scene.diagonal, 1e-12);
+    EXPECT_GT(r.skin_max_error, 0.0);  // joints every 1/4 m, rings every 1/8 m: LBS is not exact
+    std::printf("[ measured ] %s: skin error max %.4g m (%.3g of diag), rms %.4g m (%.3g)\n",
+                param.name, r.skin_max_error, r.skin_max_error_relative, r.skin_rms_error,
+                r.skin_rms_error_relative);
+  }
+  CheckWithAssimp(out, scene, param.mode, param.residuals);
+
+  const Validation validation = Validate(out);
+  std::printf("%s", validation.output.c_str());
+  EXPECT_EQ(validation.exit_code, 0) << validation.output;
+  EXPECT_NE(validation.output.find(": 0 errors, 0 warnings"), std::string::npos)
+      << validation.output;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    GltfExport, GltfExportRoundTrip,
+    testing::Values(RoundTrip{"morph_glb", ".glb", GltfAnimationMode::kMorph, false},
+                    RoundTrip{"morph_gltf", ".gltf", GltfAnimationMode::kMorph, false},
+                    RoundTrip{"skin_glb", ".glb", GltfAnimationMode::kSkin, false},
+                    RoundTrip{"skin_gltf", ".gltf", GltfAnimationMode::kSkin, false},
+                    RoundTrip{"skin_residual_glb", ".glb", GltfAnimationMode::kSkin, true},
+                    RoundTrip{"skin_residual_gltf", ".gltf", GltfAnimationMode::kSkin, true}),
+    [](const testing::TestParamInfo<RoundTrip>& p) { return std::string(p.param.name); });
+
+// ---------------------------------------------------------------------------------------------
+// Single behaviours.
+
+TEST(GltfExport, SkinIsExactWhenEveryRingHasAJoint) {
+  TempDir dir;
+  BendCase c;
+  c.samples_per_spine = 5;  // joints every 1/8 m, on every ring
+  const Scene scene = MakeScene(c);
+  GltfExportOptions options;
+  options.mode = GltfAnimationMode::kSkin;
+  const fs::path out = dir.path() / "exact.glb";
+  const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
+  ASSERT_TRUE(report.ok()) << report.error();
+  EXPECT_LE(report.value().skin_max_error, 1e-5 * scene.diagonal);
+  EXPECT_EQ(report.value().joint_count, 10u);
+  const Errors errors = ReconstructionErrors(LoadWithTinygltf(out), scene.bake);
+  EXPECT_LE(errors.max, 1e-4 * scene.diagonal);
+}
+
+TEST(GltfExport, ReportsMissingTexturesAndExportsWithoutThem) {
+  TempDir dir;
+  const Scene scene = MakeScene(BendCase{});
+  GltfExportOptions options;
+  options.texture_dir = dir.path() / "nowhere";
+  const fs::path out = dir.path() / "untextured.glb";
+  const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
+  ASSERT_TRUE(report.ok()) << report.error();
+  ASSERT_EQ(report.value().warnings.size(), 1u);
+  EXPECT_NE(report.value().warnings[0].find("textures/logo.png' left out: file not found"),
+            std::string::npos)
+      << report.value().warnings[0];
+  EXPECT_EQ(report.value().texture_count, 0u);
+  const tinygltf::Model model = LoadWithTinygltf(out);
+  EXPECT_TRUE(model.images.empty());
+  EXPECT_EQ(model.materials.size(), 1u);
+}
+
+TEST(GltfExport, UsesTheNodeNameAndKeepsAnExistingFileOnError) {
+  TempDir dir;
+  Scene scene = MakeScene(BendCase{});
+  GltfExportOptions options;
+  options.node_name = "tentacle";
+  const fs::path out = dir.path() / "named.gltf";
+  ASSERT_TRUE(ExportGltf(scene.mesh, scene.bake, options, out).ok());
+  const tinygltf::Model model = LoadWithTinygltf(out);
+  EXPECT_EQ(model.nodes.at(0).name, "tentacle");
+  const auto size = fs::file_size(out);
+  scene.bake.positions[3].x() = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_FALSE(ExportGltf(scene.mesh, scene.bake, options, out).ok());
+  EXPECT_EQ(fs::file_size(out), size);
+  EXPECT_EQ(FileCount(dir.path()), 2u);
+}
+
+// Every refusal names its field and writes nothing.
+struct BadInput {
+  const char* name;
+  const char* expected;  // in the message
+  void (*spoil)(Scene&, GltfExportOptions&, fs::path&);
+};
+
+class GltfExportRefuses : public testing::TestWithParam<BadInput> {};
+
+TEST_P(GltfExportRefuses, NamesTheFieldAndWritesNothing) {
+  TempDir dir;
+  Scene scene = MakeScene(BendCase{});
+  GltfExportOptions options;
+  options.mode = GltfAnimationMode::kSkin;
+  fs::path out = dir.path() / "bad.gltf";
+  GetParam().spoil(scene, options, out);
+  const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
+  ASSERT_FALSE(report.ok());
+  EXPECT_NE(report.error().find(GetParam().expected), std::string::npos) << report.error();
+  EXPECT_NE(report.error().find(out.string()), std::string::npos) << report.error();
+  EXPECT_EQ(FileCount(dir.path()), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    GltfExport, GltfExportRefuses,
+    testing::Values(
+        BadInput{"Extension", "unsupported extension '.obj'",
+                 [](Scene&, GltfExportOptions&, fs::path& out) { out.replace_extension(".obj"); }},
+        BadInput{"MissingFolder", "cannot write",
+                 [](Scene&, GltfExportOptions&, fs::path& out) {
+                   out = out.parent_path() / "missing" / "bad.glb";
+                 }},
+        BadInput{"ZeroKeys", "bake.times: no keys",
+                 [](Scene& s, GltfExportOptions&, fs::path&) {
+                   s.bake.times.clear();
+                   s.bake.positions.clear();
+                 }},
+        BadInput{"NanPosition", "bake.positions[7]: not finite",
+                 [](Scene& s, GltfExportOptions&, fs::path&) {
+                   s.bake.positions[7].y() = std::numeric_limits<float>::quiet_NaN();
+                 }},
+        BadInput{"NanMeshPosition", "mesh.positions[2]: not finite",
+                 [](Scene& s, GltfExportOptions&, fs::path&) {
+                   s.mesh.positions[2].z() = std::numeric_limits<double>::infinity();
+                 }},
+        BadInput{"PositionCount", "bake.positions: expected",
+                 [](Scene& s, GltfExportOptions&, fs::path&) { s.bake.positions.pop_back(); }},
+        BadInput{"VertexCount", "bake.vertex_count",
+                 [](Scene& s, GltfExportOptions&, fs::path&) { s.bake.vertex_count += 1; }},
+        BadInput{"NormalCount", "bake.normals: expected",
+                 [](Scene& s, GltfExportOptions&, fs::path&) { s.bake.normals.resize(5); }},
+        BadInput{
+            "TimesNotIncreasing", "bake.times[3]: not increasing",
+            [](Scene& s, GltfExportOptions&, fs::path&) { s.bake.times[3] = s.bake.times[2]; }},
+        BadInput{"SkinJointsMissing", "bake.skin_joints: expected",
+                 [](Scene& s, GltfExportOptions&, fs::path&) { s.bake.skin_joints.clear(); }},
+        BadInput{"SkinWeightsZero", "bake.skin_weights[4]: all zero",
+                 [](Scene& s, GltfExportOptions&, fs::path&) {
+                   s.bake.skin_weights[4] = Vec4f::Zero();
+                 }},
+        BadInput{"JointOutOfRange", "bake.skin_joints[9]: joint index out of range",
+                 [](Scene& s, GltfExportOptions&, fs::path&) { s.bake.skin_joints[9][0] = 6; }},
+        BadInput{"SpinesMissing", "bake.spines: empty",
+                 [](Scene& s, GltfExportOptions&, fs::path&) { s.bake.spines.clear(); }},
+        BadInput{
+            "SpineRotations", "bake.spines[1].rotations: expected",
+            [](Scene& s, GltfExportOptions&, fs::path&) { s.bake.spines[1].rotations.pop_back(); }},
+        BadInput{
+            "ParentJoint", "bake.spines[1].parent_joint",
+            [](Scene& s, GltfExportOptions&, fs::path&) { s.bake.spines[1].parent_joint = 3; }},
+        BadInput{"TriangleIndex", "mesh.triangles[0]: vertex index out of range",
+                 [](Scene& s, GltfExportOptions&, fs::path&) { s.mesh.triangles[0][1] = 100000; }}),
+    [](const testing::TestParamInfo<BadInput>& p) { return std::string(p.param.name); });
+
+}  // namespace
+}  // namespace wirerig
