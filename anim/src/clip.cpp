@@ -92,10 +92,10 @@ Track<T> Built(const RawTrack<T>& raw) {
   return raw.keys.empty() ? Track<T>{} : BuildTrack(raw).value();
 }
 PointLoadChannels<Track> Built(const PointLoadChannels<RawTrack>& c) {
-  return {Built(c.at), Built(c.magnitude), Built(c.direction)};
+  return {Built(c.at), Built(c.magnitude), Built(c.direction), c.axes};
 }
 LineLoadChannels<Track> Built(const LineLoadChannels<RawTrack>& c) {
-  return {Built(c.from), Built(c.to), Built(c.force_per_length)};
+  return {Built(c.from), Built(c.to), Built(c.force_per_length), c.axes};
 }
 AxialPointLoadChannels<Track> Built(const AxialPointLoadChannels<RawTrack>& c) {
   return {Built(c.at), Built(c.force)};

@@ -109,23 +109,38 @@ BoundaryCondition ReadBoundary(const json& value, const std::string& path) {
   return out;
 }
 
+LoadAxes ReadAxes(const JsonObject& o) {
+  if (!o.Has("axes")) return LoadAxes::kLocal;
+  const std::string axes = o.String("axes");
+  if (axes == "local") return LoadAxes::kLocal;
+  if (axes == "world") return LoadAxes::kWorld;
+  throw FieldError(o.PathOf("axes"), "must be \"local\" or \"world\"");
+}
+void WriteAxes(json& out, LoadAxes axes) {
+  if (axes == LoadAxes::kWorld) out["axes"] = "world";
+}
+
 PointLoadChannels<RawTrack> ReadPointLoad(const JsonObject& o) {
-  o.RejectUnknownKeys({"at", "magnitude", "direction"});
+  o.RejectUnknownKeys({"at", "magnitude", "direction", "axes"});
   PointLoadChannels<RawTrack> c;
+  c.axes = ReadAxes(o);
   c.at = ReadTrack<double>(o.Required("at"), o.PathOf("at"));
   c.magnitude = ReadTrack<double>(o.Required("magnitude"), o.PathOf("magnitude"));
   c.direction = ReadTrack<Vec3>(o.Required("direction"), o.PathOf("direction"));
   return c;
 }
 json ToJson(const PointLoadChannels<RawTrack>& c) {
-  return {{"at", TrackToJson(c.at)},
-          {"magnitude", TrackToJson(c.magnitude)},
-          {"direction", TrackToJson(c.direction)}};
+  json out = {{"at", TrackToJson(c.at)},
+              {"magnitude", TrackToJson(c.magnitude)},
+              {"direction", TrackToJson(c.direction)}};
+  WriteAxes(out, c.axes);
+  return out;
 }
 
 LineLoadChannels<RawTrack> ReadLineLoad(const JsonObject& o) {
-  o.RejectUnknownKeys({"from", "to", "force_per_length"});
+  o.RejectUnknownKeys({"from", "to", "force_per_length", "axes"});
   LineLoadChannels<RawTrack> c;
+  c.axes = ReadAxes(o);
   ReadOptionalTrack(o, "from", &c.from);
   ReadOptionalTrack(o, "to", &c.to);
   c.force_per_length =
@@ -134,6 +149,7 @@ LineLoadChannels<RawTrack> ReadLineLoad(const JsonObject& o) {
 }
 json ToJson(const LineLoadChannels<RawTrack>& c) {
   json out = {{"force_per_length", TrackToJson(c.force_per_length)}};
+  WriteAxes(out, c.axes);
   WriteOptionalTrack(out, "from", c.from);
   WriteOptionalTrack(out, "to", c.to);
   return out;

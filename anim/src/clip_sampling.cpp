@@ -8,29 +8,46 @@ namespace {
 
 double Clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
 
-template <typename Channels>
-std::size_t SamplePointLoads(const std::vector<Channels>& channels, double t,
-                             std::vector<PointLoad>& out) {
+// The rest frame a world-axes load at v turns into: the spine sample nearest v, or for a
+// profile wire (spine == nullptr) its own spine frame.
+struct LoadFrames {
+  const PartModel* spine = nullptr;
+  Frame profile;
+  Vec3 ToLocal(const Vec3& world, double v) const {
+    const Frame* f = &profile;
+    if (spine) {
+      const auto last = static_cast<double>(spine->spine_frames.size() - 1);
+      f = &spine->spine_frames[static_cast<std::size_t>(std::lround(v * last))];
+    }
+    return {world.dot(f->normal), world.dot(f->binormal), world.dot(f->tangent)};
+  }
+};
+
+std::size_t SamplePointLoads(const std::vector<PointLoadChannels<Track>>& channels, double t,
+                             const LoadFrames& frames, std::vector<PointLoad>& out) {
   std::size_t n = 0;
   for (const auto& c : channels) {
     const Vec3 direction = c.direction.Sample(t);
     const double length = direction.norm();
     const double magnitude = c.magnitude.Sample(t);
     if (!(length > 1e-12) || magnitude == 0.0) continue;
-    out[n++] = {Clamp01(c.at.Sample(t)), direction * (magnitude / length)};
+    const double at = Clamp01(c.at.Sample(t));
+    const Vec3 force = direction * (magnitude / length);
+    out[n++] = {at, c.axes == LoadAxes::kWorld ? frames.ToLocal(force, at) : force};
   }
   return n;
 }
 
-template <typename Channels>
-std::size_t SampleLineLoads(const std::vector<Channels>& channels, double t,
-                            std::vector<LineLoad>& out) {
+std::size_t SampleLineLoads(const std::vector<LineLoadChannels<Track>>& channels, double t,
+                            const LoadFrames& frames, std::vector<LineLoad>& out) {
   std::size_t n = 0;
   for (const auto& c : channels) {
     const double from = c.from.IsEmpty() ? 0.0 : Clamp01(c.from.Sample(t));
     const double to = c.to.IsEmpty() ? 1.0 : Clamp01(c.to.Sample(t));
     if (!(to > from)) continue;
-    out[n++] = {from, to, c.force_per_length.Sample(t)};
+    const Vec3 force = c.force_per_length.Sample(t);
+    out[n++] = {from, to,
+                c.axes == LoadAxes::kWorld ? frames.ToLocal(force, 0.5 * (from + to)) : force};
   }
   return n;
 }
@@ -54,10 +71,14 @@ Quat FromAxisAngle(const Vec3& v) {
 
 ClipSample MakeClipSample(const Clip& clip, const RigModel& model) {
   ClipSample s;
+  s.model = &model;
   const std::size_t parts = model.parts.size();
   s.poses.resize(parts);
-  s.point_loads.resize(parts + clip.profiles.size());
-  s.line_loads.resize(parts + clip.profiles.size());
+  std::size_t profile_loads = 0;
+  for (const Clip::ProfileGroup& group : clip.profiles)
+    profile_loads += group.channels.profiles.size();
+  s.point_loads.resize(parts + profile_loads);
+  s.line_loads.resize(parts + profile_loads);
   s.axial_point_loads.resize(parts);
   s.axial_line_loads.resize(parts);
   for (std::size_t p = 0; p < parts && p < clip.parts.size(); ++p) {
@@ -66,11 +87,12 @@ ClipSample MakeClipSample(const Clip& clip, const RigModel& model) {
     s.axial_point_loads[p].resize(clip.parts[p].axial_point_loads.size());
     s.axial_line_loads[p].resize(clip.parts[p].axial_line_loads.size());
   }
-  std::size_t profile_loads = 0;
-  for (std::size_t g = 0; g < clip.profiles.size(); ++g) {
-    s.point_loads[parts + g].resize(clip.profiles[g].channels.point_loads.size());
-    s.line_loads[parts + g].resize(clip.profiles[g].channels.line_loads.size());
-    profile_loads += clip.profiles[g].channels.profiles.size();
+  std::size_t entry = parts;
+  for (const Clip::ProfileGroup& group : clip.profiles) {
+    for (std::size_t k = 0; k < group.channels.profiles.size(); ++k, ++entry) {
+      s.point_loads[entry].resize(group.channels.point_loads.size());
+      s.line_loads[entry].resize(group.channels.line_loads.size());
+    }
   }
   s.profile_loads.resize(profile_loads);
   return s;
@@ -86,10 +108,11 @@ void SampleClip(const Clip& clip, double t, ClipSample* sample) {
     pose.translation = c.translation.Sample(t);
     SpineLoads& loads = pose.loads;
     loads.boundary = BoundaryAt(c.boundary, t);
+    const LoadFrames frames{&s.model->parts[p], {}};
     loads.bending_point_loads = std::span<const PointLoad>(
-        s.point_loads[p].data(), SamplePointLoads(c.point_loads, t, s.point_loads[p]));
+        s.point_loads[p].data(), SamplePointLoads(c.point_loads, t, frames, s.point_loads[p]));
     loads.bending_line_loads = std::span<const LineLoad>(
-        s.line_loads[p].data(), SampleLineLoads(c.line_loads, t, s.line_loads[p]));
+        s.line_loads[p].data(), SampleLineLoads(c.line_loads, t, frames, s.line_loads[p]));
     loads.tip_force = IsCantilever(loads.boundary) ? c.tip_force.Sample(t) : Vec3::Zero();
     loads.start_displacement = c.start_displacement.Sample(t);
     loads.end_displacement = c.end_displacement.Sample(t);
@@ -111,11 +134,17 @@ void SampleClip(const Clip& clip, double t, ClipSample* sample) {
   std::size_t next = 0;
   for (std::size_t g = 0; g < clip.profiles.size(); ++g) {
     const Clip::ProfileGroup& group = clip.profiles[g];
-    std::vector<PointLoad>& points = s.point_loads[parts + g];
-    std::vector<LineLoad>& lines = s.line_loads[parts + g];
-    const std::size_t point_count = SamplePointLoads(group.channels.point_loads, t, points);
-    const std::size_t line_count = SampleLineLoads(group.channels.line_loads, t, lines);
+    const PartModel& part = s.model->parts[group.part];
     for (std::uint32_t profile : group.channels.profiles) {
+      // A profile's world-axes loads turn into its spine frame (the nearest spine sample).
+      const auto last = static_cast<double>(part.spine_frames.size() - 1);
+      const LoadFrames frames{nullptr, part.spine_frames[static_cast<std::size_t>(
+                                           std::lround(part.profiles[profile].spine_v * last))]};
+      std::vector<PointLoad>& points = s.point_loads[parts + next];
+      std::vector<LineLoad>& lines = s.line_loads[parts + next];
+      const std::size_t point_count =
+          SamplePointLoads(group.channels.point_loads, t, frames, points);
+      const std::size_t line_count = SampleLineLoads(group.channels.line_loads, t, frames, lines);
       ProfileLoads& loads = s.profile_loads[next++];
       loads.part = group.part;
       loads.profile = profile;

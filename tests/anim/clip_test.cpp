@@ -191,6 +191,23 @@ TEST(ClipSampling, ProfileGroupsExpandToEveryProfileWhenNoneAreListed) {
   }
 }
 
+TEST(ClipSampling, WorldAxesLoadsTurnIntoTheRestFrameAtTheLoad) {
+  RawClip raw = PointLoadClip();
+  raw.parts[0].channels.point_loads[0].axes = LoadAxes::kWorld;
+  raw.parts[0].channels.point_loads[0].direction = Constant(Vec3(1, 1, 0));
+  const Clip clip = BuildClip(raw, Beam().model).value();
+  ClipSample sample = MakeClipSample(clip, Beam().model);
+  SampleClip(clip, 2.0, &sample);  // magnitude 10 along (1, 1, 0) / sqrt 2, at v = 1
+  const Frame& end = Beam().model.parts[0].spine_frames.back();
+  const Vec3 world = Vec3(1, 1, 0).normalized() * 10.0;
+  const Vec3 local = sample.poses[0].loads.bending_point_loads[0].force;
+  EXPECT_NEAR(local.x(), world.dot(end.normal), 1e-12);
+  EXPECT_NEAR(local.y(), world.dot(end.binormal), 1e-12);
+  EXPECT_NEAR(local.z(), world.dot(end.tangent), 1e-12);
+  // The beam stands on +Y: the world x part is lateral, the world y part along the tangent.
+  EXPECT_NEAR(local.head<2>().norm(), 10.0 / std::sqrt(2.0), 1e-9);
+}
+
 TEST(ClipSampling, PoseIsTheAxisAngleRotationAndTranslation) {
   RawClip raw = PointLoadClip();
   raw.parts[0].channels.rotation = Constant(Vec3(0, 0, 0.5));

@@ -41,19 +41,28 @@ enum class LoopMode : int {
 std::string_view ToString(LoopMode mode);
 bool ParseLoopMode(std::string_view name, LoopMode* out);
 
+// The axes a load's direction is given in. kLocal: the wire's local axes (x normal, y
+// binormal, z tangent). kWorld: world axes of the rest pose, turned into the local axes at the
+// load (a line load: at the middle of its stretch) when sampled; the part's pose then carries
+// the load along, as it does local loads. The tangential part of a world direction is dropped
+// from bending loads (it is an axial load).
+enum class LoadAxes : int { kLocal = 0, kWorld = 1 };
+
 // Channel groups, shared by the raw form (TrackT = RawTrack) and the built form (Track).
 template <template <typename> class TrackT>
 struct PointLoadChannels {
   TrackT<double> at;         // v in [0, 1] along the wire (clamped when sampled)
   TrackT<double> magnitude;  // N
-  TrackT<Vec3> direction;    // local axes; normalized when sampled (zero: no force)
+  TrackT<Vec3> direction;    // normalized when sampled (zero: no force)
+  LoadAxes axes = LoadAxes::kLocal;
 };
 
 template <template <typename> class TrackT>
 struct LineLoadChannels {
   TrackT<double> from;            // v in [0, 1]; default 0
   TrackT<double> to;              // v in [0, 1]; default 1 (a stretch of zero width is skipped)
-  TrackT<Vec3> force_per_length;  // N/m, local axes
+  TrackT<Vec3> force_per_length;  // N/m
+  LoadAxes axes = LoadAxes::kLocal;
 };
 
 template <template <typename> class TrackT>

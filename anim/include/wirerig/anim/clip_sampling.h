@@ -12,7 +12,8 @@
 namespace wirerig {
 
 struct ClipSample {
-  std::vector<PartPose> poses;  // one per part, for EvaluateRigJob
+  const RigModel* model = nullptr;  // the model the buffers were made for
+  std::vector<PartPose> poses;      // one per part, for EvaluateRigJob
   std::vector<ProfileLoads> profile_loads;
   // Backing storage for the spans above.
   std::vector<std::vector<PointLoad>> point_loads;  // per part, then per profile group
@@ -21,12 +22,13 @@ struct ClipSample {
   std::vector<std::vector<AxialLineLoad>> axial_line_loads;
 };
 
-// Buffers sized for the clip on its model.
+// Buffers sized for the clip on its model (which must outlive the sample).
 ClipSample MakeClipSample(const Clip& clip, const RigModel& model);
 
 // Fills `sample` with the clip's inputs at clip-local time t (s; see Clip::LocalTime):
 //  * point loads: force = magnitude * direction / |direction| at v = clamp(at, 0, 1); a zero
-//    direction or magnitude gives no force;
+//    direction or magnitude gives no force; world directions turn into the rest frame of the
+//    spine sample (or profile) nearest the load;
 //  * line loads: the stretch [clamp(from), clamp(to)]; a stretch of zero width is skipped;
 //  * the boundary family of the last boundary key at or before t (cantilever_free if none);
 //    a tip force only reaches cantilevers;

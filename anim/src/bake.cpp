@@ -1,0 +1,94 @@
+#include "wirerig/anim/bake.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace wirerig {
+namespace {
+
+// The rotation whose columns are the frame's (normal, binormal, tangent).
+Quat FrameRotation(const Frame& f) {
+  Mat3 m;
+  m.col(0) = f.normal;
+  m.col(1) = f.binormal;
+  m.col(2) = f.tangent;
+  return Quat(m).normalized();
+}
+
+void AddSpines(const RigModel& model, std::size_t keys, BakedAnimation& bake) {
+  for (const PartModel& part : model.parts) {
+    BakedSpine spine;
+    spine.name = part.name;
+    spine.parent = part.parent;
+    if (part.parent >= 0) {
+      const std::size_t n = model.parts[part.parent].spine_points.size();
+      spine.parent_joint =
+          static_cast<int>(std::lround(part.attachment * static_cast<double>(n - 1)));
+    }
+    spine.rest_points = part.spine_points;
+    for (const Frame& f : part.spine_frames) spine.rest_rotations.push_back(FrameRotation(f));
+    spine.points.reserve(keys * part.spine_points.size());
+    spine.rotations.reserve(keys * part.spine_points.size());
+    bake.spines.push_back(std::move(spine));
+  }
+}
+
+}  // namespace
+
+std::vector<double> BakeKeyTimes(double duration, double fps) {
+  std::vector<double> times;
+  const auto whole = static_cast<std::size_t>(std::floor(duration * fps + 1e-9));
+  for (std::size_t k = 0; k <= whole; ++k) times.push_back(static_cast<double>(k) / fps);
+  // The clip's end, unless a frame already sits on it (or a hair before it).
+  if (duration - times.back() > 1e-6 / fps) times.push_back(duration);
+  return times;
+}
+
+Result<BakedAnimation> BakeClip(const Mesh& mesh, const RigModel& model, const Clip& clip,
+                                const PlaybackOptions& playback, const BakeOptions& options) {
+  if (!(std::isfinite(options.fps) && options.fps >= 1.0 && options.fps <= 1000.0))
+    return Error{"fps: must be in [1, 1000] keys per second"};
+  if (mesh.weld_map.size() != mesh.positions.size() ||
+      mesh.welded_positions.size() != model.vertices.size())
+    return Error{"mesh: is not the mesh the rig model was built on (vertex counts differ)"};
+  Result<Playback> made = Playback::Make(model, clip, playback);
+  if (!made) return Error{made.error()};
+  Playback& player = made.value();
+
+  BakedAnimation bake;
+  bake.name = clip.name;
+  bake.fps = options.fps;
+  bake.times = BakeKeyTimes(clip.duration, options.fps);
+  const std::size_t keys = bake.times.size(), render = mesh.positions.size();
+  bake.vertex_count = render;
+  bake.positions.resize(keys * render);
+  if (options.normals) bake.normals.resize(keys * render);
+  AddSpines(model, keys, bake);
+
+  std::vector<Vec3> positions(model.vertices.size()), normals(model.vertices.size());
+  for (std::size_t k = 0; k < keys; ++k) {
+    const double t = bake.times[k];
+    // Clip-local time of the key: a baked clip covers [0, duration] once, whatever its loop.
+    if (Status s = player.Evaluate(std::min(t, clip.duration - 1e-12 * clip.duration), positions,
+                                   options.normals ? std::span<Vec3>(normals) : std::span<Vec3>());
+        !s) {
+      return Error{"key at t = " + std::to_string(t) + " s: " + ToString(s)};
+    }
+    for (std::size_t v = 0; v < render; ++v) {
+      const std::uint32_t w = mesh.weld_map[v];
+      bake.positions[k * render + v] = positions[w].cast<float>();
+      if (options.normals) bake.normals[k * render + v] = normals[w].cast<float>();
+    }
+    for (std::size_t p = 0; p < model.parts.size(); ++p) {
+      BakedSpine& spine = bake.spines[p];
+      const std::vector<Vec3>& points = player.workspace().spine_points[p];
+      const std::vector<Frame>& frames = player.workspace().spine_frames[p];
+      spine.points.insert(spine.points.end(), points.begin(), points.end());
+      for (const Frame& f : frames) spine.rotations.push_back(FrameRotation(f));
+    }
+    if (options.progress) options.progress(k + 1, keys);
+  }
+  return bake;
+}
+
+}  // namespace wirerig

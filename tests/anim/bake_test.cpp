@@ -1,0 +1,99 @@
+// Baking: key times, the baked spine tip against the cantilever formula at every key, render
+// vertices following their welded vertex, frames as rotations, progress and bad options.
+#include "wirerig/anim/bake.h"
+
+#include <gtest/gtest.h>
+
+#include "anim_test_rigs.h"
+
+namespace wirerig {
+namespace {
+
+const testing::TestRig& Beam() {
+  static const testing::TestRig rig = testing::MakeCylinderRig(SpineKind::kDeformable);
+  return rig;
+}
+
+Clip TipLoadClip(double duration) {
+  RawClip raw;
+  raw.name = "push";
+  raw.duration = duration;
+  RawPartTracks part;
+  part.part = "beam";
+  PointLoadChannels<RawTrack> load;
+  load.at.keys = {{0.0, 1.0, Interpolation::kStep}};
+  load.magnitude.keys = {{0.0, 0.0, Interpolation::kLinear},
+                         {duration, 0.05, Interpolation::kLinear}};
+  load.direction.keys = {{0.0, Vec3(0, 1, 0), Interpolation::kStep}};
+  part.channels.point_loads.push_back(load);
+  raw.parts.push_back(part);
+  return BuildClip(raw, Beam().model).value();
+}
+
+TEST(Bake, KeyTimesCoverTheClipAndItsEnd) {
+  EXPECT_EQ(BakeKeyTimes(1.0, 4.0), (std::vector<double>{0.0, 0.25, 0.5, 0.75, 1.0}));
+  EXPECT_EQ(BakeKeyTimes(0.6, 4.0), (std::vector<double>{0.0, 0.25, 0.5, 0.6}));
+  EXPECT_EQ(BakeKeyTimes(10.0, 30.0).size(), 301u);
+}
+
+TEST(Bake, SpineTipFollowsTheCantileverFormulaAtEveryKey) {
+  const testing::TestRig& rig = Beam();
+  const Clip clip = TipLoadClip(2.0);
+  std::size_t calls = 0;
+  BakeOptions options;
+  options.fps = 10.0;
+  options.progress = [&](std::size_t done, std::size_t total) {
+    EXPECT_EQ(done, ++calls);
+    EXPECT_EQ(total, 21u);
+  };
+  Result<BakedAnimation> baked = BakeClip(rig.mesh, rig.model, clip, PlaybackOptions{}, options);
+  ASSERT_TRUE(baked.ok()) << baked.error();
+  const BakedAnimation& bake = baked.value();
+  EXPECT_EQ(calls, 21u);
+  ASSERT_EQ(bake.KeyCount(), 21u);
+  const std::size_t render = rig.mesh.positions.size();
+  ASSERT_EQ(bake.vertex_count, render);
+  ASSERT_EQ(bake.positions.size(), 21u * render);
+  ASSERT_EQ(bake.normals.size(), bake.positions.size());
+  ASSERT_EQ(bake.spines.size(), 1u);
+  const PartModel& beam = rig.model.parts[0];
+  const std::size_t samples = beam.spine_points.size();
+  const double l = beam.spine_length, ei = beam.spine_stiffness.bending;
+  const Vec3 binormal = beam.spine_frames.back().binormal;
+  for (std::size_t k = 0; k < bake.KeyCount(); ++k) {
+    const double force = 0.05 * bake.times[k] / 2.0;  // N, along the local y (binormal)
+    const double deflection = force * l * l * l / (3.0 * ei);
+    const Vec3 tip = bake.spines[0].points[k * samples + samples - 1];
+    EXPECT_NEAR((tip - beam.spine_points.back()).dot(binormal), deflection,
+                1e-9 + 1e-9 * deflection)
+        << "key " << k;
+    // The mesh's largest displacement is the tip's, give or take the top cap turning with
+    // the end slope.
+    double largest = 0.0;
+    for (std::size_t v = 0; v < render; ++v)
+      largest = std::max(
+          largest,
+          double((bake.positions[k * render + v] - rig.mesh.positions[v].cast<float>()).norm()));
+    EXPECT_NEAR(largest, deflection, 0.25 * deflection + 1e-6) << "key " << k;
+  }
+  // Frames as rotations: the third column is the spine's tangent.
+  for (std::size_t s = 0; s < samples; ++s)
+    EXPECT_LE(
+        (bake.spines[0].rest_rotations[s] * Vec3::UnitZ() - beam.spine_frames[s].tangent).norm(),
+        1e-12);
+}
+
+TEST(Bake, RefusesBadFrameRatesAndForeignMeshes) {
+  const testing::TestRig& rig = Beam();
+  const Clip clip = TipLoadClip(1.0);
+  BakeOptions options;
+  options.fps = 0.0;
+  EXPECT_EQ(BakeClip(rig.mesh, rig.model, clip, {}, options).error(),
+            "fps: must be in [1, 1000] keys per second");
+  Mesh other = MakeCylinder(0.1, 1.0, 8, 2);
+  EXPECT_EQ(BakeClip(other, rig.model, clip, {}).error(),
+            "mesh: is not the mesh the rig model was built on (vertex counts differ)");
+}
+
+}  // namespace
+}  // namespace wirerig
