@@ -1,8 +1,11 @@
 // wirerig: the command-line tool. Each subcommand lives in its own *_command.{h,cpp}.
+#include <unistd.h>
+
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 
+#include "bake_command.h"
 #include "rig_command.h"
 #include "wire_command.h"
 
@@ -17,9 +20,16 @@ int main(int argc, char** argv) {
   wirerig::cli::RigCommandOptions rig_options;
   CLI::App* rig = wirerig::cli::AddRigCommand(app, rig_options);
 
+  wirerig::cli::BakeCommandOptions bake_options;
+  CLI::App* bake = wirerig::cli::AddBakeCommand(app, bake_options);
+
   CLI11_PARSE(app, argc, argv);
   if (wire->parsed())
     return wirerig::cli::RunWireCommand(wire_options, std::cin, std::cout, std::cerr);
   if (rig->parsed()) return wirerig::cli::RunRigCommand(rig_options, std::cout, std::cerr);
+  if (bake->parsed()) {
+    bake_options.progress = isatty(STDERR_FILENO) != 0;
+    return wirerig::cli::RunBakeCommand(bake_options, std::cout, std::cerr);
+  }
   return 1;
 }

@@ -1,5 +1,7 @@
 #include "wirerig/anim/bake.h"
 
+#include "wirerig/anim/spine_skin.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -51,6 +53,14 @@ Result<BakedAnimation> BakeClip(const Mesh& mesh, const RigModel& model, const C
   if (mesh.weld_map.size() != mesh.positions.size() ||
       mesh.welded_positions.size() != model.vertices.size())
     return Error{"mesh: is not the mesh the rig model was built on (vertex counts differ)"};
+  SpineSkin skin;
+  if (options.skin) {
+    SpineSkinOptions skin_options;
+    skin_options.spread = options.skin_spread;
+    Result<SpineSkin> built = BuildSpineSkin(model, mesh, skin_options);
+    if (!built) return Error{"skin: " + built.error()};
+    skin = std::move(built).value();
+  }
   Result<Playback> made = Playback::Make(model, clip, playback);
   if (!made) return Error{made.error()};
   Playback& player = made.value();
@@ -64,6 +74,8 @@ Result<BakedAnimation> BakeClip(const Mesh& mesh, const RigModel& model, const C
   bake.positions.resize(keys * render);
   if (options.normals) bake.normals.resize(keys * render);
   AddSpines(model, keys, bake);
+  bake.skin_joints = std::move(skin.joints);
+  bake.skin_weights = std::move(skin.weights);
 
   std::vector<Vec3> positions(model.vertices.size()), normals(model.vertices.size());
   for (std::size_t k = 0; k < keys; ++k) {

@@ -279,7 +279,8 @@ RawProfileTracks ReadProfileTracks(const JsonObject& o) {
     const json& array = RequireArray(o.Required("profiles"), path);
     for (std::size_t i = 0; i < ArraySize(array); ++i) {
       const json& index = ArrayElement(array, i);
-      if (!index.is_number_unsigned())
+      if (!index.is_number_integer() || index.get<long long>() < 0 ||
+          index.get<long long>() > 0xFFFFFFFFLL)
         throw FieldError(path + "/" + std::to_string(i), "must be a profile index (0, 1, ...)");
       c.profiles.push_back(index.get<std::uint32_t>());
     }

@@ -19,6 +19,10 @@ namespace wirerig {
 struct BakeOptions {
   double fps = 30.0;    // keys per second, in [1, 1000]
   bool normals = true;  // bake normals too
+  // Fill the skin (BakedAnimation::skin_joints, skin_weights) for skin-mode export, from the
+  // rig's binding (BuildSpineSkin with this tent spread).
+  bool skin = false;
+  double skin_spread = 1.0;
   // Called after every key with (keys done, keys in all); may be empty.
   std::function<void(std::size_t, std::size_t)> progress;
 };

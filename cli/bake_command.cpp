@@ -1,0 +1,119 @@
+#include "bake_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <ostream>
+
+#include <CLI/CLI.hpp>
+
+#include "wirerig/anim/bake.h"
+#include "wirerig/anim/gltf_export.h"
+#include "wirerig/anim/scene.h"
+
+namespace wirerig::cli {
+namespace {
+
+// "[#########.......] 123/301 keys" redrawn in place.
+void DrawProgress(std::ostream& err, std::size_t done, std::size_t total) {
+  constexpr int kWidth = 32;
+  const int filled = total == 0 ? kWidth : static_cast<int>(kWidth * done / total);
+  err << "\r  baking [" << std::string(static_cast<std::size_t>(filled), '#')
+      << std::string(static_cast<std::size_t>(kWidth - filled), '.') << "] " << done << "/" << total
+      << " keys" << (done == total ? "\n" : "") << std::flush;
+}
+
+double Seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+}  // namespace
+
+CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
+  CLI::App* bake = app.add_subcommand("bake", "Bake a scene's clip and export animated glTF 2.0");
+  bake->add_option("scene", options.scene, "Scene file (JSON)")->required();
+  bake->add_option("-o,--output", options.output, "Output file: .glb, or .gltf (+ .bin)")
+      ->required();
+  bake->add_option("--mode", options.mode,
+                   "morph: a morph target per key (exact); skin: a joint per spine sample")
+      ->check(CLI::IsMember({"morph", "skin"}))
+      ->capture_default_str();
+  bake->add_option("--fps", options.fps, "Keys per second")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
+  bake->add_option("--clip", options.clip, "Clip to bake (default: the scene's first clip)");
+  bake->add_flag("--residual", options.residual,
+                 "skin mode: add residual morph targets so the export matches the bake exactly");
+  return bake;
+}
+
+int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::ostream& err) {
+  auto fail = [&](const std::string& message) {
+    if (options.progress) err << "\n";
+    err << "wirerig bake: " << message << "\n";
+    return 1;
+  };
+  const auto start = std::chrono::steady_clock::now();
+  Result<SceneDescription> description = LoadScene(options.scene);
+  if (!description) return fail(description.error());
+  Result<BuiltScene> built = BuildScene(description.value());
+  if (!built) return fail(options.scene + ": " + built.error());
+  const BuiltScene& scene = built.value();
+  const Clip* clip = scene.FindClip(options.clip);
+  if (!clip) {
+    return fail(options.scene + ": " +
+                (options.clip.empty() ? std::string("the scene has no clips")
+                                      : "no clip is named \"" + options.clip + "\""));
+  }
+  out << "scene: " << options.scene << ": " << scene.mesh.positions.size() << " vertices, "
+      << scene.mesh.triangles.size() << " triangles, " << scene.model.parts.size()
+      << " parts; clip \"" << clip->name << "\", " << clip->duration << " s at " << options.fps
+      << " fps\n";
+
+  BakeOptions bake_options;
+  bake_options.fps = options.fps;
+  bake_options.skin = options.mode == "skin";
+  if (options.progress)
+    bake_options.progress = [&](std::size_t done, std::size_t total) {
+      DrawProgress(err, done, total);
+    };
+  const auto bake_start = std::chrono::steady_clock::now();
+  Result<BakedAnimation> bake =
+      BakeClip(scene.mesh, scene.model, *clip, scene.description.playback, bake_options);
+  if (!bake) return fail(options.scene + ": clip \"" + clip->name + "\": " + bake.error());
+  const double bake_seconds = Seconds(bake_start);
+
+  GltfExportOptions export_options;
+  export_options.mode =
+      options.mode == "skin" ? GltfAnimationMode::kSkin : GltfAnimationMode::kMorph;
+  export_options.residual_morph_targets = options.residual;
+  export_options.node_name = scene.description.name;
+  if (!scene.description.mesh.file.empty()) {
+    const std::filesystem::path mesh_file =
+        scene.description.mesh.file.is_absolute()
+            ? scene.description.mesh.file
+            : scene.description.folder / scene.description.mesh.file;
+    export_options.texture_dir = mesh_file.parent_path();
+  }
+  const auto export_start = std::chrono::steady_clock::now();
+  Result<GltfExportReport> exported =
+      ExportGltf(scene.mesh, bake.value(), export_options, options.output);
+  if (!exported) return fail(options.output + ": " + exported.error());
+  const GltfExportReport& report = exported.value();
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "baked %zu keys in %.3f s, exported %s (%.2f MB) in %.3f s; total %.3f s\n",
+                report.key_count, bake_seconds, options.output.c_str(),
+                static_cast<double>(report.bytes_written) / 1e6, Seconds(export_start),
+                Seconds(start));
+  out << line;
+  if (export_options.mode == GltfAnimationMode::kSkin) {
+    std::snprintf(line, sizeof line,
+                  "skin error against the bake: max %.3g m (%.3g of the diagonal), RMS %.3g m\n",
+                  report.skin_max_error, report.skin_max_error_relative, report.skin_rms_error);
+    out << line;
+  }
+  for (const std::string& warning : report.warnings) out << "warning: " << warning << "\n";
+  return 0;
+}
+
+}  // namespace wirerig::cli

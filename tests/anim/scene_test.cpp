@@ -1,0 +1,196 @@
+// Scene files: every field's error names its JSON pointer; save then load gives the same
+// document; BuildScene makes procedural and inline-described scenes ready to play, and names
+// what is wrong when it cannot.
+#include "wirerig/anim/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#ifndef WIRERIG_SAMPLES_DIR
+#define WIRERIG_SAMPLES_DIR "/work/main/samples"
+#endif
+
+namespace wirerig {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+json CylinderScene() {
+  return json::parse(R"({
+    "format": "wirerig.scene", "version": 1, "name": "beam",
+    "mesh": {"procedural": "cylinder", "parameters": {"radius": 0.1, "height": 1.0}},
+    "rig": {"description": {"parts": [{"name": "beam", "central_curve": [[0, 0, 0], [0, 1, 0]],
+                                       "profile_count": 8, "points_per_profile": 16}]}},
+    "parts": {"beam": {"kind": "deformable", "spine": {"material": "steel"}}},
+    "playback": {"rigid_step": 0.005, "integrator": "momentum", "gravity": [0, -9.81, 0]},
+    "clips": [{"name": "push", "duration": 2, "loop": "ping_pong", "parts": [
+      {"part": "beam", "boundary": [{"time": 0, "boundary": "cantilever_free"},
+                                    {"time": 1, "boundary": "cantilever_guided"}],
+       "point_loads": [{"at": 1, "magnitude": {"keys": [[0, 0], [2, 5, "cubic"]]},
+                        "direction": [1, 0, 0], "axes": "world"}],
+       "tip_force": {"interpolation": "step", "keys": [{"time": 0, "value": [0, 0, 1]}]},
+       "rotation": [0, 0.1, 0]}],
+      "profiles": [{"part": "beam", "profiles": [2, 3], "from": 0.1, "to": 0.4,
+                    "boundary": "clamped",
+                    "line_loads": [{"force_per_length": [0.5, 0, 0]}]}]}],
+    "camera": {"target": [0, 0.5, 0], "yaw": 0.3, "pitch": 0.2, "distance": 3, "fov": 0.7}
+  })");
+}
+
+std::string ParseError(const json& document) {
+  Result<SceneDescription> scene = ParseScene(document, ".");
+  return scene.ok() ? "ok" : scene.error();
+}
+
+TEST(Scene, ParsesEveryField) {
+  Result<SceneDescription> parsed = ParseScene(CylinderScene(), "/scenes");
+  ASSERT_TRUE(parsed.ok()) << parsed.error();
+  const SceneDescription& scene = parsed.value();
+  EXPECT_EQ(scene.name, "beam");
+  EXPECT_EQ(scene.folder, fs::path("/scenes"));
+  EXPECT_EQ(scene.mesh.procedural, "cylinder");
+  EXPECT_EQ(scene.mesh.parameters.at("radius"), 0.1);
+  EXPECT_EQ(scene.rig.kind, RigSourceKind::kDescription);
+  ASSERT_EQ(scene.rig.description.parts.size(), 1u);
+  EXPECT_EQ(scene.parts.at("beam").kind, SpineKind::kDeformable);
+  EXPECT_EQ(scene.parts.at("beam").spine_material->youngs_modulus,
+            FindMaterialPreset("steel")->youngs_modulus);
+  EXPECT_EQ(scene.playback.integrator, RigidIntegrator::kMomentum);
+  EXPECT_EQ(scene.playback.gravity, Vec3(0, -9.81, 0));
+  ASSERT_EQ(scene.clips.size(), 1u);
+  const RawClip& clip = scene.clips[0];
+  EXPECT_EQ(clip.loop, LoopMode::kPingPong);
+  ASSERT_EQ(clip.parts.size(), 1u);
+  EXPECT_EQ(clip.parts[0].channels.boundary.size(), 2u);
+  EXPECT_EQ(clip.parts[0].channels.point_loads[0].axes, LoadAxes::kWorld);
+  EXPECT_EQ(clip.parts[0].channels.point_loads[0].magnitude.keys[1].interpolation,
+            Interpolation::kCubic);
+  EXPECT_EQ(clip.parts[0].channels.tip_force.keys[0].interpolation, Interpolation::kStep);
+  EXPECT_EQ(clip.profiles[0].channels.profiles, (std::vector<std::uint32_t>{2, 3}));
+  ASSERT_TRUE(scene.camera.has_value());
+  EXPECT_EQ(scene.camera->distance, 3.0);
+}
+
+TEST(Scene, ErrorsNameTheFieldByJsonPointer) {
+  json d = CylinderScene();
+  d["format"] = "wirerig.rig";
+  EXPECT_EQ(ParseError(d), "/format: must be \"wirerig.scene\"");
+  d = CylinderScene();
+  d["version"] = 2;
+  EXPECT_EQ(ParseError(d), "/version: must be 1 (this wirerig reads scene format version 1)");
+  d = CylinderScene();
+  d["mesh"]["parameters"]["radious"] = 1;
+  EXPECT_EQ(ParseError(d), "/mesh/parameters/radious: unknown parameter of cylinder");
+  d = CylinderScene();
+  d["mesh"]["file"] = "x.obj";
+  EXPECT_EQ(ParseError(d), "/mesh: needs exactly one of \"file\" and \"procedural\"");
+  d = CylinderScene();
+  d["clips"][0]["parts"][0]["point_loads"][0]["axes"] = "screen";
+  EXPECT_EQ(ParseError(d), "/clips/0/parts/0/point_loads/0/axes: must be \"local\" or \"world\"");
+  d = CylinderScene();
+  d["clips"][0]["parts"][0]["point_loads"][0]["magnitude"]["keys"][1][0] = 3;
+  EXPECT_EQ(ParseError(d),
+            "/clips/0: parts[0].point_loads[0].magnitude.keys[1].time: must lie within the "
+            "clip, [0, duration]");
+  d = CylinderScene();
+  d["clips"][0]["parts"][0]["boundary"][1]["boundary"] = "glued";
+  EXPECT_EQ(ParseError(d).rfind("/clips/0/parts/0/boundary/1/boundary: must be", 0), 0u);
+  d = CylinderScene();
+  d["clips"][0]["parts"][0]["rotation"] = {0, 1};
+  EXPECT_EQ(ParseError(d).rfind("/clips/0/parts/0/rotation", 0), 0u) << ParseError(d);
+  d = CylinderScene();
+  d["clips"].push_back(d["clips"][0]);
+  EXPECT_EQ(ParseError(d), "/clips/1/name: another clip has this name");
+  d = CylinderScene();
+  d["playback"]["rigid_step"] = 0;
+  EXPECT_EQ(ParseError(d), "/playback/rigid_step: must be in (0, 1] s");
+  d = CylinderScene();
+  d["camera"]["pitch"] = 2;
+  EXPECT_EQ(ParseError(d), "/camera/pitch: must lie within (-pi/2, pi/2)");
+  d = CylinderScene();
+  d["parts"]["beam"]["kind"] = "floppy";
+  EXPECT_EQ(ParseError(d), "/parts/beam/kind: must be \"rigid\" or \"deformable\"");
+  d = CylinderScene();
+  d["colour"] = "red";
+  EXPECT_EQ(ParseError(d), "/colour: unknown field");
+}
+
+TEST(Scene, SaveThenLoadGivesTheSameDocument) {
+  const SceneDescription scene = ParseScene(CylinderScene(), ".").value();
+  const fs::path path = fs::temp_directory_path() / "wirerig_scene_test" / "beam.scene.json";
+  fs::create_directories(path.parent_path());
+  ASSERT_TRUE(SaveScene(scene, path).ok());
+  Result<SceneDescription> loaded = LoadScene(path);
+  ASSERT_TRUE(loaded.ok()) << loaded.error();
+  EXPECT_EQ(SceneToJson(loaded.value()), SceneToJson(scene));
+  EXPECT_EQ(loaded.value().folder, path.parent_path());
+}
+
+TEST(Scene, LoadNamesTheFile) {
+  const fs::path path = fs::temp_directory_path() / "wirerig_scene_test" / "broken.scene.json";
+  fs::create_directories(path.parent_path());
+  std::ofstream(path) << "{\"format\": ";
+  EXPECT_EQ(LoadScene(path).error(), path.string() + ": not valid JSON");
+  EXPECT_EQ(LoadScene(path.string() + ".missing").error(),
+            path.string() + ".missing: cannot open the scene file");
+}
+
+TEST(Scene, BuildsAProceduralSceneReadyToPlay) {
+  Result<BuiltScene> built = BuildScene(ParseScene(CylinderScene(), ".").value());
+  ASSERT_TRUE(built.ok()) << built.error();
+  const BuiltScene& scene = built.value();
+  ASSERT_EQ(scene.model.parts.size(), 1u);
+  EXPECT_EQ(scene.model.vertices.size(), scene.mesh.welded_positions.size());
+  // The steel spine from the scene's part settings, not the description's soft tissue.
+  EXPECT_EQ(scene.rig.parts[0].spine_wire.material.youngs_modulus,
+            FindMaterialPreset("steel")->youngs_modulus);
+  ASSERT_NE(scene.FindClip(""), nullptr);
+  EXPECT_EQ(scene.FindClip("push")->name, "push");
+  EXPECT_EQ(scene.FindClip("swim"), nullptr);
+  EXPECT_EQ(scene.clips[0].profiles.size(), 1u);
+}
+
+std::string BuildError(const json& document) {
+  Result<SceneDescription> scene = ParseScene(document, ".");
+  if (!scene) return "parse: " + scene.error();
+  Result<BuiltScene> built = BuildScene(scene.value());
+  return built.ok() ? "ok" : built.error();
+}
+
+TEST(Scene, BuildNamesWhatIsWrong) {
+  json d = CylinderScene();
+  d["mesh"]["parameters"]["radius"] = -1;
+  EXPECT_EQ(BuildError(d),
+            "scene \"beam\": /mesh/parameters/radius: must be a positive length (m)");
+  d = CylinderScene();
+  d["parts"]["arm"] = json::object();
+  EXPECT_EQ(BuildError(d), "scene \"beam\": /parts/arm: the rig has no part of this name");
+  d = CylinderScene();
+  d["clips"][0]["profiles"][0]["profiles"] = {2, 30};
+  const std::string error = BuildError(d);
+  EXPECT_EQ(error.rfind("scene \"beam\": /clips/0: profiles[0].profiles[1]: part \"beam\" has", 0),
+            0u)
+      << error;
+  d = CylinderScene();
+  d["mesh"] = {{"file", "no_such_mesh.obj"}};
+  EXPECT_NE(BuildError(d).find("no_such_mesh.obj"), std::string::npos);
+}
+
+TEST(Scene, TheOctopusSampleBuilds) {
+  Result<SceneDescription> scene =
+      LoadScene(std::string(WIRERIG_SAMPLES_DIR) + "/octopus/octopus.scene.json");
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  Result<BuiltScene> built = BuildScene(scene.value());
+  ASSERT_TRUE(built.ok()) << built.error();
+  EXPECT_EQ(built.value().model.parts.size(), 9u);
+  ASSERT_NE(built.value().FindClip("swim"), nullptr);
+  EXPECT_EQ(built.value().FindClip("swim")->duration, 10.0);
+}
+
+}  // namespace
+}  // namespace wirerig
