@@ -2,9 +2,11 @@
 // on cow.off (parts from its curve skeleton, profiles shared out by central-curve length), and
 // the same on a 100k-triangle mesh (a procedural capsule). BVHs are built beforehand; their
 // build time is reported apart, by bvh_bench. Targets: under 1 ms for 103 x 100 on cow.off.
+// BM_*Batch: every part's profiles in one batch call, on 1 or 2 threads (wall time).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "wirerig/rig/curve_skeleton.h"
@@ -13,6 +15,7 @@
 #include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/profile_curves.h"
 #include "wirerig/rig/triangle_bvh.h"
+#include "wirerig/runtime/parallel.h"
 
 #ifndef WIRERIG_ASSET_DIR
 #define WIRERIG_ASSET_DIR "/work/main/.cache/assets"
@@ -120,7 +123,43 @@ void Run(benchmark::State& state, const Scene& scene, bool full) {
   state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
 }
 
+// All parts at once through the batch GenerateProfiles, on state.range(1) threads (a ThreadPool
+// made beforehand; 1: no pool). Wall time is the figure when threaded.
+void RunBatch(benchmark::State& state, const Scene& scene, bool full) {
+  const int points = int(state.range(0));
+  const auto threads = static_cast<std::size_t>(state.range(1));
+  const std::unique_ptr<ThreadPool> pool =
+      threads > 1 ? std::make_unique<ThreadPool>(threads) : nullptr;
+  std::vector<ProfileRequest> requests(scene.curves.size());
+  for (std::size_t i = 0; i < scene.curves.size(); ++i) {
+    ProfileRequest& request = requests[i];
+    request.central_curve = &scene.curves[i];
+    request.profile_count = scene.counts[i];
+    request.points_per_profile = points;
+    request.part_bvh = &scene.part_bvhs[i];
+    if (full) {
+      request.mesh_bvh = &scene.mesh_bvh;
+      request.triangle_part = scene.assignment.triangle_part;
+      request.part = int(i);
+      request.positions = scene.mesh.welded_positions;
+      request.triangles = scene.mesh.welded_triangles;
+    } else {
+      request.recentre_passes = 0;
+    }
+  }
+  std::size_t rays = 0;
+  for (auto _ : state) {
+    const std::vector<ProfileSet> sets = GenerateProfiles(requests, pool.get());
+    for (const ProfileSet& set : sets) rays += set.diagnostics.rays;
+    benchmark::DoNotOptimize(sets.data());
+  }
+  state.counters["triangles"] = double(scene.mesh.welded_triangles.size());
+  state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
+}
+
 void BM_CowProfiles(benchmark::State& state) { Run(state, Cow(), false); }
+void BM_CowProfilesBatch(benchmark::State& state) { RunBatch(state, Cow(), false); }
+void BM_CowProfilesFullPipelineBatch(benchmark::State& state) { RunBatch(state, Cow(), true); }
 void BM_CowProfilesFullPipeline(benchmark::State& state) { Run(state, Cow(), true); }
 void BM_Capsule100kProfiles(benchmark::State& state) { Run(state, Capsule100k(), false); }
 void BM_Capsule100kProfilesFullPipeline(benchmark::State& state) {
@@ -128,6 +167,14 @@ void BM_Capsule100kProfilesFullPipeline(benchmark::State& state) {
 }
 
 BENCHMARK(BM_CowProfiles)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CowProfilesBatch)
+    ->ArgsProduct({{100}, {1, 2}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CowProfilesFullPipelineBatch)
+    ->ArgsProduct({{100}, {1, 2}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CowProfilesFullPipeline)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Capsule100kProfiles)->Arg(20)->Arg(50)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Capsule100kProfilesFullPipeline)

@@ -3,19 +3,27 @@
 #include "wirerig/runtime/spine_interpolation.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
+#include <span>
+#include <vector>
 
 namespace wirerig {
 namespace {
 
 constexpr double kFar = std::numeric_limits<double>::max();
+
+// Per-task scratch, reused from profile to profile.
+struct ProfileScratch {
+  struct Box {
+    double x0, x1, y0, y1;
+    std::uint32_t edge;
+  };
+  std::vector<double> x, y;
+  std::vector<Box> boxes;
+};
 
 // Orientation of r relative to the line pq (2D coordinates): > 0 to the left.
 inline double Orient(double px, double py, double qx, double qy, double rx, double ry) {
@@ -28,80 +36,59 @@ inline bool Straddles(double s0, double s1) {
 }
 
 // Whether two non-adjacent edges of the profile's polygon (in the profile plane) properly cross:
-// each edge's endpoints strictly on opposite sides of the other's line. Each edge's line is
-// tested against all later vertices at once (a vectorisable loop); only edges whose endpoints
-// straddle it get the second test. `scratch` is reused between calls.
-bool SelfIntersects(const ProfileCurve& profile, std::vector<double>& scratch) {
+// each edge's endpoints strictly on opposite sides of the other's line. A sweep over the edges'
+// bounding boxes (sorted by their lower x) finds the pairs whose boxes overlap (to a relative
+// 1e-9 of the profile's size); only those get the exact test, O(n log n + pairs) instead of
+// O(n^2) for the loops rays give. `scratch` is reused between calls.
+bool SelfIntersects(const ProfileCurve& profile, ProfileScratch& scratch) {
   const std::size_t n = profile.points.size();
   if (n < 4) return false;
-  scratch.resize(3 * (n + 1));
-  double* x = scratch.data();
-  double* y = x + (n + 1);
-  double* side = y + (n + 1);
+  scratch.x.resize(n + 1);
+  scratch.y.resize(n + 1);
+  double* x = scratch.x.data();
+  double* y = scratch.y.data();
+  double size = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 d = profile.points[i] - profile.origin;
     x[i] = d.dot(profile.frame.normal);
     y[i] = d.dot(profile.frame.binormal);
+    size = std::max({size, std::abs(x[i]), std::abs(y[i])});
   }
   x[n] = x[0];  // edge n - 1 of a closed profile ends at vertex 0
   y[n] = y[0];
   const std::size_t edges = profile.closed ? n : n - 1;
+  const double pad = 1e-9 * size;
+  scratch.boxes.resize(edges);
   for (std::size_t i = 0; i < edges; ++i) {
-    // Edges j in [i + 2, end), but not edge n - 1 with edge 0 (adjacent through the seam).
-    const std::size_t end = profile.closed && i == 0 ? n - 1 : edges;
-    if (i + 2 >= end) continue;
+    ProfileScratch::Box& box = scratch.boxes[i];
+    box.x0 = std::min(x[i], x[i + 1]) - pad;
+    box.x1 = std::max(x[i], x[i + 1]) + pad;
+    box.y0 = std::min(y[i], y[i + 1]) - pad;
+    box.y1 = std::max(y[i], y[i + 1]) + pad;
+    box.edge = static_cast<std::uint32_t>(i);
+  }
+  std::sort(scratch.boxes.begin(), scratch.boxes.end(),
+            [](const ProfileScratch::Box& a, const ProfileScratch::Box& b) {
+              return a.x0 < b.x0 || (a.x0 == b.x0 && a.edge < b.edge);
+            });
+  // Edges i < j, j >= i + 2, but not edge n - 1 with edge 0 (adjacent through the seam): each
+  // edge's endpoints strictly on opposite sides of the other's line.
+  auto crosses = [&](std::size_t i, std::size_t j) {
+    if (j < i + 2 || (profile.closed && i == 0 && j == n - 1)) return false;
     const double ax = x[i], ay = y[i], bx = x[i + 1], by = y[i + 1];
-    // Edge j straddles edge i's line (side[j], side[j + 1] known); then edge i must straddle
-    // edge j's.
-    auto crosses = [&](std::size_t j) {
-      if (!Straddles(side[j], side[j + 1])) return false;
-      const double o3 = Orient(x[j], y[j], x[j + 1], y[j + 1], ax, ay);
-      const double o4 = Orient(x[j], y[j], x[j + 1], y[j + 1], bx, by);
-      return ((o3 > 0.0) != (o4 > 0.0)) && o3 != 0.0 && o4 != 0.0;
-    };
-    std::size_t k = i + 2;  // next vertex whose side is computed
-#if defined(__SSE2__)
-    // Two vertices at a time; candidate edges j have side[j] * side[j + 1] <= 0, which holds
-    // whenever the two straddle (a product that underflows is still -0).
-    const __m128d vax = _mm_set1_pd(ax), vay = _mm_set1_pd(ay);
-    const __m128d vdx = _mm_set1_pd(bx - ax), vdy = _mm_set1_pd(by - ay);
-    const __m128d zero = _mm_setzero_pd();
-    __m128d previous = _mm_set1_pd(1.0);  // lane 1: side[k - 1]
-    auto sides = [&](std::size_t first) {
-      return _mm_sub_pd(_mm_mul_pd(vdx, _mm_sub_pd(_mm_loadu_pd(y + first), vay)),
-                        _mm_mul_pd(vdy, _mm_sub_pd(_mm_loadu_pd(x + first), vax)));
-    };
-    // Lanes of shuffle(previous, current) * current: (side[k - 1], side[k]) times
-    // (side[k], side[k + 1]), for edges k - 1 and k.
-    for (; k + 3 <= end; k += 4) {
-      const __m128d low = sides(k), high = sides(k + 2);
-      _mm_storeu_pd(side + k, low);
-      _mm_storeu_pd(side + k + 2, high);
-      const __m128d p0 = _mm_mul_pd(_mm_shuffle_pd(previous, low, 1), low);
-      const __m128d p1 = _mm_mul_pd(_mm_shuffle_pd(low, high, 1), high);
-      previous = high;
-      unsigned m = static_cast<unsigned>(_mm_movemask_pd(_mm_cmple_pd(p0, zero))) |
-                   static_cast<unsigned>(_mm_movemask_pd(_mm_cmple_pd(p1, zero))) << 2;
-      for (; m != 0; m &= m - 1) {
-        const std::size_t j = k - 1 + static_cast<std::size_t>(std::countr_zero(m));
-        if (j >= i + 2 && crosses(j)) return true;
-      }
-    }
-    for (; k + 1 <= end; k += 2) {
-      const __m128d current = sides(k);
-      _mm_storeu_pd(side + k, current);
-      const __m128d product = _mm_mul_pd(_mm_shuffle_pd(previous, current, 1), current);
-      previous = current;
-      for (unsigned m = static_cast<unsigned>(_mm_movemask_pd(_mm_cmple_pd(product, zero))); m != 0;
-           m &= m - 1) {
-        const std::size_t j = k - 1 + static_cast<std::size_t>(std::countr_zero(m));
-        if (j >= i + 2 && crosses(j)) return true;
-      }
-    }
-#endif
-    for (; k <= end; ++k) {
-      side[k] = Orient(ax, ay, bx, by, x[k], y[k]);
-      if (k >= i + 3 && crosses(k - 1)) return true;
+    if (!Straddles(Orient(ax, ay, bx, by, x[j], y[j]), Orient(ax, ay, bx, by, x[j + 1], y[j + 1])))
+      return false;
+    const double o3 = Orient(x[j], y[j], x[j + 1], y[j + 1], ax, ay);
+    const double o4 = Orient(x[j], y[j], x[j + 1], y[j + 1], bx, by);
+    return ((o3 > 0.0) != (o4 > 0.0)) && o3 != 0.0 && o4 != 0.0;
+  };
+  const std::vector<ProfileScratch::Box>& boxes = scratch.boxes;
+  for (std::size_t p = 0; p < edges; ++p) {
+    for (std::size_t q = p + 1; q < edges && boxes[q].x0 <= boxes[p].x1; ++q) {
+      if (boxes[q].y0 > boxes[p].y1 || boxes[p].y0 > boxes[q].y1) continue;
+      const std::size_t i = std::min(boxes[p].edge, boxes[q].edge);
+      const std::size_t j = std::max(boxes[p].edge, boxes[q].edge);
+      if (crosses(i, j)) return true;
     }
   }
   return false;
@@ -192,57 +179,98 @@ Vec3 ProfileCentroid(const ProfileCurve& profile) {
   return moment / area;
 }
 
-ProfileSet GenerateProfiles(const ProfileRequest& request) {
-  ProfileSet set;
+namespace {
+
+// One profile's outcome, before the set is assembled in order.
+struct ProfileOutcome {
+  bool kept = false;
+  ProfileCurve profile;
+  std::size_t foreign = 0;
+  ProfileDiagnostics diagnostics;  // this profile's counts (crossing_neighbour aside)
+};
+
+// The rays' directions, as cosines and sines of 2 pi j / rays.
+struct RayTable {
+  std::vector<double> cosines, sines;
+  explicit RayTable(int rays) {
+    cosines.resize(static_cast<std::size_t>(std::max(rays, 0)));
+    sines.resize(cosines.size());
+    for (int j = 0; j < rays; ++j) {
+      const double angle = 2.0 * std::numbers::pi * j / rays;
+      cosines[j] = std::cos(angle);
+      sines[j] = std::sin(angle);
+    }
+  }
+};
+
+// Profile k (1-based) of the request: every profile is independent of the others.
+void GenerateProfile(const ProfileRequest& request, const RayTable& table, int k,
+                     ProfileOutcome& out) {
   const int count = request.profile_count, rays = request.points_per_profile;
   std::vector<Vec3> hits(static_cast<std::size_t>(rays));
   std::vector<bool> hit(static_cast<std::size_t>(rays));
-  std::vector<double> cosines(static_cast<std::size_t>(std::max(rays, 0)));
-  std::vector<double> sines(cosines.size());
-  for (int j = 0; j < rays; ++j) {
-    const double angle = 2.0 * std::numbers::pi * j / rays;
-    cosines[j] = std::cos(angle);
-    sines[j] = std::sin(angle);
+  ProfileScratch scratch;
+  ProfileCurve& profile = out.profile;
+  ProfileDiagnostics& diagnostics = out.diagnostics;
+  const std::vector<double>& cosines = table.cosines;
+  const std::vector<double>& sines = table.sines;
+  profile.v = double(k) / double(count + 1);
+  profile.origin = request.central_curve->Position(profile.v);
+  profile.frame = request.central_curve->FrameAt(profile.v);
+  for (int pass = 0; pass < request.recentre_passes; ++pass) {
+    const CastResult cast = CastRays(request, profile, cosines, sines, hits, hit, nullptr);
+    // Only a loop wholly on the part's own surface says where the part's centre is.
+    if (cast.hits != std::size_t(rays) || cast.entering > 0 || cast.other_part > 0) break;
+    profile.points = hits;
+    profile.closed = true;
+    Vec3 offset = ProfileCentroid(profile) - profile.origin;
+    offset -= offset.dot(profile.frame.tangent) * profile.frame.tangent;
+    profile.origin += offset;
+    double size = 0.0;
+    for (const Vec3& p : hits) size = std::max(size, (p - profile.origin).norm());
+    if (offset.norm() <= 1e-9 * size) break;
   }
-  std::vector<double> scratch;
-  for (int k = 1; k <= count; ++k) {
-    ProfileCurve profile;
-    profile.v = double(k) / double(count + 1);
-    profile.origin = request.central_curve->Position(profile.v);
-    profile.frame = request.central_curve->FrameAt(profile.v);
-    for (int pass = 0; pass < request.recentre_passes; ++pass) {
-      const CastResult cast = CastRays(request, profile, cosines, sines, hits, hit, nullptr);
-      // Only a loop wholly on the part's own surface says where the part's centre is.
-      if (cast.hits != std::size_t(rays) || cast.entering > 0 || cast.other_part > 0) break;
-      profile.points = hits;
-      profile.closed = true;
-      Vec3 offset = ProfileCentroid(profile) - profile.origin;
-      offset -= offset.dot(profile.frame.tangent) * profile.frame.tangent;
-      profile.origin += offset;
-      double size = 0.0;
-      for (const Vec3& p : hits) size = std::max(size, (p - profile.origin).norm());
-      if (offset.norm() <= 1e-9 * size) break;
-    }
-    const CastResult cast = CastRays(request, profile, cosines, sines, hits, hit, &set.diagnostics);
-    if (2 * cast.entering > cast.hits) {
-      ++set.diagnostics.outside_profiles;
-      continue;
-    }
-    if (cast.hits == std::size_t(rays)) {
-      profile.closed = true;
-      profile.points = hits;
-    } else {
-      profile.closed = false;
-      profile.points = LongestRun(hits, hit);
-      ++set.diagnostics.open_profiles;
-    }
-    if (profile.points.size() < 2) {
-      ++set.diagnostics.empty_profiles;
-      continue;
-    }
-    if (SelfIntersects(profile, scratch)) ++set.diagnostics.self_intersecting;
-    set.profiles.push_back(std::move(profile));
-    set.foreign_points.push_back(cast.other_part);
+  const CastResult cast = CastRays(request, profile, cosines, sines, hits, hit, &diagnostics);
+  if (2 * cast.entering > cast.hits) {
+    ++diagnostics.outside_profiles;
+    return;
+  }
+  if (cast.hits == std::size_t(rays)) {
+    profile.closed = true;
+    profile.points = hits;
+  } else {
+    profile.closed = false;
+    profile.points = LongestRun(hits, hit);
+    ++diagnostics.open_profiles;
+  }
+  if (profile.points.size() < 2) {
+    ++diagnostics.empty_profiles;
+    return;
+  }
+  if (SelfIntersects(profile, scratch)) ++diagnostics.self_intersecting;
+  out.kept = true;
+  out.foreign = cast.other_part;
+}
+
+void Add(ProfileDiagnostics& total, const ProfileDiagnostics& d) {
+  total.rays += d.rays;
+  total.misses += d.misses;
+  total.other_part_hits += d.other_part_hits;
+  total.open_profiles += d.open_profiles;
+  total.empty_profiles += d.empty_profiles;
+  total.self_intersecting += d.self_intersecting;
+  total.crossing_neighbour += d.crossing_neighbour;
+  total.outside_profiles += d.outside_profiles;
+}
+
+// The set from its profiles' outcomes, in order.
+ProfileSet Assemble(std::span<ProfileOutcome> outcomes) {
+  ProfileSet set;
+  for (ProfileOutcome& outcome : outcomes) {
+    Add(set.diagnostics, outcome.diagnostics);
+    if (!outcome.kept) continue;
+    set.profiles.push_back(std::move(outcome.profile));
+    set.foreign_points.push_back(outcome.foreign);
   }
   for (std::size_t k = 0; k + 1 < set.profiles.size(); ++k)
     if (ProfilesCross(set.profiles[k].points, set.profiles[k].origin, set.profiles[k].frame.tangent,
@@ -250,6 +278,52 @@ ProfileSet GenerateProfiles(const ProfileRequest& request) {
                       set.profiles[k + 1].frame.tangent))
       ++set.diagnostics.crossing_neighbour;
   return set;
+}
+
+// Every profile of every request, as one list of tasks.
+struct BatchTasks {
+  std::span<const ProfileRequest> requests;
+  std::vector<RayTable> tables;          // per request
+  std::vector<std::size_t> first;        // per request: its first task; then the total
+  std::vector<ProfileOutcome> outcomes;  // per task
+
+  static void Run(const void* context, std::size_t task) {
+    auto& self = *static_cast<BatchTasks*>(const_cast<void*>(context));
+    const std::size_t r =
+        static_cast<std::size_t>(std::upper_bound(self.first.begin(), self.first.end(), task) -
+                                 self.first.begin()) -
+        1;
+    GenerateProfile(self.requests[r], self.tables[r], static_cast<int>(task - self.first[r]) + 1,
+                    self.outcomes[task]);
+  }
+};
+
+}  // namespace
+
+std::vector<ProfileSet> GenerateProfiles(std::span<const ProfileRequest> requests,
+                                         const ParallelFor* parallel) {
+  BatchTasks batch;
+  batch.requests = requests;
+  std::size_t total = 0;
+  for (const ProfileRequest& request : requests) {
+    batch.tables.emplace_back(request.points_per_profile);
+    batch.first.push_back(total);
+    total += static_cast<std::size_t>(std::max(request.profile_count, 0));
+  }
+  batch.first.push_back(total);
+  batch.outcomes.resize(total);
+  RunTasks(parallel, total, &BatchTasks::Run, &batch);
+  std::vector<ProfileSet> sets;
+  sets.reserve(requests.size());
+  for (std::size_t r = 0; r < requests.size(); ++r)
+    sets.push_back(Assemble(std::span<ProfileOutcome>(batch.outcomes.data() + batch.first[r],
+                                                      batch.first[r + 1] - batch.first[r])));
+  return sets;
+}
+
+ProfileSet GenerateProfiles(const ProfileRequest& request) {
+  return std::move(
+      GenerateProfiles(std::span<const ProfileRequest>(&request, 1), request.parallel).front());
 }
 
 }  // namespace wirerig

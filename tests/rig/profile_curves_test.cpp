@@ -12,6 +12,7 @@
 #include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/spine_curves.h"
 #include "wirerig/rig/triangle_bvh.h"
+#include "wirerig/runtime/parallel.h"
 
 namespace wirerig {
 namespace {
@@ -192,6 +193,79 @@ TEST(ProfileCurves, CentroidOfAnOpenProfileIsTheMeanOfItsPoints) {
   square.points = {Vec3(0, 0, 0), Vec3(0.5, 0, 0), Vec3(0.75, 0, 0),
                    Vec3(1, 0, 0), Vec3(1, 1, 0),   Vec3(0, 1, 0)};
   EXPECT_LT((ProfileCentroid(square) - Vec3(0.5, 0.5, 0)).norm(), 1e-15);
+}
+
+void ExpectSameSet(const ProfileSet& a, const ProfileSet& b) {
+  ASSERT_EQ(a.profiles.size(), b.profiles.size());
+  EXPECT_EQ(a.foreign_points, b.foreign_points);
+  for (std::size_t k = 0; k < a.profiles.size(); ++k) {
+    EXPECT_EQ(a.profiles[k].v, b.profiles[k].v);
+    EXPECT_EQ(a.profiles[k].origin, b.profiles[k].origin);
+    EXPECT_EQ(a.profiles[k].closed, b.profiles[k].closed);
+    EXPECT_EQ(a.profiles[k].points, b.profiles[k].points);
+  }
+  const ProfileDiagnostics &d = a.diagnostics, &e = b.diagnostics;
+  EXPECT_EQ(d.rays, e.rays);
+  EXPECT_EQ(d.misses, e.misses);
+  EXPECT_EQ(d.other_part_hits, e.other_part_hits);
+  EXPECT_EQ(d.open_profiles, e.open_profiles);
+  EXPECT_EQ(d.empty_profiles, e.empty_profiles);
+  EXPECT_EQ(d.self_intersecting, e.self_intersecting);
+  EXPECT_EQ(d.crossing_neighbour, e.crossing_neighbour);
+  EXPECT_EQ(d.outside_profiles, e.outside_profiles);
+}
+
+TEST(ProfileCurves, ThreadsAndBatchesGiveIdenticalSets) {
+  // A torus around a rough core (re-centring at work), an open half cylinder (misses, open
+  // profiles) and a cone whose central curve leaves it (outside and empty profiles).
+  const Primitive torus(MakeTorus(0.5, 0.1, 128, 256));
+  std::vector<Vec3> core;
+  for (int k = 0; k < 16; ++k) {
+    const double a = 2.0 * kPi * k / 16;
+    core.emplace_back((0.5 + 0.02 * std::sin(3 * a)) * std::cos(a), 0.01,
+                      (0.5 + 0.02 * std::sin(3 * a)) * std::sin(a));
+  }
+  const Curve torus_core = MakeCurve(core, /*closed=*/true);
+  Mesh half = MakeCylinder(0.2, 1.0, 64, 8);
+  std::vector<Triangle> kept;
+  for (const Triangle& t : half.welded_triangles)
+    if (half.welded_positions[t[0]].x() <= 0.0 && half.welded_positions[t[1]].x() <= 0.0 &&
+        half.welded_positions[t[2]].x() <= 0.0)
+      kept.push_back(t);
+  half.welded_triangles = kept;
+  const Primitive open(std::move(half));
+  const Curve open_axis = MakeCurve({Vec3(0, 0, 0), Vec3(0, 1, 0)});
+  const Primitive cone(MakeCone(0.3, 0.0, 1.0, 64, 8));
+  const Curve leaving = MakeCurve({Vec3(0, 0.1, 0), Vec3(0.1, 0.6, 0), Vec3(0.6, 1.2, 0)});
+
+  std::vector<ProfileRequest> requests(3);
+  const Primitive* primitives[3] = {&torus, &open, &cone};
+  const Curve* curves[3] = {&torus_core, &open_axis, &leaving};
+  const int counts[3] = {23, 9, 11};
+  for (std::size_t i = 0; i < 3; ++i) {
+    requests[i].central_curve = curves[i];
+    requests[i].profile_count = counts[i];
+    requests[i].points_per_profile = 40;
+    requests[i].part_bvh = &primitives[i]->bvh;
+    requests[i].positions = primitives[i]->mesh.welded_positions;
+    requests[i].triangles = primitives[i]->mesh.welded_triangles;
+  }
+  std::vector<ProfileSet> sequential;
+  for (const ProfileRequest& request : requests) sequential.push_back(GenerateProfiles(request));
+  EXPECT_GT(sequential[1].diagnostics.open_profiles, 0u);
+  for (std::size_t threads : {1u, 2u, 3u}) {
+    const ThreadPool pool(threads);
+    const std::vector<ProfileSet> batched = GenerateProfiles(requests, &pool);
+    ASSERT_EQ(batched.size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+      ExpectSameSet(batched[i], sequential[i]);
+      ProfileRequest request = requests[i];
+      request.parallel = &pool;
+      ExpectSameSet(GenerateProfiles(request), sequential[i]);
+    }
+  }
+  const std::vector<ProfileSet> unthreaded = GenerateProfiles(requests, nullptr);
+  for (std::size_t i = 0; i < 3; ++i) ExpectSameSet(unthreaded[i], sequential[i]);
 }
 
 }  // namespace

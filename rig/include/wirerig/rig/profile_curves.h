@@ -17,6 +17,7 @@
 
 #include "wirerig/rig/triangle_bvh.h"
 #include "wirerig/runtime/curve.h"
+#include "wirerig/runtime/parallel.h"
 
 namespace wirerig {
 
@@ -64,9 +65,18 @@ struct ProfileRequest {
   std::span<const Vec3> positions;
   std::span<const Triangle> triangles;
   bool inward_facing = false;  // the triangles face inwards (negative signed volume)
+  // Optional: generates the profiles as parallel tasks (e.g. a ThreadPool made once). Null (the
+  // default): on the calling thread. The set is identical either way.
+  const ParallelFor* parallel = nullptr;
 };
 
 ProfileSet GenerateProfiles(const ProfileRequest& request);
+
+// The profiles of several parts at once (their `parallel` fields are ignored): every profile of
+// every request is one task of `parallel` (null: the calling thread), so a whole mesh's profiles
+// share the threads in one go. sets[i] is identical to GenerateProfiles(requests[i]).
+std::vector<ProfileSet> GenerateProfiles(std::span<const ProfileRequest> requests,
+                                         const ParallelFor* parallel);
 
 // The area centroid of a closed profile (a planar polygon), or the mean of an open one's points.
 Vec3 ProfileCentroid(const ProfileCurve& profile);
