@@ -137,6 +137,11 @@ struct Renderer::Impl {
   void AddQuad(float x0, float y0, float x1, float y1, const Eigen::Vector4f& c0,
                const Eigen::Vector4f& c1);
   void AddText(std::string_view text, Vec2f pixel, float scale, const Eigen::Vector4f& color);
+  // Width of `text` in stb_easy_font pixels (scale 1).
+  float TextWidth(std::string_view text) {
+    text_scratch.assign(text);
+    return float(stb_easy_font_width(text_scratch.data()));
+  }
   void DrawOverlay(Size viewport);
 };
 
@@ -575,7 +580,7 @@ void Renderer::Render(const RenderFrame& frame, const Camera& camera, Size viewp
     const GLsizei count = static_cast<GLsizei>(m.wire_first.size());
     for (int pass = 0; pass < 2; ++pass) {
       glDepthFunc(pass == 0 ? GL_GREATER : GL_LEQUAL);
-      const float alpha = pass == 0 ? 0.35f : 1.0f;
+      const float alpha = pass == 0 ? 0.55f : 1.0f;
       for (GLuint p : {m.wire.get(), m.join.get()}) {
         glUseProgram(p);
         SetMat4(p, "u_view", view);
@@ -599,19 +604,25 @@ void Renderer::Render(const RenderFrame& frame, const Camera& camera, Size viewp
     const float s = std::max(1.0f, 2.0f * float(viewport.height) / 720.0f);
     const float margin = 12.0f * s;
     const Eigen::Vector4f ink(0.02f, 0.02f, 0.025f, 1.0f);
-    if (!frame.caption.empty()) m.AddText(frame.caption, Vec2f(margin, margin), s, ink);
+    // Top-right corner: the caption, then the legend under it (windows keep their HUD at the
+    // top-left and their timeline along the bottom).
+    const float right = float(viewport.width) - margin;
+    const float text_h = 8.0f * s;
+    float y = margin;
+    if (!frame.caption.empty()) {
+      m.AddText(frame.caption, Vec2f(right - m.TextWidth(frame.caption) * s, y), s, ink);
+      y += text_h + 6.0f * s;
+    }
     if (any_scalars && frame.legend.show) {
-      const float text_h = 8.0f * s;
-      const float bar_w = 110.0f * s;
+      const float bar_w = std::max(110.0f * s, m.TextWidth(frame.legend.label) * s);
       const float bar_h = 7.0f * s;
-      const float x0 = margin;
-      const float numbers_y = float(viewport.height) - margin - text_h;
-      const float bar_y1 = numbers_y - 3.0f * s;
-      const float bar_y0 = bar_y1 - bar_h;
-      const float label_y = bar_y0 - 3.0f * s - text_h;
-      m.AddQuad(x0 - 4.0f * s, label_y - 4.0f * s, x0 + bar_w + 4.0f * s,
-                numbers_y + text_h + 2.0f * s, Eigen::Vector4f(1, 1, 1, 0.55f),
-                Eigen::Vector4f(1, 1, 1, 0.55f));
+      const float x0 = right - bar_w;
+      const float label_y = y + 4.0f * s;
+      const float bar_y0 = label_y + text_h + 3.0f * s;
+      const float bar_y1 = bar_y0 + bar_h;
+      const float numbers_y = bar_y1 + 3.0f * s;
+      m.AddQuad(x0 - 4.0f * s, y, right + 4.0f * s, numbers_y + text_h + 2.0f * s,
+                Eigen::Vector4f(1, 1, 1, 0.55f), Eigen::Vector4f(1, 1, 1, 0.55f));
       constexpr int kBarSteps = 32;
       for (int k = 0; k < kBarSteps; ++k) {
         const float t0 = float(k) / kBarSteps;
@@ -624,8 +635,7 @@ void Renderer::Render(const RenderFrame& frame, const Camera& camera, Size viewp
       std::snprintf(number, sizeof(number), "%.3g", double(frame.legend.min));
       m.AddText(number, Vec2f(x0, numbers_y), s, ink);
       std::snprintf(number, sizeof(number), "%.3g", double(frame.legend.max));
-      const float w = float(stb_easy_font_width(number)) * s;
-      m.AddText(number, Vec2f(x0 + bar_w - w, numbers_y), s, ink);
+      m.AddText(number, Vec2f(right - m.TextWidth(number) * s, numbers_y), s, ink);
       if (!frame.legend.label.empty()) m.AddText(frame.legend.label, Vec2f(x0, label_y), s, ink);
     }
     m.DrawOverlay(viewport);
