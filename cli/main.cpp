@@ -7,6 +7,9 @@
 
 #include "bake_command.h"
 #include "rig_command.h"
+#ifdef WIRERIG_HAS_VIEWER
+#include "render_command.h"
+#endif
 #include "wire_command.h"
 
 int main(int argc, char** argv) {
@@ -23,6 +26,11 @@ int main(int argc, char** argv) {
   wirerig::cli::BakeCommandOptions bake_options;
   CLI::App* bake = wirerig::cli::AddBakeCommand(app, bake_options);
 
+#ifdef WIRERIG_HAS_VIEWER
+  wirerig::cli::RenderCommandOptions render_options;
+  CLI::App* render = wirerig::cli::AddRenderCommand(app, render_options);
+#endif
+
   CLI11_PARSE(app, argc, argv);
   if (wire->parsed())
     return wirerig::cli::RunWireCommand(wire_options, std::cin, std::cout, std::cerr);
@@ -31,5 +39,8 @@ int main(int argc, char** argv) {
     bake_options.progress = isatty(STDERR_FILENO) != 0;
     return wirerig::cli::RunBakeCommand(bake_options, std::cout, std::cerr);
   }
+#ifdef WIRERIG_HAS_VIEWER
+  if (render->parsed()) return wirerig::cli::RunRenderCommand(render_options, std::cout, std::cerr);
+#endif
   return 1;
 }

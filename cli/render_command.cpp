@@ -1,0 +1,118 @@
+#include "render_command.h"
+
+#include <cstdio>
+#include <ostream>
+
+#include <CLI/CLI.hpp>
+
+#include "wirerig/anim/scene.h"
+#include "wirerig/viewer/headless.h"
+#include "wirerig/viewer/scene_frame.h"
+
+namespace wirerig::cli {
+namespace {
+
+bool ParseSize(const std::string& text, Size* size) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x') return false;
+  if (w < 16 || h < 16 || w > 8192 || h > 8192) return false;
+  *size = {w, h};
+  return true;
+}
+
+std::string TimeLabel(double t) {
+  char label[32];
+  std::snprintf(label, sizeof label, "t = %.2f s", t);
+  return label;
+}
+
+}  // namespace
+
+CLI::App* AddRenderCommand(CLI::App& app, RenderCommandOptions& options) {
+  CLI::App* render = app.add_subcommand("render", "Draw a scene at a time to PNG, headless");
+  render->add_option("scene", options.scene, "Scene file (JSON)")->required();
+  render->add_option("-o,--output", options.output, "PNG file to write")->required();
+  render->add_option("-t,--time", options.time, "Time in the clip, s")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  render->add_option("--size", options.size, "Image (or tile) size, WIDTHxHEIGHT")
+      ->capture_default_str();
+  render->add_option("--clip", options.clip, "Clip to play (default: the scene's first)");
+  render
+      ->add_option("--sheet", options.sheet,
+                   "Draw a contact sheet of this many times spread over the clip")
+      ->check(CLI::Range(1, 64));
+  render->add_flag("!--no-wires", options.wires, "Hide the profile and spine wires");
+  return render;
+}
+
+int RunRenderCommand(const RenderCommandOptions& options, std::ostream& out, std::ostream& err) {
+  auto fail = [&](const std::string& message) {
+    err << "wirerig render: " << message << "\n";
+    return 1;
+  };
+  Size size;
+  if (!ParseSize(options.size, &size))
+    return fail("--size: must be WIDTHxHEIGHT, each in [16, 8192], e.g. 1280x720");
+  Result<SceneDescription> description = LoadScene(options.scene);
+  if (!description) return fail(description.error());
+  Result<BuiltScene> built = BuildScene(description.value());
+  if (!built) return fail(options.scene + ": " + built.error());
+  const BuiltScene& scene = built.value();
+  const Clip* clip = scene.FindClip(options.clip);
+  if (!options.clip.empty() && !clip)
+    return fail(options.scene + ": no clip is named \"" + options.clip + "\"");
+  // A scene without clips is drawn at rest.
+  Clip rest;
+  rest.name = "rest";
+  rest.parts.resize(scene.model.parts.size());
+  if (!clip) clip = &rest;
+  Result<Playback> made = Playback::Make(scene.model, *clip, scene.description.playback);
+  if (!made) return fail(options.scene + ": " + made.error());
+  Playback& playback = made.value();
+
+  SceneFrame picture(scene);
+  std::vector<Vec3> positions(scene.model.vertices.size()), normals(positions.size());
+  RenderOptions render_options;
+  render_options.show_wires = options.wires;
+  auto evaluate = [&](double t) -> std::string {
+    if (Status s = playback.Evaluate(t, positions, normals); !s)
+      return "t = " + std::to_string(t) + " s: " + ToString(s);
+    picture.Update(playback, positions, normals);
+    return {};
+  };
+
+  if (options.sheet == 0) {
+    if (std::string e = evaluate(options.time); !e.empty()) return fail(options.scene + ": " + e);
+    picture.set_caption(scene.description.name + "  " + TimeLabel(options.time));
+    const Camera camera = picture.InitialCamera(size);
+    Result<std::filesystem::path> written =
+        RenderToPng(picture.frame(), camera, size, options.output, render_options);
+    if (!written) return fail(written.error());
+    out << "written: " << options.output << "\n";
+    return 0;
+  }
+  // Contact sheet: every tile keeps the first tile's camera so motion reads across tiles.
+  const int n = options.sheet;
+  const int columns = n <= 4 ? n : (n <= 9 ? 3 : 4);
+  std::vector<ContactSheetTile> tiles;
+  std::vector<SceneFrame> pictures;
+  pictures.reserve(static_cast<std::size_t>(n));
+  Camera camera;
+  for (int i = 0; i < n; ++i) {
+    const double t = n == 1 ? 0.0 : clip->duration * i / (n - 1);
+    if (std::string e = evaluate(t); !e.empty()) return fail(options.scene + ": " + e);
+    pictures.emplace_back(scene);
+    pictures.back().Update(playback, positions, normals);
+    if (i == 0) camera = pictures.back().InitialCamera(size);
+    tiles.push_back({pictures.back().frame(), camera, TimeLabel(t)});
+  }
+  Result<std::filesystem::path> written =
+      RenderContactSheet(tiles, size, columns, options.output, render_options);
+  if (!written) return fail(written.error());
+  out << "written: " << options.output << " (" << n << " times)\n";
+  return 0;
+}
+
+}  // namespace wirerig::cli

@@ -1,0 +1,51 @@
+// SceneFrame: the picture of a scene being played, as a RenderFrame. It owns float buffers sized
+// once for the scene (the deformed mesh, a polyline per profile wire and spine wire, an arrow
+// per spine point load) and refills them from a Playback after each Evaluate without
+// allocating. Profile wires are blue, spine wires pink, as in the paper's figures.
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "wirerig/anim/playback.h"
+#include "wirerig/anim/scene.h"
+#include "wirerig/viewer/camera.h"
+#include "wirerig/viewer/render_frame.h"
+
+namespace wirerig {
+
+class SceneFrame {
+ public:
+  // The scene must outlive the frame.
+  explicit SceneFrame(const BuiltScene& scene);
+
+  // From a playback of this scene's model just evaluated into `positions` and `normals`
+  // (#W welded vertices each).
+  void Update(const Playback& playback, std::span<const Vec3> positions,
+              std::span<const Vec3> normals);
+
+  // Spans into this object's buffers, valid until the next Update.
+  RenderFrame frame() const;
+  void set_caption(std::string caption) { caption_ = std::move(caption); }
+
+  // The scene's camera hint, or a camera framing the rest mesh, for an image of `size`.
+  Camera InitialCamera(Size size) const;
+
+  // Polyline ids: profile wire k of part p, and the spine of part p.
+  std::uint32_t ProfileId(std::size_t part, std::size_t profile) const;
+  std::uint32_t SpineId(std::size_t part) const;
+
+ private:
+  const BuiltScene* scene_;
+  std::vector<Vec3f> positions_, normals_;
+  std::vector<std::vector<Vec3f>> wire_points_;  // per polyline
+  std::vector<RenderPolyline> polylines_;
+  std::vector<RenderArrow> arrows_;
+  std::size_t arrow_count_ = 0;
+  std::vector<std::size_t> first_profile_id_;  // per part
+  RenderMesh mesh_;
+  std::string caption_;
+};
+
+}  // namespace wirerig
