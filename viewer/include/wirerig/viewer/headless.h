@@ -1,6 +1,11 @@
 // Headless rendering: an OpenGL 3.3 core context without a window (EGL, Mesa's surfaceless
 // platform first, the default display as a fallback), an offscreen multisampled framebuffer,
 // and the one-call helpers RenderToPng and RenderContactSheet.
+//
+// Floating-point traps: Mesa (EGL initialisation, llvmpipe's LLVM shader compiler) raises
+// division-by-zero and invalid-operation flags internally. A process that enables traps
+// (feenableexcept, as wirerig's test main does) must disable them around these calls; the
+// viewer tests do so with a scoped guard.
 #pragma once
 
 #include <filesystem>
