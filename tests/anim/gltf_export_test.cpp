@@ -641,6 +641,79 @@ TEST(GltfExport, UsesTheNodeNameAndKeepsAnExistingFileOnError) {
   EXPECT_EQ(FileCount(dir.path()), 2u);
 }
 
+TEST(GltfExport, PartsBecomePrimitivesSharingVerticesAndTargets) {
+  TempDir dir;
+  Scene scene = MakeScene(BendCase{});
+  const auto half = static_cast<std::uint32_t>(scene.mesh.triangles.size() / 2);
+  scene.mesh.parts = {
+      MeshPart{"lower", 0, half, 0},
+      MeshPart{"upper", half, static_cast<std::uint32_t>(scene.mesh.triangles.size()) - half, 1}};
+  scene.mesh.materials.push_back(MeshMaterial{"tip", Vec4(0.1, 0.2, 0.9, 0.5), ""});
+  for (GltfAnimationMode mode : {GltfAnimationMode::kMorph, GltfAnimationMode::kSkin}) {
+    GltfExportOptions options;
+    options.mode = mode;
+    options.residual_morph_targets = true;
+    const fs::path out =
+        dir.path() / (mode == GltfAnimationMode::kMorph ? "parts_morph.glb" : "parts_skin.glb");
+    const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
+    ASSERT_TRUE(report.ok()) << report.error();
+    EXPECT_EQ(report.value().primitive_count, 2u);
+    EXPECT_EQ(report.value().material_count, 2u);
+    const tinygltf::Model model = LoadWithTinygltf(out);
+    ASSERT_EQ(model.meshes.at(0).primitives.size(), 2u);
+    const tinygltf::Primitive& a = model.meshes[0].primitives[0];
+    const tinygltf::Primitive& b = model.meshes[0].primitives[1];
+    EXPECT_EQ(a.attributes, b.attributes);
+    EXPECT_EQ(a.targets, b.targets);
+    EXPECT_EQ(a.material, 0);
+    EXPECT_EQ(b.material, 1);
+    EXPECT_EQ(model.accessors.at(static_cast<std::size_t>(a.indices)).count, 3u * half);
+    EXPECT_LE(ReconstructionErrors(model, scene.bake).max, 1e-4 * scene.diagonal);
+    const Validation validation = Validate(out);
+    EXPECT_EQ(validation.exit_code, 0) << validation.output;
+    EXPECT_NE(validation.output.find(": 0 errors, 0 warnings"), std::string::npos)
+        << validation.output;
+  }
+}
+
+TEST(GltfExport, ASingleKeyIsAValidAnimation) {
+  TempDir dir;
+  BendCase c;
+  c.keys = 2;
+  Scene scene = MakeScene(c);
+  // Keep key 1 only (the full bend), at t = 0.
+  const std::size_t v = scene.bake.vertex_count;
+  scene.bake.times = {0.0};
+  scene.bake.positions.erase(scene.bake.positions.begin(),
+                             scene.bake.positions.begin() + static_cast<std::ptrdiff_t>(v));
+  scene.bake.normals.erase(scene.bake.normals.begin(),
+                           scene.bake.normals.begin() + static_cast<std::ptrdiff_t>(v));
+  for (BakedSpine& spine : scene.bake.spines) {
+    const auto n = static_cast<std::ptrdiff_t>(spine.SampleCount());
+    spine.points.erase(spine.points.begin(), spine.points.begin() + n);
+    spine.rotations.erase(spine.rotations.begin(), spine.rotations.begin() + n);
+  }
+  for (GltfAnimationMode mode : {GltfAnimationMode::kMorph, GltfAnimationMode::kSkin}) {
+    GltfExportOptions options;
+    options.mode = mode;
+    const fs::path out =
+        dir.path() / (mode == GltfAnimationMode::kMorph ? "one_morph.gltf" : "one_skin.gltf");
+    const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
+    ASSERT_TRUE(report.ok()) << report.error();
+    EXPECT_EQ(report.value().key_count, 1u);
+    const Errors errors = ReconstructionErrors(LoadWithTinygltf(out), scene.bake);
+    if (mode == GltfAnimationMode::kMorph) {
+      EXPECT_LE(errors.max, 1e-4 * scene.diagonal);
+    } else {
+      EXPECT_NEAR(errors.max, report.value().skin_max_error, 1e-6 * scene.diagonal);
+    }
+    const Validation validation = Validate(out);
+    EXPECT_EQ(validation.exit_code, 0) << validation.output;
+    EXPECT_NE(validation.output.find(": 0 errors, 0 warnings"), std::string::npos)
+        << validation.output;
+  }
+}
+
 // Every refusal names its field and writes nothing.
 struct BadInput {
   const char* name;
