@@ -133,7 +133,9 @@ Message CheckSpines(const BakedAnimation& bake) {
         return Indexed(field + ".rotations", j).append(": not a finite rotation");
       }
     }
-    if (spine.parent >= static_cast<int>(i)) return field + ".parent: must name an earlier spine";
+    if (spine.parent < -1 || spine.parent >= static_cast<int>(i)) {
+      return field + ".parent: must be -1 or name an earlier spine";
+    }
     if (spine.parent >= 0) {
       const BakedSpine& parent = bake.spines[static_cast<std::size_t>(spine.parent)];
       if (spine.parent_joint < 0 ||

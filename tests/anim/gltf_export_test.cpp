@@ -607,6 +607,34 @@ TEST(GltfExport, SkinIsExactWhenEveryRingHasAJoint) {
   EXPECT_LE(errors.max, 1e-4 * scene.diagonal);
 }
 
+TEST(GltfExport, SkinWeightsAreMergedSortedAndNormalizedInFloat) {
+  TempDir dir;
+  Scene scene = MakeScene(BendCase{});
+  scene.bake.skin_joints[20] = {2, 1, 2, 0};
+  scene.bake.skin_weights[20] = Vec4f(0.2f, 0.3f, 0.2f, 0.0f);
+  GltfExportOptions options;
+  options.mode = GltfAnimationMode::kSkin;
+  const fs::path out = dir.path() / "weights.glb";
+  ASSERT_TRUE(ExportGltf(scene.mesh, scene.bake, options, out).ok());
+  const tinygltf::Model model = LoadWithTinygltf(out);
+  const tinygltf::Primitive& primitive = model.meshes.at(0).primitives.at(0);
+  const std::vector<std::uint32_t> joints = ReadUints(model, primitive.attributes.at("JOINTS_0"));
+  const std::vector<float> weights = ReadFloats(model, primitive.attributes.at("WEIGHTS_0"));
+  EXPECT_EQ(model.accessors.at(static_cast<std::size_t>(primitive.attributes.at("JOINTS_0")))
+                .componentType,
+            TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE);
+  EXPECT_EQ(std::vector<std::uint32_t>(joints.begin() + 80, joints.begin() + 84),
+            (std::vector<std::uint32_t>{2, 1, 0, 0}));
+  EXPECT_NEAR(weights[80], 0.4 / 0.7, 1e-7);
+  EXPECT_NEAR(weights[81], 0.3 / 0.7, 1e-7);
+  EXPECT_EQ(weights[82], 0.0f);
+  EXPECT_EQ(weights[83], 0.0f);
+  for (std::size_t v = 0; v < scene.bake.vertex_count; ++v) {
+    EXPECT_EQ(weights[v * 4] + weights[v * 4 + 1] + weights[v * 4 + 2] + weights[v * 4 + 3], 1.0f)
+        << v;
+  }
+}
+
 TEST(GltfExport, ReportsMissingTexturesAndExportsWithoutThem) {
   TempDir dir;
   const Scene scene = MakeScene(BendCase{});
@@ -784,6 +812,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{
             "ParentJoint", "bake.spines[1].parent_joint",
             [](Scene& s, GltfExportOptions&, fs::path&) { s.bake.spines[1].parent_joint = 3; }},
+        BadInput{"SpineParent", "bake.spines[1].parent: must be -1 or name an earlier spine",
+                 [](Scene& s, GltfExportOptions&, fs::path&) { s.bake.spines[1].parent = 1; }},
+        BadInput{"NanSpineRotation", "bake.spines[0].rotations[4]: not a finite rotation",
+                 [](Scene& s, GltfExportOptions&, fs::path&) {
+                   s.bake.spines[0].rotations[4].w() = std::numeric_limits<double>::infinity();
+                 }},
         BadInput{"TriangleIndex", "mesh.triangles[0]: vertex index out of range",
                  [](Scene& s, GltfExportOptions&, fs::path&) { s.mesh.triangles[0][1] = 100000; }}),
     [](const testing::TestParamInfo<BadInput>& p) { return std::string(p.param.name); });
