@@ -8,6 +8,7 @@
 #include "bake_command.h"
 #include "rig_command.h"
 #ifdef WIRERIG_HAS_VIEWER
+#include "demo_command.h"
 #include "render_command.h"
 #endif
 #include "wire_command.h"
@@ -29,6 +30,8 @@ int main(int argc, char** argv) {
 #ifdef WIRERIG_HAS_VIEWER
   wirerig::cli::RenderCommandOptions render_options;
   CLI::App* render = wirerig::cli::AddRenderCommand(app, render_options);
+  wirerig::cli::DemoCommandOptions demo_options;
+  CLI::App* demo = wirerig::cli::AddDemoCommand(app, demo_options);
 #endif
 
   CLI11_PARSE(app, argc, argv);
@@ -41,6 +44,10 @@ int main(int argc, char** argv) {
   }
 #ifdef WIRERIG_HAS_VIEWER
   if (render->parsed()) return wirerig::cli::RunRenderCommand(render_options, std::cout, std::cerr);
+  if (demo->parsed()) {
+    demo_options.progress = isatty(STDERR_FILENO) != 0;
+    return wirerig::cli::RunDemoCommand(demo_options, std::cout, std::cerr);
+  }
 #endif
   return 1;
 }

@@ -14,6 +14,7 @@ packages=(
   libeigen3-dev libglm-dev nlohmann-json3-dev libcli11-dev libassimp-dev libcgal-dev
   libtinygltf-dev libstb-dev
   libglfw3-dev libimgui-dev libegl-dev libgl-dev xvfb xauth
+  libegl-mesa0 libglx-mesa0 libgl1-mesa-dri
   libgtest-dev libgmock-dev libbenchmark-dev
   nodejs
   assimp-testmodels

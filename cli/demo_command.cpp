@@ -1,0 +1,54 @@
+#include "demo_command.h"
+
+#include <filesystem>
+#include <ostream>
+
+#include <CLI/CLI.hpp>
+
+#include "bake_command.h"
+#include "octopus_scene.h"
+#include "render_command.h"
+#include "wirerig/rig/atomic_file.h"
+
+namespace wirerig::cli {
+
+CLI::App* AddDemoCommand(CLI::App& app, DemoCommandOptions& options) {
+  CLI::App* demo = app.add_subcommand(
+      "demo", "The octopus demo: bake a 10 s swim to .glb and draw a contact sheet, headless");
+  demo->add_option("-o,--output", options.output, "Folder for octopus.glb, .png and .scene.json")
+      ->capture_default_str();
+  return demo;
+}
+
+int RunDemoCommand(const DemoCommandOptions& options, std::ostream& out, std::ostream& err) {
+  namespace fs = std::filesystem;
+  const fs::path folder = options.output;
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec) {
+    err << "wirerig demo: " << folder.string() << ": cannot create the folder (" << ec.message()
+        << ")\n";
+    return 1;
+  }
+  const fs::path scene = folder / "octopus.scene.json";
+  if (Result<fs::path> written = WriteFileAtomically(scene, kOctopusScene); !written) {
+    err << "wirerig demo: " << written.error() << "\n";
+    return 1;
+  }
+  out << "written: " << scene.string() << "\n";
+
+  BakeCommandOptions bake;
+  bake.scene = scene.string();
+  bake.output = (folder / "octopus.glb").string();
+  bake.progress = options.progress;
+  if (int code = RunBakeCommand(bake, out, err); code != 0) return code;
+
+  RenderCommandOptions render;
+  render.scene = scene.string();
+  render.output = (folder / "octopus.png").string();
+  render.size = "640x400";
+  render.sheet = 6;
+  return RunRenderCommand(render, out, err);
+}
+
+}  // namespace wirerig::cli

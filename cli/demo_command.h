@@ -1,0 +1,22 @@
+// `wirerig demo [-o DIR]`: the octopus demo (paper Fig. 13), with no display. Writes the sample
+// scene DIR/octopus.scene.json (a copy built into the binary), bakes its 10 s swim to
+// DIR/octopus.glb (morph mode) and draws DIR/octopus.png, a contact sheet of six times.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+
+#include <CLI/App.hpp>
+
+namespace wirerig::cli {
+
+struct DemoCommandOptions {
+  std::string output = "out";  // folder, created if missing
+  bool progress = false;       // set by main when stderr is a terminal
+};
+
+CLI::App* AddDemoCommand(CLI::App& app, DemoCommandOptions& options);
+
+int RunDemoCommand(const DemoCommandOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace wirerig::cli

@@ -1,0 +1,204 @@
+// `wirerig bake`, `render` and `demo`, run in-process on the octopus sample and on broken
+// scenes: the .glb passes the Khronos validator, the PNG shows the model and changes with
+// time, and every failure names the file and field, exits 1 and leaves no output file.
+#include <gtest/gtest.h>
+
+#include <cfenv>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "bake_command.h"
+#include "demo_command.h"
+#include "render_command.h"
+#include "wirerig/viewer/image.h"
+
+#ifndef WIRERIG_SOURCE_DIR
+#define WIRERIG_SOURCE_DIR "/work/main"
+#endif
+
+namespace wirerig::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kOctopus =
+    std::string(WIRERIG_SOURCE_DIR) + "/samples/octopus/octopus.scene.json";
+const std::string kData = std::string(WIRERIG_SOURCE_DIR) + "/tests/cli/data/";
+
+fs::path Output(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / "wirerig_scene_commands_test";
+  fs::create_directories(dir);
+  fs::remove_all(dir / name);
+  return dir / name;
+}
+
+// Runs scripts/validate_gltf.mjs; returns its first line of output and sets *code.
+std::string Validate(const fs::path& file, int* code) {
+  const std::string command = "node '" + std::string(WIRERIG_SOURCE_DIR) +
+                              "/scripts/validate_gltf.mjs' '" + file.string() + "' 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return "cannot run node";
+  std::string text;
+  char buffer[512];
+  while (fgets(buffer, sizeof buffer, pipe)) text += buffer;
+  *code = pclose(pipe);
+  return text;
+}
+
+struct CommandRun {
+  int code;
+  std::string out, err;
+};
+
+CommandRun Bake(BakeCommandOptions options) {
+  std::ostringstream out, err;
+  const int code = RunBakeCommand(options, out, err);
+  return {code, out.str(), err.str()};
+}
+
+CommandRun Render(RenderCommandOptions options) {
+  std::ostringstream out, err;
+  const int code = RunRenderCommand(options, out, err);
+  return {code, out.str(), err.str()};
+}
+
+TEST(BakeCommand, OctopusExportsAValidGlbInBothModes) {
+  for (const char* mode : {"morph", "skin"}) {
+    SCOPED_TRACE(mode);
+    BakeCommandOptions options;
+    options.scene = kOctopus;
+    options.output = Output(std::string("octopus_") + mode + ".glb").string();
+    options.mode = mode;
+    options.fps = 10;
+    const CommandRun run = Bake(options);
+    ASSERT_EQ(run.code, 0) << run.err;
+    EXPECT_NE(run.out.find("baked 101 keys"), std::string::npos) << run.out;
+    ASSERT_TRUE(fs::exists(options.output));
+    EXPECT_GT(fs::file_size(options.output), 100'000u);
+    int code = -1;
+    const std::string report = Validate(options.output, &code);
+    EXPECT_EQ(code, 0) << report;
+    EXPECT_NE(report.find(": 0 errors"), std::string::npos) << report;
+  }
+}
+
+TEST(BakeCommand, FailuresNameTheFileAndFieldAndWriteNothing) {
+  struct Case {
+    std::string scene, clip, message;
+  };
+  const std::vector<Case> cases = {
+      {kData + "bad_clip_part.scene.json", "",
+       "bad_clip_part.scene.json: scene \"bad\": /clips/0: parts[0].part: no part of the rig is "
+       "named \"tentacle\""},
+      {kData + "bad_track.scene.json", "",
+       "bad_track.scene.json: /clips/0/parts/0/tip_force/keys/1/1: must be an array of 3 "
+       "numbers"},
+      {kData + "missing.scene.json", "", "missing.scene.json: cannot open the scene file"},
+      {kOctopus, "dance", "octopus.scene.json: no clip is named \"dance\""},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.scene);
+    BakeCommandOptions options;
+    options.scene = c.scene;
+    options.clip = c.clip;
+    options.output = Output("bad.glb").string();
+    const CommandRun run = Bake(options);
+    EXPECT_EQ(run.code, 1);
+    EXPECT_NE(run.err.find(c.message), std::string::npos) << run.err;
+    EXPECT_FALSE(fs::exists(options.output));
+  }
+  BakeCommandOptions options;
+  options.scene = kOctopus;
+  options.output = Output("octopus.fbx").string();
+  const CommandRun run = Bake(options);
+  EXPECT_EQ(run.code, 1);
+  EXPECT_FALSE(fs::exists(options.output));
+}
+
+// Mesa's software rasterizer raises floating-point exceptions inside its own code (context
+// creation, shader compilation); the drawing tests turn the test main's traps off. The scene
+// evaluation they call is covered with traps on by the anim tests.
+class DrawingTest : public ::testing::Test {
+ protected:
+  void SetUp() override { fedisableexcept(FE_ALL_EXCEPT); }
+  void TearDown() override { feenableexcept(FE_DIVBYZERO | FE_INVALID | FE_OVERFLOW); }
+};
+using RenderCommand = DrawingTest;
+using DemoCommand = DrawingTest;
+
+// Mean absolute difference of two images below row `top` (the caption, which names the time,
+// sits above it).
+double MeanDifference(const Image& a, const Image& b, int top) {
+  double sum = 0.0;
+  const std::size_t first = std::size_t(top) * std::size_t(a.width) * 4;
+  for (std::size_t i = first; i < a.rgba.size(); ++i)
+    sum += std::abs(int(a.rgba[i]) - int(b.rgba[i]));
+  return sum / double(a.rgba.size() - first);
+}
+
+TEST_F(RenderCommand, OctopusPictureShowsTheModelAndMovesWithTime) {
+  RenderCommandOptions options;
+  options.scene = kOctopus;
+  options.size = "320x200";
+  options.wires = false;  // the skin itself, not the wires drawn over it
+  options.time = 0.0;
+  const fs::path first_path = Output("octopus_t0.png");
+  options.output = first_path.string();
+  CommandRun run = Render(options);
+  ASSERT_EQ(run.code, 0) << run.err;
+  options.time = 1.3;
+  options.output = Output("octopus_t13.png").string();
+  run = Render(options);
+  ASSERT_EQ(run.code, 0) << run.err;
+  const Image first = LoadPng(first_path).value();
+  const Image later = LoadPng(options.output).value();
+  ASSERT_EQ(first.width, 320);
+  ASSERT_EQ(first.height, 200);
+  // The skin is orange (red well above blue) around the middle of the picture, where the
+  // camera frames the model; the corners show the grey-blue sky or the pale ground.
+  int skin = 0;
+  for (int y = 60; y < 140; ++y)
+    for (int x = 110; x < 210; ++x) {
+      const auto p = first.At(x, y);
+      skin += p[0] > p[2] + 40;
+    }
+  EXPECT_GT(skin, 400);
+  const auto corner = first.At(2, 2);
+  EXPECT_LE(std::abs(int(corner[0]) - int(corner[2])), 30);
+  EXPECT_GT(MeanDifference(first, later, 30), 1.0);  // measured 4.2
+  EXPECT_EQ(MeanDifference(first, first, 30), 0.0);
+}
+
+TEST_F(RenderCommand, BadSizeAndSceneFailCleanly) {
+  RenderCommandOptions options;
+  options.scene = kOctopus;
+  options.size = "wide";
+  options.output = Output("bad.png").string();
+  CommandRun run = Render(options);
+  EXPECT_EQ(run.code, 1);
+  EXPECT_NE(run.err.find("--size: must be WIDTHxHEIGHT"), std::string::npos) << run.err;
+  options.size = "64x64";
+  options.scene = kData + "bad_clip_part.scene.json";
+  run = Render(options);
+  EXPECT_EQ(run.code, 1);
+  EXPECT_NE(run.err.find("no part of the rig is named \"tentacle\""), std::string::npos);
+  EXPECT_FALSE(fs::exists(options.output));
+}
+
+TEST_F(DemoCommand, WritesTheSceneTheGlbAndTheContactSheet) {
+  DemoCommandOptions options;
+  options.output = Output("demo").string();
+  std::ostringstream out, err;
+  ASSERT_EQ(RunDemoCommand(options, out, err), 0) << err.str();
+  for (const char* name : {"octopus.scene.json", "octopus.glb", "octopus.png"})
+    EXPECT_TRUE(fs::exists(fs::path(options.output) / name)) << name;
+  const Image sheet = LoadPng(fs::path(options.output) / "octopus.png").value();
+  EXPECT_GT(sheet.width, 1000);  // 3 tiles of 640 across
+  int code = -1;
+  const std::string report = Validate(fs::path(options.output) / "octopus.glb", &code);
+  EXPECT_EQ(code, 0) << report;
+}
+
+}  // namespace
+}  // namespace wirerig::cli
