@@ -89,7 +89,9 @@ class CantileverDemo : public Application {
     frame.arrows = {arrows_.data(), arrow_count_};
     frame.arrow_length_per_newton = 0.01f;
     frame.legend.min = 0.0f;
-    frame.legend.max = 20.0f;
+    // The range follows the largest moment, in steps of 10 N m, so colours never saturate.
+    const float peak = *std::max_element(scalars_.begin(), scalars_.end());
+    frame.legend.max = std::max(10.0f, 10.0f * std::ceil(peak / 10.0f));
     frame.legend.map = ColorMap::kViridis;
     frame.legend.label = "bending moment |M| (N m)";
     std::snprintf(caption_, sizeof(caption_), "t = %.2f s", timeline().time);
