@@ -104,7 +104,10 @@ Result<PartAssignment> AssignParts(const Mesh& mesh, const RigDescription& descr
 
   // The rest: the nearest visible central curve. A child whose closest point is its own root
   // end (the vertex lies behind the joint, e.g. torso skin behind the shoulder) is taken only
-  // when no other curve sees the vertex.
+  // when no other curve sees the vertex. Curves more than kFarther times as far as the nearest
+  // one are never taken: a curve end lying outside the surface (a fingertip) sees far-away
+  // skin through the air (a hand would take the toes of the other foot).
+  constexpr double kFarther = 3.0;
   std::vector<std::pair<double, int>> order(part_count);
   std::vector<CurveProjection> projections(part_count);
   for (std::size_t v = 0; v < vertex_count; ++v) {
@@ -125,6 +128,7 @@ Result<PartAssignment> AssignParts(const Mesh& mesh, const RigDescription& descr
     for (int pass = 0; pass < 2 && chosen < 0; ++pass)
       for (std::size_t c = 0; c < candidates && chosen < 0; ++c) {
         const int i = order[c].second;
+        if (order[c].first > kFarther * order[0].first) break;
         if (behind_child_root(i) == (pass == 0)) continue;
         if (!Occluded(active_bvh, projections[i].point, p)) chosen = i;
       }
