@@ -1,0 +1,113 @@
+// Bake and export of a 10 s clip at 30 fps (301 keys), morph mode, on the two sample scenes:
+// samples/human/human_wave.scene.json (human.zae, 15.6k render vertices) and
+// samples/octopus/octopus.scene.json (the procedural octopus, 8.4k). Target: under 1 s each
+// (bake + .glb export). Scenes are loaded and built outside the timed loop.
+//  * BM_Bake: BakeClip alone.
+//  * BM_Export: ExportGltf of a finished bake to a .glb (file written, then removed).
+//  * BM_BakeAndExport: both, what `wirerig bake` does after loading; reports the file size.
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <string>
+
+#include "wirerig/anim/bake.h"
+#include "wirerig/anim/gltf_export.h"
+#include "wirerig/anim/scene.h"
+
+#ifndef WIRERIG_SAMPLES_DIR
+#define WIRERIG_SAMPLES_DIR "/work/main/samples"
+#endif
+
+namespace wirerig {
+namespace {
+
+const BuiltScene& Scene(const std::string& name) {
+  static std::map<std::string, BuiltScene> scenes;
+  auto it = scenes.find(name);
+  if (it != scenes.end()) return it->second;
+  const std::string path = std::string(WIRERIG_SAMPLES_DIR) + "/" + name;
+  Result<SceneDescription> description = LoadScene(path);
+  Result<BuiltScene> built = description ? BuildScene(description.value())
+                                         : Result<BuiltScene>(Error{description.error()});
+  if (!built) {
+    std::cerr << path << ": " << built.error() << "\n";
+    std::exit(1);
+  }
+  return scenes.emplace(name, std::move(built).value()).first->second;
+}
+
+BakedAnimation Bake(const BuiltScene& scene) {
+  Result<BakedAnimation> bake =
+      BakeClip(scene.mesh, scene.model, scene.clips.front(), scene.description.playback);
+  if (!bake) {
+    std::cerr << bake.error() << "\n";
+    std::exit(1);
+  }
+  return std::move(bake).value();
+}
+
+std::filesystem::path Output(const std::string& name) {
+  return std::filesystem::temp_directory_path() /
+         ("wirerig_bake_bench_" + std::filesystem::path(name).stem().string() + ".glb");
+}
+
+std::uintmax_t Export(const BuiltScene& scene, const BakedAnimation& bake,
+                      const std::filesystem::path& out) {
+  Result<GltfExportReport> report = ExportGltf(scene.mesh, bake, GltfExportOptions{}, out);
+  if (!report) {
+    std::cerr << report.error() << "\n";
+    std::exit(1);
+  }
+  return report.value().bytes_written;
+}
+
+void SetCounters(benchmark::State& state, const BuiltScene& scene, std::uintmax_t bytes) {
+  state.counters["vertices"] = double(scene.mesh.positions.size());
+  state.counters["keys"] = double(BakeKeyTimes(scene.clips.front().duration, 30.0).size());
+  if (bytes > 0) state.counters["file_MB"] = double(bytes) / 1e6;
+}
+
+void BM_Bake(benchmark::State& state, const char* name) {
+  const BuiltScene& scene = Scene(name);
+  for (auto _ : state) benchmark::DoNotOptimize(Bake(scene));
+  SetCounters(state, scene, 0);
+}
+
+void BM_Export(benchmark::State& state, const char* name) {
+  const BuiltScene& scene = Scene(name);
+  const BakedAnimation bake = Bake(scene);
+  const auto out = Output(name);
+  std::uintmax_t bytes = 0;
+  for (auto _ : state) bytes = Export(scene, bake, out);
+  std::filesystem::remove(out);
+  SetCounters(state, scene, bytes);
+}
+
+void BM_BakeAndExport(benchmark::State& state, const char* name) {
+  const BuiltScene& scene = Scene(name);
+  const auto out = Output(name);
+  std::uintmax_t bytes = 0;
+  for (auto _ : state) bytes = Export(scene, Bake(scene), out);
+  std::filesystem::remove(out);
+  SetCounters(state, scene, bytes);
+}
+
+constexpr const char* kHuman = "human/human_wave.scene.json";
+constexpr const char* kOctopus = "octopus/octopus.scene.json";
+
+BENCHMARK_CAPTURE(BM_Bake, human, kHuman)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_Bake, octopus, kOctopus)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_Export, human, kHuman)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_Export, octopus, kOctopus)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_BakeAndExport, human, kHuman)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_BakeAndExport, octopus, kOctopus)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace
+}  // namespace wirerig
+
+BENCHMARK_MAIN();
