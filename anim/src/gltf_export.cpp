@@ -2,14 +2,12 @@
 // morph targets or skeleton and skin, all keyed on one time accessor) and writes it.
 #include "wirerig/anim/gltf_export.h"
 
-#include <algorithm>
-#include <cctype>
-
 #include "gltf_buffers.h"
 #include "gltf_input.h"
 #include "gltf_material.h"
 #include "gltf_mesh.h"
 #include "gltf_morph.h"
+#include "gltf_paths.h"
 #include "gltf_skin.h"
 #include "gltf_skinning.h"
 #include "gltf_write.h"
@@ -65,17 +63,11 @@ void AddSkinMode(tinygltf::Model& model, tinygltf::Animation& animation, const M
   }
 }
 
-std::string Lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 }  // namespace
 
 Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake,
                                     const GltfExportOptions& options, const fs::path& out) {
-  const std::string extension = Lower(out.extension().string());
+  const std::string extension = gltf::LowerCaseExtension(out);
   if (extension != ".glb" && extension != ".gltf") {
     std::string message = out.string();
     message.append(": unsupported extension '")

@@ -1,23 +1,17 @@
 #include "gltf_material.h"
 
-#include <algorithm>
-#include <cctype>
 #include <map>
 #include <system_error>
+
+#include "gltf_paths.h"
 
 namespace wirerig::gltf {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string Lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 std::string MimeType(const fs::path& file) {
-  const std::string ext = Lower(file.extension().string());
+  const std::string ext = LowerCaseExtension(file);
   if (ext == ".png") return "image/png";
   if (ext == ".jpg" || ext == ".jpeg") return "image/jpeg";
   return {};
@@ -54,21 +48,6 @@ ImageRef ResolveTexture(const Mesh& mesh, const std::string& texture, const fs::
 }
 
 }  // namespace
-
-std::string PathToUri(const fs::path& path) {
-  static constexpr char kHex[] = "0123456789ABCDEF";
-  std::string uri;
-  for (unsigned char c : path.generic_string()) {
-    if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/') {
-      uri.push_back(static_cast<char>(c));
-    } else {
-      uri.push_back('%');
-      uri.push_back(kHex[c >> 4]);
-      uri.push_back(kHex[c & 15]);
-    }
-  }
-  return uri;
-}
 
 MaterialsAdded AddMaterials(tinygltf::Model& model, const Mesh& mesh, const fs::path& texture_dir,
                             const fs::path& out_dir, std::vector<std::string>* warnings) {

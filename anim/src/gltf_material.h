@@ -27,8 +27,4 @@ MaterialsAdded AddMaterials(tinygltf::Model& model, const Mesh& mesh,
                             const std::filesystem::path& out_dir,
                             std::vector<std::string>* warnings);
 
-// `path` as a URI reference: '/' separators, bytes other than unreserved characters and '/'
-// percent-encoded (RFC 3986).
-std::string PathToUri(const std::filesystem::path& path);
-
 }  // namespace wirerig::gltf

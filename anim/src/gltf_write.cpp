@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "gltf_material.h"
+#include "gltf_paths.h"
 #include "wirerig/rig/atomic_file.h"
 
 namespace wirerig::gltf {
