@@ -108,12 +108,13 @@ struct VertexPass {
     const std::uint32_t* triangles = layout.vertex_triangles.data();
     const Vec3* face = self.w->triangle_normals.data();
     Vec3* normals = self.job->normals.data();
+    const std::uint32_t* order = layout.normal_order.data();
     const std::size_t end = std::min(self.job->normals.size(), (k + 1) * kTaskSize);
-    for (std::size_t v = k * kTaskSize; v < end; ++v) {
+    for (std::size_t i = k * kTaskSize; i < end; ++i) {
       Vec3 sum = Vec3::Zero();
-      for (std::uint32_t i = offsets[v]; i < offsets[v + 1]; ++i) sum += face[triangles[i]];
+      for (std::uint32_t t = offsets[i]; t < offsets[i + 1]; ++t) sum += face[triangles[t]];
       const double length = sum.norm();
-      normals[v] = length > 0.0 ? Vec3(sum / length) : Vec3::UnitY();
+      normals[order[i]] = length > 0.0 ? Vec3(sum * (1.0 / length)) : Vec3::UnitY();
     }
   }
 };
@@ -200,14 +201,28 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
     pair.gamma = a.pair.gamma;
     layout.pairs.push_back(pair);
   }
-  layout.vertex_triangle_offsets.assign(model.vertices.size() + 1, 0);
-  for (const Triangle& t : model.triangles)
-    for (std::uint32_t index : t) ++layout.vertex_triangle_offsets[index + 1];
-  for (std::size_t v = 0; v < model.vertices.size(); ++v)
-    layout.vertex_triangle_offsets[v + 1] += layout.vertex_triangle_offsets[v];
+  // Normals: vertices in the order of their first triangle, so the pass reads the triangle
+  // normals almost sequentially; each vertex's triangles in increasing order.
+  const std::size_t vertex_count = model.vertices.size();
+  std::vector<std::uint32_t> count(vertex_count, 0), first(vertex_count, UINT32_MAX);
+  for (std::size_t f = 0; f < model.triangles.size(); ++f)
+    for (std::uint32_t index : model.triangles[f]) {
+      ++count[index];
+      first[index] = std::min(first[index], static_cast<std::uint32_t>(f));
+    }
+  layout.normal_order.resize(vertex_count);
+  for (std::size_t v = 0; v < vertex_count; ++v)
+    layout.normal_order[v] = static_cast<std::uint32_t>(v);
+  std::stable_sort(layout.normal_order.begin(), layout.normal_order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return first[a] < first[b]; });
+  layout.vertex_triangle_offsets.assign(vertex_count + 1, 0);
+  std::vector<std::uint32_t> fill(vertex_count);
+  for (std::size_t i = 0; i < vertex_count; ++i) {
+    fill[layout.normal_order[i]] = layout.vertex_triangle_offsets[i];
+    layout.vertex_triangle_offsets[i + 1] =
+        layout.vertex_triangle_offsets[i] + count[layout.normal_order[i]];
+  }
   layout.vertex_triangles.resize(layout.vertex_triangle_offsets.back());
-  std::vector<std::uint32_t> fill(layout.vertex_triangle_offsets.begin(),
-                                  layout.vertex_triangle_offsets.end() - 1);
   for (std::size_t f = 0; f < model.triangles.size(); ++f)
     for (std::uint32_t index : model.triangles[f])
       layout.vertex_triangles[fill[index]++] = static_cast<std::uint32_t>(f);

@@ -546,7 +546,7 @@ TEST(RigEvaluation, FlatVertexPassAgreesWithApplyPairBindingAndTriangleOrderNorm
   }
   for (std::size_t v = 0; v < sum.size(); ++v) {
     const double length = sum[v].norm();
-    const Vec3 expected = length > 0.0 ? Vec3(sum[v] / length) : Vec3::UnitY();
+    const Vec3 expected = length > 0.0 ? Vec3(sum[v] * (1.0 / length)) : Vec3::UnitY();
     EXPECT_EQ(got.normals[v], expected) << "vertex " << v;
   }
 }

@@ -101,7 +101,10 @@ struct RigEvaluationLayout {
   std::vector<std::uint32_t> point_base;    // per global profile: its first point in wire_points
   std::vector<Pair> pairs;                  // in vertex order
   std::vector<Cap> caps;                    // in vertex order
-  // Normals: per vertex, the triangles around it in increasing order (CSR).
+  // Normals: the vertices in the order of their first triangle (so the triangle normals are
+  // read almost in order), and for the i-th of them its triangles in increasing order,
+  // vertex_triangles[vertex_triangle_offsets[i] .. vertex_triangle_offsets[i + 1]).
+  std::vector<std::uint32_t> normal_order;             // #W
   std::vector<std::uint32_t> vertex_triangle_offsets;  // #W + 1
   std::vector<std::uint32_t> vertex_triangles;
 };
