@@ -635,6 +635,38 @@ TEST(GltfExport, SkinWeightsAreMergedSortedAndNormalizedInFloat) {
   }
 }
 
+TEST(GltfExport, AMeshWithoutNormalsUvsOrMaterialsIsValid) {
+  TempDir dir;
+  Scene scene = MakeScene(BendCase{});
+  scene.mesh.normals.clear();
+  scene.mesh.uvs.clear();
+  scene.mesh.materials.clear();
+  scene.mesh.parts.clear();
+  for (GltfAnimationMode mode : {GltfAnimationMode::kMorph, GltfAnimationMode::kSkin}) {
+    GltfExportOptions options;
+    options.mode = mode;
+    options.residual_morph_targets = true;
+    const fs::path out =
+        dir.path() / (mode == GltfAnimationMode::kMorph ? "bare_morph.glb" : "bare_skin.gltf");
+    const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
+    ASSERT_TRUE(report.ok()) << report.error();
+    ASSERT_EQ(report.value().warnings.size(), 1u);
+    EXPECT_EQ(report.value().warnings[0], "bake.normals left out: the mesh has no normals");
+    EXPECT_EQ(report.value().primitive_count, 1u);
+    const tinygltf::Model model = LoadWithTinygltf(out);
+    const tinygltf::Primitive& primitive = model.meshes.at(0).primitives.at(0);
+    EXPECT_EQ(primitive.attributes.count("NORMAL"), 0u);
+    EXPECT_EQ(primitive.attributes.count("TEXCOORD_0"), 0u);
+    EXPECT_EQ(primitive.targets.at(0).count("NORMAL"), 0u);
+    EXPECT_EQ(primitive.material, -1);
+    EXPECT_LE(ReconstructionErrors(model, scene.bake).max, 1e-4 * scene.diagonal);
+    const Validation validation = Validate(out);
+    EXPECT_EQ(validation.exit_code, 0) << validation.output;
+    EXPECT_NE(validation.output.find(": 0 errors, 0 warnings"), std::string::npos)
+        << validation.output;
+  }
+}
+
 TEST(GltfExport, ReportsMissingTexturesAndExportsWithoutThem) {
   TempDir dir;
   const Scene scene = MakeScene(BendCase{});
