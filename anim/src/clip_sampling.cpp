@@ -157,22 +157,4 @@ void SampleClip(const Clip& clip, double t, ClipSample* sample) {
   }
 }
 
-Wrench SampleRigidWrench(const Clip& clip, const PartModel& model_part, std::size_t part, double t,
-                         const RigidBodyState& state, const Vec3& gravity) {
-  const PartChannels<Track>& c = clip.parts[part];
-  Wrench wrench;
-  wrench.force = model_part.mass.mass * gravity;
-  wrench.torque = c.rigid_torque.Sample(t);
-  // A body point at rest p0 is, in the body frame, R0^T (p0 - c0); now x_c + q (that).
-  const Mat3 rest_to_body = model_part.mass.principal_axes.transpose();
-  for (const RigidForceChannels<Track>& f : c.rigid_forces) {
-    const Vec3 force = f.force.Sample(t);
-    const Vec3 point =
-        state.position + state.orientation * (rest_to_body * (f.at - model_part.mass.center));
-    wrench.force += force;
-    wrench.torque += TorqueAbout(state.position, point, force);
-  }
-  return wrench;
-}
-
 }  // namespace wirerig

@@ -25,11 +25,17 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
   playback.sample_ = MakeClipSample(clip, model);
   playback.bodies_.resize(model.parts.size());
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
-    playback.bodies_[p] = RestRigidBodyState(model.parts[p]);
+    const PartModel& part = model.parts[p];
+    const RigidPartBody body = MakeRigidPartBody(part, part.parent >= 0);
+    playback.bodies_[p] = RestState(body);
     const PartChannels<Track>& c = clip.parts[p];
-    if (model.parts[p].kind == SpineKind::kRigid &&
-        (!c.rigid_forces.empty() || !c.rigid_torque.IsEmpty() || options.gravity != Vec3::Zero()))
+    if (part.kind == SpineKind::kRigid &&
+        (!c.rigid_forces.empty() || !c.rigid_torque.IsEmpty() || options.gravity != Vec3::Zero())) {
+      if (!(part.mass.mass > 0.0))
+        return Error{"part \"" + part.name + "\": a rigid part driven by forces needs a mass"};
       playback.dynamic_parts_.push_back(p);
+      playback.dynamic_bodies_.push_back(body);
+    }
   }
   if (!playback.dynamic_parts_.empty()) {
     const auto count =
@@ -43,18 +49,20 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
 }
 
 Status Playback::StepBodies(double dt) {
-  for (std::size_t p : dynamic_parts_) {
-    const PartModel& part = model_->parts[p];
+  for (std::size_t d = 0; d < dynamic_parts_.size(); ++d) {
+    const std::size_t p = dynamic_parts_[d];
+    const RigidPartBody& body = dynamic_bodies_[d];
     RigidBodyState& state = bodies_[p];
     const double t0 = state.time;
+    const Vec3& g = options_.gravity;
     RigidBodyStepJob step;
     step.integrator = options_.integrator;
-    step.mass = part.mass.mass;
-    step.principal_moments = part.mass.principal_moments;
+    step.mass = body.mass;
+    step.principal_moments = body.principal_moments;
     step.dt = dt;
-    step.at_start = SampleRigidWrench(*clip_, part, p, t0, state, options_.gravity);
-    step.at_middle = SampleRigidWrench(*clip_, part, p, t0 + 0.5 * dt, state, options_.gravity);
-    step.at_end = SampleRigidWrench(*clip_, part, p, t0 + dt, state, options_.gravity);
+    step.at_start = SampleRigidWrench(*clip_, p, body, t0, state, g);
+    step.at_middle = SampleRigidWrench(*clip_, p, body, t0 + 0.5 * dt, state, g);
+    step.at_end = SampleRigidWrench(*clip_, p, body, t0 + dt, state, g);
     step.state = &state;
     if (Status s = step.Run(); !s) return s;
   }
@@ -105,9 +113,10 @@ Status Playback::Evaluate(double t, std::span<Vec3> positions, std::span<Vec3> n
   SampleClip(*clip_, local, &sample_);
   if (!dynamic_parts_.empty()) {
     if (Status s = AdvanceBodies(local); !s) return s;
-    for (std::size_t p : dynamic_parts_) {
+    for (std::size_t d = 0; d < dynamic_parts_.size(); ++d) {
+      const std::size_t p = dynamic_parts_[d];
       const SpineLoads loads = sample_.poses[p].loads;
-      sample_.poses[p] = PoseFromRigidBody(model_->parts[p], bodies_[p]);
+      sample_.poses[p] = PoseOfRigidPart(dynamic_bodies_[d], model_->parts[p], bodies_[p]);
       sample_.poses[p].loads = loads;
     }
   }

@@ -38,3 +38,34 @@ inline TestRig MakeCylinderRig(SpineKind kind) {
 }
 
 }  // namespace wirerig::testing
+
+namespace wirerig::testing {
+
+// The same cylinder as two parts: "base", the root, from the top (y = 1) down to the middle,
+// and "arm", its child, from the middle down to the bottom.
+inline TestRig MakeJointedCylinderRig(SpineKind kind) {
+  TestRig out;
+  out.mesh = MakeCylinder(0.1, 1.0, 32, 24);
+  RigDescription description;
+  PartDescription base;
+  base.name = "base";
+  base.central_curve = {Vec3(0, 1, 0), Vec3(0, 0.5, 0)};
+  base.profile_count = 6;
+  base.points_per_profile = 32;
+  PartDescription arm = base;
+  arm.name = "arm";
+  arm.parent = "base";
+  arm.central_curve = {Vec3(0, 0.5, 0), Vec3(0, 0, 0)};
+  description.parts = {base, arm};
+  Result<BuiltRig> built = BuildRig(out.mesh, description, "cylinder");
+  EXPECT_TRUE(built.ok()) << built.error();
+  out.rig = built.value().rig;
+  RigModelOptions options;
+  options.spine_kind = kind;
+  Result<BuiltRigModel> model = BuildRigModel(out.mesh, out.rig, options);
+  EXPECT_TRUE(model.ok()) << model.error();
+  out.model = std::move(model).value().model;
+  return out;
+}
+
+}  // namespace wirerig::testing

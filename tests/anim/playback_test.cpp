@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "anim_test_rigs.h"
 
 namespace wirerig {
@@ -127,6 +129,43 @@ TEST(Playback, ScrubbingGivesTheStatesOfAFreshPlayback) {
   ASSERT_TRUE(scrubbed.Evaluate(2.9, positions, {}).ok());
   const Quat rest(block.mass.principal_axes);
   EXPECT_GT(scrubbed.bodies()[0].orientation.angularDistance(rest), 1e-3);
+}
+
+TEST(Playback, ATorqueTurnsAChildAboutItsJointWithTheParallelAxisInertia) {
+  static const testing::TestRig rig = testing::MakeJointedCylinderRig(SpineKind::kRigid);
+  const RigModel& model = rig.model;
+  ASSERT_EQ(model.parts.size(), 2u);
+  const PartModel& arm = model.parts[1];
+  RawClip raw;
+  raw.name = "swing";
+  raw.duration = 1.0;
+  RawPartTracks part;
+  part.part = "arm";
+  const double torque = 0.02;  // N m about +z
+  part.channels.rigid_torque = Constant(Vec3(0, 0, torque));
+  raw.parts.push_back(part);
+  const Clip clip = BuildClip(raw, model).value();
+  Playback playback = Playback::Make(model, clip).value();
+  std::vector<Vec3> positions(model.vertices.size());
+  // Parallel axis about the joint (the arm's first spine point), for the z axis: the centre's
+  // offset d from the joint lies along y, so I_zz grows by m (d_x^2 + d_y^2).
+  const Vec3 joint = arm.spine_points.front();
+  const Vec3 d = arm.mass.center - joint;
+  const double izz = arm.mass.inertia(2, 2) + arm.mass.mass * (d.x() * d.x() + d.y() * d.y());
+  for (double t : {0.5, 1.0}) {
+    ASSERT_TRUE(playback.Evaluate(t, positions, {}).ok());
+    const double angle = torque * t * t / (2.0 * izz);  // constant torque from rest
+    const std::vector<Vec3>& spine = playback.workspace().spine_points[1];
+    // The joint stays; the tip turns about it by `angle`.
+    EXPECT_LE((spine.front() - joint).norm(), 1e-9) << t;
+    const Vec3 rest = arm.spine_points.back() - joint, now = spine.back() - joint;
+    const double turned = std::atan2(rest.cross(now).z(), rest.dot(now));
+    EXPECT_NEAR(turned, angle, 1e-6 * angle) << t;
+    // The parent does not move.
+    EXPECT_LE(
+        (playback.workspace().spine_points[0].back() - model.parts[0].spine_points.back()).norm(),
+        1e-12);
+  }
 }
 
 TEST(Playback, RefusesBadOptionsByName) {

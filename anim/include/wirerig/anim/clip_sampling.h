@@ -7,7 +7,6 @@
 
 #include "wirerig/anim/clip.h"
 #include "wirerig/runtime/rig_evaluation.h"
-#include "wirerig/runtime/rigid_body.h"
 
 namespace wirerig {
 
@@ -35,11 +34,5 @@ ClipSample MakeClipSample(const Clip& clip, const RigModel& model);
 //  * pose: rotation exp(axis-angle), translation.
 // Rigid parts' poses are left to the caller (Playback sets them from their bodies).
 void SampleClip(const Clip& clip, double t, ClipSample* sample);
-
-// The wrench on rigid part `part` at clip-local time t with the body in `state`: each force
-// acts at its body point (given at rest, carried by the body's motion), plus the torque track
-// and gravity * mass at the centre.
-Wrench SampleRigidWrench(const Clip& clip, const PartModel& model_part, std::size_t part, double t,
-                         const RigidBodyState& state, const Vec3& gravity);
 
 }  // namespace wirerig

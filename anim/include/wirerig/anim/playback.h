@@ -4,10 +4,11 @@
 // costs at most that many steps. Evaluate never allocates once the playback is made (the
 // cache is sized for the whole clip up front).
 //
-// Rigid parts driven by forces: each is a free body (PHYSICS.md section 7) starting at rest in
-// its modelled pose at clip time 0; its pose is the body's motion from rest. A rigid child
-// follows its parent's frame on top of that (the evaluation's hierarchy rule), so keep rigid
-// bodies driven by forces at the root or on parts whose parents stay still.
+// Rigid parts driven by forces (rigid_part.h): a root part is a free body, a child part turns
+// about its joint; each starts at rest in its modelled pose at clip time 0 and its pose is its
+// motion from rest. A child's motion is relative to its parent's frame (the evaluation's
+// hierarchy rule): its joint rides on the parent, and its dynamics is integrated as if the
+// parent's frame were still (the parent's acceleration is not fed back).
 #pragma once
 
 #include <span>
@@ -15,6 +16,7 @@
 
 #include "wirerig/anim/clip.h"
 #include "wirerig/anim/clip_sampling.h"
+#include "wirerig/anim/rigid_part.h"
 #include "wirerig/rig/result.h"
 #include "wirerig/runtime/rig_evaluation.h"
 
@@ -43,7 +45,7 @@ class Playback {
   const RigWorkspace& workspace() const { return workspace_; }
   const ClipSample& sample() const { return sample_; }
   // After Evaluate: the rigid body of every part at that time (rest state for parts without
-  // dynamics).
+  // dynamics). Pinned bodies (child parts) keep their joint as position.
   std::span<const RigidBodyState> bodies() const { return bodies_; }
   const Clip& clip() const { return *clip_; }
   const RigModel& model() const { return *model_; }
@@ -58,10 +60,11 @@ class Playback {
   PlaybackOptions options_;
   RigWorkspace workspace_;
   ClipSample sample_;
-  std::vector<std::size_t> dynamic_parts_;   // rigid parts the clip drives by forces
-  std::vector<RigidBodyState> bodies_;       // per part, at the current time
-  std::vector<RigidBodyState> checkpoints_;  // #checkpoints x #dynamic parts
-  std::size_t checkpoints_done_ = 0;         // how many checkpoints are valid
+  std::vector<std::size_t> dynamic_parts_;     // rigid parts the clip drives by forces
+  std::vector<RigidPartBody> dynamic_bodies_;  // their bodies, same order
+  std::vector<RigidBodyState> bodies_;         // per part, at the current time
+  std::vector<RigidBodyState> checkpoints_;    // #checkpoints x #dynamic parts
+  std::size_t checkpoints_done_ = 0;           // how many checkpoints are valid
 };
 
 }  // namespace wirerig
