@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -23,6 +24,7 @@ struct ProfileScratch {
   };
   std::vector<double> x, y;
   std::vector<Box> boxes;
+  std::vector<std::optional<RayHit>> part_hits, mesh_hits;  // per ray
 };
 
 // Orientation of r relative to the line pq (2D coordinates): > 0 to the left.
@@ -115,21 +117,45 @@ struct CastResult {
   std::size_t other_part = 0;  // points on another part's surface
 };
 
+// Whether a profile's rays are cast as one fan (TriangleBvh::RaycastFan) on `bvh`: when they
+// outnumber, with a margin, the triangles a plane typically cuts on it (about 1.5 sqrt(#T) on a
+// part: the fan's cost grows with those, ray-by-ray casting's with the rays). The nearest hits
+// are the same either way (but for which of two triangles meeting at a hit edge is reported,
+// where the points agree to rounding).
+bool UseFan(const TriangleBvh& bvh, int rays) {
+  return rays <= int(TriangleBvh::kMaxFanRays) &&
+         double(rays) >= 3.0 * std::sqrt(double(bvh.triangle_count()));
+}
+
+// The rays' nearest hits on one BVH, as a fan or ray by ray.
+void Cast(const TriangleBvh& bvh, const ProfileCurve& profile, const std::vector<double>& cosines,
+          const std::vector<double>& sines, std::vector<std::optional<RayHit>>& out) {
+  if (UseFan(bvh, int(cosines.size()))) {
+    bvh.RaycastFan(profile.origin, profile.frame.normal, profile.frame.binormal, cosines, sines,
+                   out);
+    return;
+  }
+  for (std::size_t j = 0; j < cosines.size(); ++j)
+    out[j] = bvh.Raycast(profile.origin,
+                         cosines[j] * profile.frame.normal + sines[j] * profile.frame.binormal, 0.0,
+                         kFar);
+}
+
 // Casts the profile's rays from its origin. Counts misses and other-part hits into
 // `diagnostics` only when `diagnostics` is given (the final pass).
 // `cosines` and `sines`: of the rays' angles 2 pi j / rays.
 CastResult CastRays(const ProfileRequest& request, ProfileCurve& profile,
                     const std::vector<double>& cosines, const std::vector<double>& sines,
-                    std::vector<Vec3>& hits, std::vector<bool>& hit,
+                    std::vector<Vec3>& hits, std::vector<bool>& hit, ProfileScratch& scratch,
                     ProfileDiagnostics* diagnostics) {
   const int rays = request.points_per_profile;
   CastResult result;
+  Cast(*request.part_bvh, profile, cosines, sines, scratch.part_hits);
+  if (request.mesh_bvh) Cast(*request.mesh_bvh, profile, cosines, sines, scratch.mesh_hits);
   for (int j = 0; j < rays; ++j) {
     const Vec3 direction = cosines[j] * profile.frame.normal + sines[j] * profile.frame.binormal;
-    std::optional<RayHit> chosen = request.part_bvh->Raycast(profile.origin, direction, 0.0, kFar);
-    const std::optional<RayHit> first =
-        request.mesh_bvh ? request.mesh_bvh->Raycast(profile.origin, direction, 0.0, kFar)
-                         : std::nullopt;
+    std::optional<RayHit> chosen = scratch.part_hits[j];
+    const std::optional<RayHit> first = request.mesh_bvh ? scratch.mesh_hits[j] : std::nullopt;
     // Another part's surface counts when the ray leaves through a junction, or meets it first.
     const bool other_part = first && request.triangle_part[first->triangle] != request.part &&
                             (!chosen || first->t < chosen->t * (1.0 - 1e-9));
@@ -210,6 +236,8 @@ void GenerateProfile(const ProfileRequest& request, const RayTable& table, int k
   std::vector<Vec3> hits(static_cast<std::size_t>(rays));
   std::vector<bool> hit(static_cast<std::size_t>(rays));
   ProfileScratch scratch;
+  scratch.part_hits.resize(hits.size());
+  scratch.mesh_hits.resize(hits.size());
   ProfileCurve& profile = out.profile;
   ProfileDiagnostics& diagnostics = out.diagnostics;
   const std::vector<double>& cosines = table.cosines;
@@ -218,7 +246,7 @@ void GenerateProfile(const ProfileRequest& request, const RayTable& table, int k
   profile.origin = request.central_curve->Position(profile.v);
   profile.frame = request.central_curve->FrameAt(profile.v);
   for (int pass = 0; pass < request.recentre_passes; ++pass) {
-    const CastResult cast = CastRays(request, profile, cosines, sines, hits, hit, nullptr);
+    const CastResult cast = CastRays(request, profile, cosines, sines, hits, hit, scratch, nullptr);
     // Only a loop wholly on the part's own surface says where the part's centre is.
     if (cast.hits != std::size_t(rays) || cast.entering > 0 || cast.other_part > 0) break;
     profile.points = hits;
@@ -230,7 +258,8 @@ void GenerateProfile(const ProfileRequest& request, const RayTable& table, int k
     for (const Vec3& p : hits) size = std::max(size, (p - profile.origin).norm());
     if (offset.norm() <= 1e-9 * size) break;
   }
-  const CastResult cast = CastRays(request, profile, cosines, sines, hits, hit, &diagnostics);
+  const CastResult cast =
+      CastRays(request, profile, cosines, sines, hits, hit, scratch, &diagnostics);
   if (2 * cast.entering > cast.hits) {
     ++diagnostics.outside_profiles;
     return;

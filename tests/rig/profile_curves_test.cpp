@@ -7,7 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numbers>
+#include <optional>
+#include <vector>
 
 #include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/spine_curves.h"
@@ -266,6 +270,69 @@ TEST(ProfileCurves, ThreadsAndBatchesGiveIdenticalSets) {
   }
   const std::vector<ProfileSet> unthreaded = GenerateProfiles(requests, nullptr);
   for (std::size_t i = 0; i < 3; ++i) ExpectSameSet(unthreaded[i], sequential[i]);
+}
+
+// RaycastFan against Raycast ray by ray: the same hits and t (exactly), and the same point to
+// rounding (exactly when the same triangle is reported), from random origins in random planes
+// and from origins whose rays pass exactly through vertices and edges.
+void ExpectFanMatchesRays(const TriangleBvh& bvh, const Vec3& origin, const Vec3& normal,
+                          const Vec3& binormal, int n, double scale, std::size_t* hits_seen) {
+  std::vector<double> cosines(static_cast<std::size_t>(n)), sines(cosines.size());
+  for (int j = 0; j < n; ++j) {
+    cosines[std::size_t(j)] = std::cos(2.0 * kPi * j / n);
+    sines[std::size_t(j)] = std::sin(2.0 * kPi * j / n);
+  }
+  std::vector<std::optional<RayHit>> fan(cosines.size());
+  bvh.RaycastFan(origin, normal, binormal, cosines, sines, fan);
+  for (std::size_t j = 0; j < fan.size(); ++j) {
+    const Vec3 direction = cosines[j] * normal + sines[j] * binormal;
+    const std::optional<RayHit> ray =
+        bvh.Raycast(origin, direction, 0.0, std::numeric_limits<double>::max());
+    ASSERT_EQ(fan[j].has_value(), ray.has_value()) << "ray " << j << " of " << n;
+    if (!ray) continue;
+    ++*hits_seen;
+    EXPECT_EQ(fan[j]->t, ray->t) << "ray " << j << " of " << n;
+    if (fan[j]->triangle == ray->triangle) {
+      EXPECT_EQ(fan[j]->point, ray->point);
+    } else {
+      EXPECT_LT((fan[j]->point - ray->point).norm(), 1e-14 * scale);
+    }
+  }
+}
+
+TEST(ProfileCurves, RaycastFanFindsWhatRaycastFinds) {
+  std::vector<Primitive> meshes;
+  meshes.emplace_back(MakeTorus(0.5, 0.1, 48, 24));
+  meshes.emplace_back(MakeCapsule(0.1, 1.0, 16, 12, 4));
+  meshes.emplace_back(MakeCone(0.3, 0.05, 1.0, 12, 3));
+  std::uint64_t state = 12345;
+  auto uniform = [&state] {  // in [-1, 1)
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return double(state >> 11) * 0x1p-52 - 1.0;
+  };
+  std::size_t hits_seen = 0;
+  for (const Primitive& primitive : meshes) {
+    for (int trial = 0; trial < 60; ++trial) {
+      const Vec3 origin(0.6 * uniform(), 0.5 + 0.6 * uniform(), 0.6 * uniform());
+      const Vec3 axis = Vec3(uniform(), uniform(), uniform()).normalized();
+      const Vec3 normal = axis.unitOrthogonal();
+      const Vec3 binormal = axis.cross(normal);
+      for (int n : {3, 8, 20, 64, 100, 257})
+        ExpectFanMatchesRays(primitive.bvh, origin, normal, binormal, n, 1.0, &hits_seen);
+    }
+  }
+  // Rays through vertices and along edges: the capsule's axis origin at a vertex ring's height,
+  // in the ring's plane, with as many rays as the ring has vertices (and twice as many).
+  const Primitive capsule(MakeCapsule(0.1, 1.0, 16, 12, 4));
+  for (const Vec3& p : capsule.mesh.welded_positions) {
+    if (!(p.y() > 0.05 && p.y() < 0.95)) continue;
+    for (int n : {16, 32, 48})
+      ExpectFanMatchesRays(capsule.bvh, Vec3(0, p.y(), 0), Vec3(p.x(), 0, p.z()).normalized(),
+                           Vec3(p.x(), 0, p.z()).normalized().cross(Vec3::UnitY()), n, 1.0,
+                           &hits_seen);
+    break;
+  }
+  EXPECT_GT(hits_seen, 10000u);
 }
 
 }  // namespace

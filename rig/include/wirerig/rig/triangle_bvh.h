@@ -42,6 +42,23 @@ class TriangleBvh {
   std::optional<RayHit> Raycast(const Vec3& origin, const Vec3& direction, double t_min,
                                 double t_max) const;
 
+  // A fan of rays sharing their origin and plane: ray j runs from `origin` along direction_j =
+  // cosines[j] * normal + sines[j] * binormal (computed exactly so), t > 0, for j < n =
+  // hits.size() == cosines.size() == sines.size(), the rays' angles about the origin increasing
+  // with j within one turn (e.g. the cosines and sines of 2 pi j / n). hits[j] is what
+  // Raycast(origin, direction_j, 0, inf) returns: the same nearest t, and the same triangle and
+  // point except where two triangles give exactly that t (a ray through their shared edge or
+  // vertex), when either may be reported. One traversal for the whole fan: only the triangles
+  // reaching the fan's plane are tested, each against the rays within its angular extent seen
+  // from the origin (with a margin); the watertight test is Raycast's. It pays when the rays
+  // outnumber the triangles the plane cuts. Fans that break the assumptions (more than
+  // kMaxFanRays rays, normal and binormal (nearly) parallel, angles out of order) are cast ray
+  // by ray. Allocation-free.
+  static constexpr std::size_t kMaxFanRays = 512;
+  void RaycastFan(const Vec3& origin, const Vec3& normal, const Vec3& binormal,
+                  std::span<const double> cosines, std::span<const double> sines,
+                  std::span<std::optional<RayHit>> hits) const;
+
   // The closest point on any triangle of the BVH, or nullopt when the BVH is empty.
   std::optional<ClosestPoint> Closest(const Vec3& point) const;
 
