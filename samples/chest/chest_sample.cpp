@@ -11,7 +11,7 @@
 // --n: plate grid intervals, a multiple of 12 (the Richardson check also solves n/2; default
 // 96). --repeat: plate solves timed (default 5). --png: also draw the plate and the wire model
 // side by side (needs the viewer). --exaggeration: deflection scale of the picture (default:
-// the plate's peak drawn at 20% of its width).
+// the plate's peak drawn at about 25% of its width).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -141,7 +141,10 @@ bool WritePicture(const Options& options, const PlateSolution& plate, const Wire
   const std::size_t count = static_cast<std::size_t>(n + 1);
   const int step = n / (kWires - 1);
   const double peak = plate.Peak();
-  const double scale = options.exaggeration > 0.0 ? options.exaggeration : 0.2 * p.width / peak;
+  // Automatic: the peak drawn at about a quarter of the width, rounded to a multiple of 50.
+  const double scale = options.exaggeration > 0.0
+                           ? options.exaggeration
+                           : std::max(1.0, 50.0 * std::round(0.25 * p.width / peak / 50.0));
 
   std::vector<double> surface(count * count), relative(count * count), error(count * count);
   double max_error = 0.0;
@@ -209,7 +212,7 @@ bool WritePicture(const Options& options, const PlateSolution& plate, const Wire
   const Size tile_size{960, 720};
   for (ContactSheetTile& tile : tiles) {
     tile.camera.yaw = 0.55f;
-    tile.camera.pitch = 0.62f;
+    tile.camera.pitch = 0.45f;
     FrameCamera(tile.camera, ComputeFrameBounds(tile.frame), tile_size.Aspect(), 1.05f);
   }
   auto written = RenderContactSheet(tiles, tile_size, 2, options.png);
@@ -243,12 +246,12 @@ int Run(const Options& options) {
   std::printf(
       "Chest sample (paper Fig. 3): clamped unit square plate, uniform q, D = q = a = 1\n\n");
   std::printf("Plate centre deflection, w_c D/(q a^4)      value       vs 0.00126532\n");
-  std::printf("  FD n = %-4d                            %.8f   %+.4f%%\n", n / 2, coarse.Centre(),
-              100.0 * (coarse.Centre() / reference - 1.0));
-  std::printf("  FD n = %-4d                            %.8f   %+.4f%%\n", n, plate.Centre(),
-              100.0 * (plate.Centre() / reference - 1.0));
-  std::printf("  Richardson %d/%-4d                      %.8f   %+.4f%%\n", n / 2, n, richardson,
-              100.0 * (richardson / reference - 1.0));
+  auto centre_row = [reference](const std::string& name, double value) {
+    std::printf("  %-40s %.8f   %+.4f%%\n", name.c_str(), value, 100.0 * (value / reference - 1.0));
+  };
+  centre_row("FD n = " + std::to_string(n / 2), coarse.Centre());
+  centre_row("FD n = " + std::to_string(n), plate.Centre());
+  centre_row("Richardson " + std::to_string(n / 2) + "/" + std::to_string(n), richardson);
 
   struct Row {
     const char* name;
