@@ -118,13 +118,13 @@ struct CastResult {
 };
 
 // Whether a profile's rays are cast as one fan (TriangleBvh::RaycastFan) on `bvh`: when they
-// outnumber, with a margin, the triangles a plane typically cuts on it (about 1.5 sqrt(#T) on a
+// outnumber the triangles a plane typically cuts on it (about 1.5 sqrt(#T) on a
 // part: the fan's cost grows with those, ray-by-ray casting's with the rays). The nearest hits
 // are the same either way (but for which of two triangles meeting at a hit edge is reported,
 // where the points agree to rounding).
 bool UseFan(const TriangleBvh& bvh, int rays) {
   return rays <= int(TriangleBvh::kMaxFanRays) &&
-         double(rays) >= 3.0 * std::sqrt(double(bvh.triangle_count()));
+         double(rays) >= 2.0 * std::sqrt(double(bvh.triangle_count()));
 }
 
 // The rays' nearest hits on one BVH, as a fan or ray by ray.
@@ -233,9 +233,12 @@ struct RayTable {
 void GenerateProfile(const ProfileRequest& request, const RayTable& table, int k,
                      ProfileOutcome& out) {
   const int count = request.profile_count, rays = request.points_per_profile;
-  std::vector<Vec3> hits(static_cast<std::size_t>(rays));
-  std::vector<bool> hit(static_cast<std::size_t>(rays));
-  ProfileScratch scratch;
+  // Scratch reused by the thread's later profiles.
+  thread_local std::vector<Vec3> hits;
+  thread_local std::vector<bool> hit;
+  thread_local ProfileScratch scratch;
+  hits.assign(static_cast<std::size_t>(rays), Vec3::Zero());
+  hit.assign(static_cast<std::size_t>(rays), false);
   scratch.part_hits.resize(hits.size());
   scratch.mesh_hits.resize(hits.size());
   ProfileCurve& profile = out.profile;
