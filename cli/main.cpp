@@ -10,6 +10,7 @@
 #ifdef WIRERIG_HAS_VIEWER
 #include "demo_command.h"
 #include "render_command.h"
+#include "samples_command.h"
 #endif
 #include "wire_command.h"
 
@@ -32,6 +33,9 @@ int main(int argc, char** argv) {
   CLI::App* render = wirerig::cli::AddRenderCommand(app, render_options);
   wirerig::cli::DemoCommandOptions demo_options;
   CLI::App* demo = wirerig::cli::AddDemoCommand(app, demo_options);
+  wirerig::cli::SamplesCommandOptions samples_options;
+  CLI::App* samples = wirerig::cli::AddSamplesCommand(app, samples_options);
+  CLI::App* gallery = wirerig::cli::AddGalleryCommand(app, samples_options);
 #endif
 
   CLI11_PARSE(app, argc, argv);
@@ -48,6 +52,10 @@ int main(int argc, char** argv) {
     demo_options.progress = isatty(STDERR_FILENO) != 0;
     return wirerig::cli::RunDemoCommand(demo_options, std::cout, std::cerr);
   }
+  if (samples->parsed())
+    return wirerig::cli::RunSamplesCommand(samples_options, std::cout, std::cerr);
+  if (gallery->parsed())
+    return wirerig::cli::RunGalleryCommand(samples_options, std::cout, std::cerr);
 #endif
   return 1;
 }
