@@ -7,6 +7,7 @@
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/procedural_octopus.h"
+#include "wirerig/rig/procedural_props.h"
 #include "wirerig/rig/rig_file.h"
 #include "wirerig/rig/rig_model_builder.h"
 
@@ -35,8 +36,27 @@ std::string CheckCount(double value, const char* name, double lo, double hi) {
 
 struct Generated {
   Mesh mesh;
-  RigDescription description;  // the octopus's own
+  RigDescription description;  // the generator's own (octopus and the props)
 };
+
+// A generator of rig/procedural_props.h: lengths (m) and counts by name over its defaults,
+// then the generator, which checks them (its error names the parameter).
+template <typename Parameters>
+Result<Generated> GenerateProp(
+    const MeshSource& source, Parameters parameters,
+    std::initializer_list<std::pair<const char*, double Parameters::*>> lengths,
+    std::initializer_list<std::pair<const char*, int Parameters::*>> counts,
+    Result<ProceduralRigSource> (*make)(const Parameters&)) {
+  for (auto [name, field] : lengths) parameters.*field = Parameter(source, name, parameters.*field);
+  for (auto [name, field] : counts) {
+    const double value = Parameter(source, name, parameters.*field);
+    if (std::string e = CheckCount(value, name, 1, 4096); !e.empty()) return Error{e};
+    parameters.*field = static_cast<int>(value);
+  }
+  Result<ProceduralRigSource> made = make(parameters);
+  if (!made) return Error{"/mesh/parameters/" + made.error()};
+  return Generated{std::move(made.value().mesh), std::move(made.value().description)};
+}
 
 Result<Generated> Generate(const MeshSource& source) {
   auto p = [&](const char* name, double fallback) { return Parameter(source, name, fallback); };
@@ -69,6 +89,70 @@ Result<Generated> Generate(const MeshSource& source) {
     out.mesh = std::move(octopus.value().mesh);
     out.description = std::move(octopus.value().description);
     return out;
+  }
+  if (source.procedural == "candles") {
+    using P = CandleRowParameters;
+    return GenerateProp<P>(
+        source, {}, {{"radius", &P::radius}, {"height", &P::height}, {"spacing", &P::spacing}},
+        {{"count", &P::count},
+         {"radial_segments", &P::radial_segments},
+         {"height_segments", &P::height_segments},
+         {"profile_count", &P::profile_count},
+         {"points_per_profile", &P::points_per_profile}},
+        &MakeCandleRow);
+  }
+  if (source.procedural == "beam") {
+    using P = BeamParameters;
+    return GenerateProp<P>(source, {}, {{"length", &P::length}, {"radius", &P::radius}},
+                           {{"radial_segments", &P::radial_segments},
+                            {"rings", &P::rings},
+                            {"profile_count", &P::profile_count},
+                            {"points_per_profile", &P::points_per_profile}},
+                           &MakeBeam);
+  }
+  if (source.procedural == "trunk") {
+    using P = TrunkParameters;
+    return GenerateProp<P>(source, {},
+                           {{"height", &P::height},
+                            {"base_radius", &P::base_radius},
+                            {"top_radius", &P::top_radius},
+                            {"flare", &P::flare}},
+                           {{"radial_segments", &P::radial_segments},
+                            {"rings", &P::rings},
+                            {"profile_count", &P::profile_count},
+                            {"points_per_profile", &P::points_per_profile}},
+                           &MakeTrunk);
+  }
+  if (source.procedural == "lamp_post") {
+    using P = LampPostParameters;
+    return GenerateProp<P>(source, {},
+                           {{"height", &P::height},
+                            {"pole_radius", &P::pole_radius},
+                            {"base_radius", &P::base_radius},
+                            {"base_height", &P::base_height},
+                            {"lantern_radius", &P::lantern_radius},
+                            {"lantern_height", &P::lantern_height}},
+                           {{"radial_segments", &P::radial_segments},
+                            {"rings", &P::rings},
+                            {"profile_count", &P::profile_count},
+                            {"points_per_profile", &P::points_per_profile}},
+                           &MakeLampPost);
+  }
+  if (source.procedural == "chair") {
+    using P = ChairParameters;
+    return GenerateProp<P>(source, {},
+                           {{"seat_width", &P::seat_width},
+                            {"seat_depth", &P::seat_depth},
+                            {"seat_height", &P::seat_height},
+                            {"seat_thickness", &P::seat_thickness},
+                            {"leg_radius", &P::leg_radius},
+                            {"back_height", &P::back_height},
+                            {"back_thickness", &P::back_thickness}},
+                           {{"radial_segments", &P::radial_segments},
+                            {"rings", &P::rings},
+                            {"profile_count", &P::profile_count},
+                            {"points_per_profile", &P::points_per_profile}},
+                           &MakeChair);
   }
   const double radial = p("radial_segments", 32), height_segments = p("height_segments", 16);
   if (source.procedural == "cylinder") {

@@ -33,6 +33,21 @@ const std::map<std::string, std::vector<std::string>>& ProceduralParameters() {
       {"cone", {"r0", "r1", "height", "radial_segments", "height_segments"}},
       {"capsule", {"radius", "height", "radial_segments", "height_segments", "cap_rings"}},
       {"torus", {"major_radius", "minor_radius", "ring_segments", "tube_segments"}},
+      // The paper's props (rig/procedural_props.h), each with its own rig description.
+      {"candles",
+       {"count", "radius", "height", "spacing", "radial_segments", "height_segments",
+        "profile_count", "points_per_profile"}},
+      {"beam",
+       {"length", "radius", "radial_segments", "rings", "profile_count", "points_per_profile"}},
+      {"trunk",
+       {"height", "base_radius", "top_radius", "flare", "radial_segments", "rings", "profile_count",
+        "points_per_profile"}},
+      {"lamp_post",
+       {"height", "pole_radius", "base_radius", "base_height", "lantern_radius", "lantern_height",
+        "radial_segments", "rings", "profile_count", "points_per_profile"}},
+      {"chair",
+       {"seat_width", "seat_depth", "seat_height", "seat_thickness", "leg_radius", "back_height",
+        "back_thickness", "radial_segments", "rings", "profile_count", "points_per_profile"}},
   };
   return table;
 }
@@ -62,7 +77,8 @@ MeshSource ReadMeshSource(const JsonObject& o) {
   const auto generator = ProceduralParameters().find(mesh.procedural);
   if (generator == ProceduralParameters().end())
     throw FieldError(o.PathOf("procedural"),
-                     "unknown generator (octopus, cylinder, cone, capsule, torus)");
+                     "unknown generator (octopus, cylinder, cone, capsule, torus, candles, "
+                     "beam, trunk, lamp_post, chair)");
   if (o.Has("parameters")) {
     const JsonObject parameters = o.Object("parameters");
     for (const auto& item : o.Required("parameters").items()) {
@@ -259,8 +275,13 @@ Result<SceneDescription> ParseScene(const nlohmann::json& document,
     scene.name = root.String("name");
     scene.mesh = ReadMeshSource(root.Object("mesh"));
     scene.rig = ReadRigSource(root.Object("rig"));
-    if (scene.rig.kind == RigSourceKind::kProcedural && scene.mesh.procedural != "octopus")
-      throw FieldError("/rig/from", "\"procedural\" needs a procedural octopus mesh");
+    const std::string& generator = scene.mesh.procedural;
+    if (scene.rig.kind == RigSourceKind::kProcedural && generator != "octopus" &&
+        generator != "candles" && generator != "beam" && generator != "trunk" &&
+        generator != "lamp_post" && generator != "chair")
+      throw FieldError("/rig/from",
+                       "\"procedural\" needs a procedural octopus, candles, beam, trunk, "
+                       "lamp_post or chair mesh");
     scene.skin_thickness = root.Number("skin_thickness", scene.skin_thickness);
     if (!(std::isfinite(scene.skin_thickness) && scene.skin_thickness > 0.0))
       throw FieldError("/skin_thickness", "must be positive (m)");

@@ -93,6 +93,14 @@ std::string ValidateCandleRowParameters(const CandleRowParameters& p) {
   return CheckCounts(p.radial_segments, p.profile_count, p.points_per_profile);
 }
 
+std::string ValidateBeamParameters(const BeamParameters& p) {
+  if (!Positive(p.length)) return "length: must be positive (m)";
+  if (!Positive(p.radius) || p.radius >= 0.25 * p.length)
+    return "radius: must be positive and below a quarter of the length";
+  if (std::string e = CheckRings(p.rings, 8, "rings"); !e.empty()) return e;
+  return CheckCounts(p.radial_segments, p.profile_count, p.points_per_profile);
+}
+
 std::string ValidateTrunkParameters(const TrunkParameters& p) {
   if (!Positive(p.height)) return "height: must be positive (m)";
   if (!Positive(p.base_radius)) return "base_radius: must be positive (m)";
@@ -152,6 +160,20 @@ Result<ProceduralRigSource> MakeCandleRow(const CandleRowParameters& p) {
   return out;
 }
 
+Result<ProceduralRigSource> MakeBeam(const BeamParameters& p) {
+  if (std::string error = ValidateBeamParameters(p); !error.empty()) return Error{error};
+  ProceduralRigSource out;
+  const Vec3 a(-0.5 * p.length, 0.0, 0.0), b(0.5 * p.length, 0.0, 0.0);
+  // Flat ends: a pole right next to each end ring.
+  AppendMesh(out.mesh, StraightTube(
+                           a, b, p.rings, p.radial_segments,
+                           [&](double s) { return s == 0.0 || s == 1.0 ? 0.0 : p.radius; },
+                           Vec3::UnitY(), 1.0, "beam"));
+  out.description.parts.push_back(Part("beam", {a, b}, p.profile_count, p.points_per_profile, ""));
+  out.description.mesh = "procedural:beam";
+  return out;
+}
+
 Result<ProceduralRigSource> MakeTrunk(const TrunkParameters& p) {
   if (std::string error = ValidateTrunkParameters(p); !error.empty()) return Error{error};
   ProceduralRigSource out;
@@ -182,7 +204,8 @@ Result<ProceduralRigSource> MakeTrunk(const TrunkParameters& p) {
 Result<ProceduralRigSource> MakeLampPost(const LampPostParameters& p) {
   if (std::string error = ValidateLampPostParameters(p); !error.empty()) return Error{error};
   ProceduralRigSource out;
-  // The post: a flat-bottomed plinth, a smooth taper to the pole, a collar under the top.
+  // The post: a flat-bottomed plinth, a smooth taper to the pole, a collar under the top. Its
+  // profiles start above the plinth, so they all loop the pole (the plinth follows the first).
   auto post_radius = [&](double y) {
     double r = p.pole_radius +
                (p.base_radius - p.pole_radius) * (1.0 - SmoothStep(0.55, 1.0, y / p.base_height));
@@ -209,7 +232,7 @@ Result<ProceduralRigSource> MakeLampPost(const LampPostParameters& p) {
   radii.push_back(0.0);
   AppendMesh(out.mesh, MakeSweptTube(centres, radii, p.radial_segments, "post"));
   out.description.parts.push_back(Part("post",
-                                       {Vec3(0, 0.01 * p.height, 0), Vec3(0, 0.97 * p.height, 0)},
+                                       {Vec3(0, p.base_height, 0), Vec3(0, 0.97 * p.height, 0)},
                                        p.profile_count, p.points_per_profile, ""));
 
   // The lantern: an egg-shaped globe standing on the post's top.

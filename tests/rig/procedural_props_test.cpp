@@ -90,6 +90,15 @@ TEST(ProceduralProps, CandleRowIsUprightCandlesUnderTheFirst) {
   }
 }
 
+TEST(ProceduralProps, BeamLiesAlongX) {
+  const ProceduralRigSource beam = MakeBeam().value();
+  CheckProp(beam, {{"beam", ""}}, "beam");
+  const RigModel model = ModelOf(beam);
+  EXPECT_LT(SpineStraightness(model.parts[0]), 1e-9);
+  EXPECT_NEAR(model.parts[0].spine_frames.front().tangent.x(), 1.0, 1e-12);
+  EXPECT_NEAR(model.parts[0].spine_length, 2.0 * 15.0 / 17.0, 1e-9);  // profiles k / 17
+}
+
 TEST(ProceduralProps, TrunkIsOneStraightTaperedPart) {
   const TrunkParameters parameters;
   const ProceduralRigSource trunk = MakeTrunk(parameters).value();
@@ -137,6 +146,9 @@ TEST(ProceduralProps, ChairHasSeatBackAndFourLegs) {
 }
 
 TEST(ProceduralProps, RefuseBadParametersByName) {
+  BeamParameters beam;
+  beam.radius = 1.0;
+  EXPECT_EQ(MakeBeam(beam).error(), "radius: must be positive and below a quarter of the length");
   CandleRowParameters candles;
   candles.spacing = 0.05;
   EXPECT_EQ(MakeCandleRow(candles).error(), "spacing: must exceed twice the radius (m)");

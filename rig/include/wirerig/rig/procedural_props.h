@@ -6,6 +6,8 @@
 //   candles   (Fig. 5)  a row of upright candles along +X, "candle_0" ... "candle_<n-1>"; the
 //                       first is the root part, the others its children (candle_0 is meant to
 //                       stay unloaded, as the reference, so the others never move with it).
+//   beam      (Fig. 6)  a round beam lying along +X, centred on the origin, with flat ends:
+//                       one part "beam" whose spine runs along +X.
 //   trunk     (Fig. 7)  a straight, tapered tree trunk standing on +Y with a flared root and a
 //                       rounded top: one part "trunk".
 //   lamp_post (Fig. 8)  a post on +Y (plinth, tapered neck, pole, collar) with a lantern on
@@ -30,6 +32,15 @@ struct CandleRowParameters {
   int radial_segments = 24;  // vertices around every ring
   int height_segments = 50;  // rings along each candle
   int profile_count = 25;    // profiles per candle (spine samples: 4 x profile_count)
+  int points_per_profile = 16;
+};
+
+struct BeamParameters {
+  double length = 2.0;   // m, along X
+  double radius = 0.08;  // m
+  int radial_segments = 24;
+  int rings = 64;
+  int profile_count = 16;
   int points_per_profile = 16;
 };
 
@@ -73,12 +84,14 @@ struct ChairParameters {
 
 // Each: empty when valid, else "<field>: <reason>".
 std::string ValidateCandleRowParameters(const CandleRowParameters& parameters);
+std::string ValidateBeamParameters(const BeamParameters& parameters);
 std::string ValidateTrunkParameters(const TrunkParameters& parameters);
 std::string ValidateLampPostParameters(const LampPostParameters& parameters);
 std::string ValidateChairParameters(const ChairParameters& parameters);
 
 // Each validates its parameters first; the error names the field.
 Result<ProceduralRigSource> MakeCandleRow(const CandleRowParameters& parameters = {});
+Result<ProceduralRigSource> MakeBeam(const BeamParameters& parameters = {});
 Result<ProceduralRigSource> MakeTrunk(const TrunkParameters& parameters = {});
 Result<ProceduralRigSource> MakeLampPost(const LampPostParameters& parameters = {});
 Result<ProceduralRigSource> MakeChair(const ChairParameters& parameters = {});

@@ -1,0 +1,98 @@
+// Shared by the sample tests: load a sample's scene file, build it, play a clip headless, and
+// find out what a mutated copy of the scene is refused with.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "wirerig/anim/playback.h"
+#include "wirerig/anim/scene.h"
+
+#ifndef WIRERIG_SAMPLES_DIR
+#define WIRERIG_SAMPLES_DIR "samples"
+#endif
+
+namespace wirerig::samples {
+
+inline std::filesystem::path SampleScenePath(const std::string& relative) {
+  return std::filesystem::path(WIRERIG_SAMPLES_DIR) / relative;
+}
+
+inline nlohmann::json ReadJson(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+// A built scene and a playback of one of its clips (the playback points into the scene, so
+// both live behind one pointer and never move).
+struct PlayedScene {
+  BuiltScene scene;
+  std::unique_ptr<Playback> playback;
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;
+  std::vector<PartWarnings> warnings;
+
+  // Evaluates the clip at t; the deformed wires are then in playback->workspace().
+  void Evaluate(double t) {
+    const Status s = playback->Evaluate(t, positions, normals, warnings);
+    ASSERT_TRUE(s.ok()) << ToString(s);
+  }
+  std::size_t Part(const std::string& name) const {
+    for (std::size_t i = 0; i < scene.model.parts.size(); ++i)
+      if (scene.model.parts[i].name == name) return i;
+    ADD_FAILURE() << "no part " << name;
+    return 0;
+  }
+};
+
+// Loads and builds the scene file and makes a playback of `clip` (the first if empty); null
+// after a test failure naming what went wrong.
+inline std::unique_ptr<PlayedScene> PlaySample(const std::string& relative,
+                                               const std::string& clip = "") {
+  Result<SceneDescription> description = LoadScene(SampleScenePath(relative));
+  if (!description) {
+    ADD_FAILURE() << description.error();
+    return nullptr;
+  }
+  Result<BuiltScene> built = BuildScene(description.value());
+  if (!built) {
+    ADD_FAILURE() << built.error();
+    return nullptr;
+  }
+  auto played = std::make_unique<PlayedScene>();
+  played->scene = std::move(built).value();
+  const Clip* found = played->scene.FindClip(clip);
+  if (found == nullptr) {
+    ADD_FAILURE() << "no clip " << clip;
+    return nullptr;
+  }
+  Result<Playback> playback =
+      Playback::Make(played->scene.model, *found, played->scene.description.playback);
+  if (!playback) {
+    ADD_FAILURE() << playback.error();
+    return nullptr;
+  }
+  played->playback = std::make_unique<Playback>(std::move(playback).value());
+  played->positions.resize(played->scene.model.vertices.size());
+  played->normals.resize(played->positions.size());
+  played->warnings.resize(played->scene.model.parts.size());
+  return played;
+}
+
+// What a (mutated) scene document is refused with, by ParseScene or then BuildScene; "ok" if it
+// is accepted. Relative paths resolve against the samples folder.
+inline std::string SceneError(const nlohmann::json& document) {
+  Result<SceneDescription> parsed = ParseScene(document, WIRERIG_SAMPLES_DIR);
+  if (!parsed) return parsed.error();
+  Result<BuiltScene> built = BuildScene(parsed.value());
+  return built ? "ok" : built.error();
+}
+
+}  // namespace wirerig::samples
