@@ -14,6 +14,7 @@
 #include <imgui.h>
 
 #include "gl.h"
+#include "sanitizer_support.h"
 #include "wirerig/viewer/headless.h"
 #include "wirerig/viewer/image.h"
 
@@ -149,6 +150,7 @@ struct Application::Platform {
       return Error{"cannot open a window with an OpenGL 3.3 core context"};
     }
     glfwMakeContextCurrent(window);
+    PinLoadedLibrariesForLeakChecks();
     glfwSwapInterval(options.frames > 0 ? 0 : 1);
     glfwSetWindowUserPointer(window, this);
     // Ours first: ImGui's backend chains to callbacks installed before it.

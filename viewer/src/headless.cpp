@@ -9,6 +9,7 @@
 
 #include "gl.h"
 #include "gl_objects.h"
+#include "sanitizer_support.h"
 
 namespace wirerig {
 namespace {
@@ -108,6 +109,7 @@ Result<std::unique_ptr<HeadlessContext>> HeadlessContext::Create() {
   if (!ctx->MakeCurrent()) {
     return Error{"headless OpenGL: cannot make the context current (" + EglErrorText() + ")"};
   }
+  PinLoadedLibrariesForLeakChecks();
   const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   ctx->gl_renderer_ = renderer != nullptr ? renderer : "unknown";
   return ctx;

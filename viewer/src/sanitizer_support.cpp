@@ -1,0 +1,27 @@
+#include "sanitizer_support.h"
+
+#include <cstddef>
+
+#if defined(__SANITIZE_ADDRESS__)
+#include <dlfcn.h>
+#include <link.h>
+#endif
+
+namespace wirerig {
+
+void PinLoadedLibrariesForLeakChecks() {
+#if defined(__SANITIZE_ADDRESS__)
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, std::size_t, void*) -> int {
+        if (info->dlpi_name != nullptr && info->dlpi_name[0] == '/') {
+          // RTLD_NOLOAD: only already-loaded objects; RTLD_NODELETE: never unload them. The
+          // handle is deliberately kept (closing it would not unload the object anyway).
+          (void)dlopen(info->dlpi_name, RTLD_LAZY | RTLD_NOLOAD | RTLD_NODELETE);
+        }
+        return 0;
+      },
+      nullptr);
+#endif
+}
+
+}  // namespace wirerig
