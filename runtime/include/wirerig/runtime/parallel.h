@@ -32,7 +32,8 @@ inline void RunTasks(const ParallelFor* parallel, std::size_t count, ParallelFor
 
 // A fixed set of threads - 1 workers that, with the calling thread, run each Run's tasks.
 // Create it once (creation allocates and starts the threads); Run itself never allocates.
-// Calls to Run from several threads are serialised. The destructor stops and joins the workers.
+// Calls to Run from several threads are serialised; a task must not call Run on the same pool.
+// The destructor stops and joins the workers.
 class ThreadPool final : public ParallelFor {
  public:
   explicit ThreadPool(std::size_t threads);  // threads < 1 counts as 1 (no workers)
