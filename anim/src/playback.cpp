@@ -37,6 +37,10 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
       playback.dynamic_bodies_.push_back(body);
     }
   }
+  std::size_t widest = 0;
+  for (const PartChannels<Track>& c : clip.parts) widest = std::max(widest, c.point_loads.size());
+  playback.interactive_points_.resize(widest + 1);
+  playback.interactive_profiles_.resize(playback.sample_.profile_loads.size() + 1);
   if (!playback.dynamic_parts_.empty()) {
     const auto count =
         static_cast<std::size_t>(steps / static_cast<double>(options.checkpoint_interval)) + 2;
@@ -106,6 +110,57 @@ Status Playback::AdvanceBodies(double t) {
   return Status::Ok();
 }
 
+Status Playback::SetInteractiveLoad(const std::optional<InteractiveLoad>& load) {
+  if (load) {
+    if (load->part >= model_->parts.size()) return Status::Invalid("part", "is out of range");
+    const PartModel& part = model_->parts[load->part];
+    if (load->profile < -1 || load->profile >= static_cast<int>(part.profiles.size()))
+      return Status::Invalid("profile", "is out of range");
+    if (!(load->at >= 0.0 && load->at <= 1.0)) return Status::Invalid("at", "must lie in [0, 1]");
+    if (!(std::isfinite(load->force.x()) && std::isfinite(load->force.y()) &&
+          std::isfinite(load->force.z())))
+      return Status::Invalid("force", "must be finite");
+  }
+  interactive_ = load;
+  return Status::Ok();
+}
+
+// Adds the interactive load to the sampled inputs, in the local axes of the frames the last
+// evaluation left in the workspace (the rest frames before the first).
+void Playback::ApplyInteractiveLoad() {
+  const InteractiveLoad& load = *interactive_;
+  const PartModel& part = model_->parts[load.part];
+  const std::size_t n = part.spine_frames.size();
+  auto frame_at = [&](double v) -> const Frame& {
+    const auto s = static_cast<std::size_t>(std::lround(v * static_cast<double>(n - 1)));
+    return evaluated_ ? workspace_.spine_frames[load.part][s] : part.spine_frames[s];
+  };
+  auto local = [&](const Frame& f) {
+    return Vec3(load.force.dot(f.normal), load.force.dot(f.binormal), load.force.dot(f.tangent));
+  };
+  if (load.profile < 0) {
+    SpineLoads& loads = sample_.poses[load.part].loads;
+    std::copy(loads.bending_point_loads.begin(), loads.bending_point_loads.end(),
+              interactive_points_.begin());
+    interactive_points_[loads.bending_point_loads.size()] = {load.at, local(frame_at(load.at))};
+    loads.bending_point_loads = std::span<const PointLoad>(interactive_points_.data(),
+                                                           loads.bending_point_loads.size() + 1);
+    return;
+  }
+  const auto profile = static_cast<std::uint32_t>(load.profile);
+  interactive_profile_point_ = {load.at, local(frame_at(part.profiles[profile].spine_v))};
+  std::copy(sample_.profile_loads.begin(), sample_.profile_loads.end(),
+            interactive_profiles_.begin());
+  ProfileLoads& extra = interactive_profiles_[sample_.profile_loads.size()];
+  extra.part = load.part;
+  extra.profile = profile;
+  extra.from = 0.0;
+  extra.to = 1.0;
+  extra.boundary = BoundaryCondition::kClamped;
+  extra.point_loads = std::span<const PointLoad>(&interactive_profile_point_, 1);
+  extra.line_loads = {};
+}
+
 Status Playback::Evaluate(double t, std::span<Vec3> positions, std::span<Vec3> normals,
                           std::span<PartWarnings> warnings) {
   if (!std::isfinite(t)) return Status::Invalid("t", "must be finite");
@@ -120,16 +175,23 @@ Status Playback::Evaluate(double t, std::span<Vec3> positions, std::span<Vec3> n
       sample_.poses[p].loads = loads;
     }
   }
+  std::span<const ProfileLoads> profile_loads = sample_.profile_loads;
+  if (interactive_) {
+    ApplyInteractiveLoad();
+    if (interactive_->profile >= 0) profile_loads = interactive_profiles_;
+  }
   EvaluateRigJob job;
   job.model = model_;
   job.poses = sample_.poses;
-  job.profile_loads = sample_.profile_loads;
+  job.profile_loads = profile_loads;
   job.workspace = &workspace_;
   job.positions = positions;
   job.normals = normals;
   job.preserve_volume = options_.preserve_volume;
   job.warnings = warnings;
-  return job.Run();
+  const Status status = job.Run();
+  evaluated_ = evaluated_ || status.ok();
+  return status;
 }
 
 }  // namespace wirerig

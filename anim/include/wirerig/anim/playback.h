@@ -11,6 +11,7 @@
 // parent's frame were still (the parent's acceleration is not fed back).
 #pragma once
 
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -21,6 +22,16 @@
 #include "wirerig/runtime/rig_evaluation.h"
 
 namespace wirerig {
+
+// A force applied live on top of the clip (the viewer's drag): at wire parameter `at` of a
+// part's spine, or of one of its profile wires (the whole loop held clamped at its ends), in
+// world axes; it is turned into the wire's local axes by the frames of the last evaluation.
+struct InteractiveLoad {
+  std::uint32_t part = 0;
+  int profile = -1;           // -1: the spine; else the profile wire's index
+  double at = 1.0;            // v in [0, 1]
+  Vec3 force = Vec3::Zero();  // N, world axes
+};
 
 struct PlaybackOptions {
   double rigid_step = 1.0 / 240.0;  // s, fixed step of the rigid-body integration
@@ -41,6 +52,10 @@ class Playback {
   Status Evaluate(double t, std::span<Vec3> positions, std::span<Vec3> normals,
                   std::span<PartWarnings> warnings = {});
 
+  // Adds `load` to every following Evaluate until cleared with nullopt. Errors name the field
+  // (part or profile out of range, `at` outside [0, 1], a force that is not finite).
+  Status SetInteractiveLoad(const std::optional<InteractiveLoad>& load);
+
   // After Evaluate: the deformed spines and profiles, and the inputs sampled at that time.
   const RigWorkspace& workspace() const { return workspace_; }
   const ClipSample& sample() const { return sample_; }
@@ -54,6 +69,7 @@ class Playback {
   Playback() = default;
   Status AdvanceBodies(double local_time);
   Status StepBodies(double dt);
+  void ApplyInteractiveLoad();
 
   const RigModel* model_ = nullptr;
   const Clip* clip_ = nullptr;
@@ -64,7 +80,13 @@ class Playback {
   std::vector<RigidPartBody> dynamic_bodies_;  // their bodies, same order
   std::vector<RigidBodyState> bodies_;         // per part, at the current time
   std::vector<RigidBodyState> checkpoints_;    // #checkpoints x #dynamic parts
-  std::size_t checkpoints_done_ = 0;           // how many checkpoints are valid
+  std::size_t checkpoints_done_ = 0;
+  std::optional<InteractiveLoad> interactive_;
+  std::vector<PointLoad> interactive_points_;       // clip's loads of a part, plus one
+  std::vector<ProfileLoads> interactive_profiles_;  // clip's profile loads, plus one
+  PointLoad interactive_profile_point_;
+  bool evaluated_ =
+      false;  // the workspace holds a deformed frame           // how many checkpoints are valid
 };
 
 }  // namespace wirerig
