@@ -65,6 +65,7 @@ void BM_RenderFrame(benchmark::State& state) {
   RenderOptions options;
   options.shadows = state.range(1) != 0;
   options.show_wires = state.range(2) != 0;
+  options.shadow_map_size = static_cast<int>(state.range(3));
   Result<std::unique_ptr<HeadlessRenderer>> headless = HeadlessRenderer::Create(samples);
   if (!headless) {
     state.SkipWithError(headless.error().c_str());
@@ -89,12 +90,14 @@ void BM_RenderFrame(benchmark::State& state) {
       benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
   state.SetLabel(headless.value()->context().gl_renderer());
 }
-// Args: MSAA samples, shadows, wires.
+// Args: MSAA samples, shadows, wires, shadow-map texels per side.
 BENCHMARK(BM_RenderFrame)
-    ->ArgNames({"samples", "shadows", "wires"})
-    ->Args({4, 1, 1})
-    ->Args({1, 1, 1})
-    ->Args({1, 0, 0})
+    ->ArgNames({"samples", "shadows", "wires", "shadow_map"})
+    ->Args({4, 1, 1, 2048})
+    ->Args({1, 1, 1, 2048})
+    ->Args({1, 1, 1, 1024})
+    ->Args({1, 1, 0, 1024})
+    ->Args({1, 0, 0, 1024})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
