@@ -11,6 +11,7 @@
 #include "demo_command.h"
 #include "render_command.h"
 #include "samples_command.h"
+#include "view_command.h"
 #endif
 #include "wire_command.h"
 
@@ -36,6 +37,8 @@ int main(int argc, char** argv) {
   wirerig::cli::SamplesCommandOptions samples_options;
   CLI::App* samples = wirerig::cli::AddSamplesCommand(app, samples_options);
   CLI::App* gallery = wirerig::cli::AddGalleryCommand(app, samples_options);
+  wirerig::cli::ViewCommandOptions view_options;
+  CLI::App* view = wirerig::cli::AddViewCommand(app, view_options);
 #endif
 
   CLI11_PARSE(app, argc, argv);
@@ -56,6 +59,7 @@ int main(int argc, char** argv) {
     return wirerig::cli::RunSamplesCommand(samples_options, std::cout, std::cerr);
   if (gallery->parsed())
     return wirerig::cli::RunGalleryCommand(samples_options, std::cout, std::cerr);
+  if (view->parsed()) return wirerig::cli::RunViewCommand(view_options, std::cerr);
 #endif
   return 1;
 }

@@ -1,0 +1,264 @@
+#include "wirerig/viewer/scene_viewer.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "wirerig/anim/bake.h"
+#include "wirerig/anim/gltf_export.h"
+
+namespace wirerig {
+namespace {
+
+constexpr const char* kBoundaryNames[] = {"simply_supported", "clamped", "cantilever_free",
+                                          "cantilever_guided"};
+
+}  // namespace
+
+SceneViewer::SceneViewer(SceneViewerOptions options) : options_(std::move(options)) {}
+SceneViewer::~SceneViewer() = default;
+
+Result<bool> SceneViewer::Open(const SceneDescription& description) {
+  Result<BuiltScene> built = BuildScene(description);
+  if (!built) return Error{built.error()};
+  auto scene = std::make_unique<BuiltScene>(std::move(built).value());
+  const Clip* clip = scene->FindClip(options_.clip);
+  if (!clip && !options_.clip.empty() && !scene->clips.empty())
+    return Error{"no clip is named \"" + options_.clip + "\""};
+  rest_clip_ = Clip{};
+  rest_clip_.name = "rest";
+  rest_clip_.parts.resize(scene->model.parts.size());
+  if (!clip) clip = &rest_clip_;
+  Result<Playback> playback = Playback::Make(scene->model, *clip, description.playback);
+  if (!playback) return Error{playback.error()};
+  // Replace everything at once: the picture and playback refer to the scene.
+  picture_.reset();
+  playback_ = std::make_unique<Playback>(std::move(playback).value());
+  scene_ = std::move(scene);
+  clip_ = clip;
+  picture_ = std::make_unique<SceneFrame>(*scene_);
+  positions_.assign(scene_->model.vertices.size(), Vec3::Zero());
+  normals_.assign(positions_.size(), Vec3::Zero());
+  timeline().duration = clip_ == &rest_clip_ ? 0.0 : clip_->duration;
+  timeline().keys = clip_->key_times;
+  timeline().loop = clip_->loop != LoopMode::kOnce;
+  timeline().Seek(timeline().time);
+  selected_part_ = std::min(selected_part_, int(scene_->model.parts.size()) - 1);
+  dragging_ = false;
+  return true;
+}
+
+bool SceneViewer::OnInitialize() {
+  Result<SceneDescription> description = LoadScene(options_.scene);
+  if (!description) {
+    std::fprintf(stderr, "wirerig view: %s\n", description.error().c_str());
+    return false;
+  }
+  if (Result<bool> opened = Open(description.value()); !opened) {
+    std::fprintf(stderr, "wirerig view: %s: %s\n", options_.scene.string().c_str(),
+                 opened.error().c_str());
+    return false;
+  }
+  camera() = picture_->InitialCamera(display_size());
+  return true;
+}
+
+void SceneViewer::OnDisplay(RenderFrame& frame) {
+  if (Status s = playback_->Evaluate(timeline().time, positions_, normals_); !s) {
+    status_ = "evaluation: " + ToString(s);
+  } else {
+    picture_->Update(*playback_, positions_, normals_);
+    if (dragging_) {
+      // How far the grabbed point of the wire moved from where it was grabbed.
+      const RigWorkspace& w = playback_->workspace();
+      const std::vector<Vec3>& points =
+          drag_.profile < 0 ? w.spine_points[drag_.part]
+                            : w.profile_points[drag_.part][std::size_t(drag_.profile)];
+      const auto k = static_cast<std::size_t>(
+          std::lround(drag_.at * double(points.size() - (drag_.profile < 0 ? 1 : 0))));
+      const Vec3& now = points[std::min(k, points.size() - 1)];
+      max_wire_motion_ = std::max(max_wire_motion_, (now - grab_point_).norm());
+    }
+    for (std::size_t v = 0; v < positions_.size(); ++v)
+      max_mesh_motion_ =
+          std::max(max_mesh_motion_, (positions_[v] - scene_->mesh.welded_positions[v]).norm());
+  }
+  char text[128];
+  std::snprintf(text, sizeof text, "%s  %s  t = %.2f s", scene_->description.name.c_str(),
+                clip_->name.c_str(), timeline().time);
+  caption_ = text;
+  picture_->set_caption(caption_);
+  frame = picture_->frame();
+}
+
+void SceneViewer::OnWireGrab(const WirePick& pick) {
+  // Which wire: the SceneFrame numbers each part's profiles, then its spine.
+  for (std::size_t p = 0; p < scene_->model.parts.size(); ++p) {
+    const PartModel& part = scene_->model.parts[p];
+    if (pick.id < picture_->ProfileId(p, 0) || pick.id > picture_->SpineId(p)) continue;
+    drag_ = InteractiveLoad{};
+    drag_.part = static_cast<std::uint32_t>(p);
+    drag_.at = std::clamp(double(pick.parameter), 0.0, 1.0);
+    const bool spine = pick.id == picture_->SpineId(p);
+    drag_.profile = spine ? -1 : int(pick.id - picture_->ProfileId(p, 0));
+    if (spine) {
+      // A cantilever's point at a = v L moves P a^3 / 3EI under a load P there.
+      const double a = std::max(0.1, drag_.at) * part.spine_length;
+      drag_stiffness_ = 3.0 * part.spine_stiffness.bending / (a * a * a);
+    } else {
+      const ProfileModel& profile = part.profiles[std::size_t(drag_.profile)];
+      double length = 0.0;
+      for (std::size_t k = 0; k + 1 < profile.local_points.size(); ++k)
+        length += (profile.local_points[k + 1] - profile.local_points[k]).norm();
+      // A clamped wire's centre moves P L^3 / 192 EI under a load P there.
+      drag_stiffness_ = 192.0 * profile.stiffness.bending / (length * length * length);
+    }
+    dragging_ = true;
+    grab_point_ = pick.point.cast<double>();
+    ++picks_;
+    std::printf("view: grabbed %s of part \"%s\" at v = %.3f\n",
+                spine ? "the spine" : "a profile wire", part.name.c_str(), drag_.at);
+    return;
+  }
+}
+
+void SceneViewer::OnWireDrag(const WirePick& grab, const Vec3f& target) {
+  if (!dragging_) return;
+  drag_.force = drag_stiffness_ * (target - grab.point).cast<double>();
+  peak_force_ = std::max(peak_force_, drag_.force.norm());
+  if (Status s = playback_->SetInteractiveLoad(drag_); !s) status_ = ToString(s);
+}
+
+void SceneViewer::OnWireRelease() {
+  dragging_ = false;
+  (void)playback_->SetInteractiveLoad(std::nullopt);
+}
+
+void SceneViewer::Apply(SceneDescription edited) {
+  undo_.push_back(scene_->description);
+  if (Result<bool> opened = Open(edited); !opened) {
+    status_ = opened.error();
+    undo_.pop_back();
+    return;
+  }
+  status_ = "applied";
+}
+
+void SceneViewer::DrawEditor() {
+  ImGui::SetNextWindowPos(ImVec2(float(display_size().width) - 330.0f, 10.0f), ImGuiCond_Once);
+  ImGui::SetNextWindowSize(ImVec2(320.0f, 0.0f), ImGuiCond_Once);
+  if (!ImGui::Begin("Scene")) {
+    ImGui::End();
+    return;
+  }
+  // Sample picker.
+  if (!options_.samples.empty() && ImGui::BeginCombo("sample", scene_->description.name.c_str())) {
+    for (const SceneViewerSample& sample : options_.samples) {
+      if (ImGui::Selectable(sample.name.c_str())) {
+        Result<SceneDescription> description = LoadScene(sample.scene);
+        Result<bool> opened =
+            description ? Open(description.value()) : Result<bool>(Error{description.error()});
+        if (opened) {
+          options_.scene = sample.scene;
+          undo_.clear();
+          camera() = picture_->InitialCamera(display_size());
+          status_ = "opened " + sample.name;
+        } else {
+          status_ = opened.error();
+        }
+      }
+    }
+    ImGui::EndCombo();
+  }
+  const RigModel& model = scene_->model;
+  std::vector<const char*> names;
+  for (const PartModel& part : model.parts) names.push_back(part.name.c_str());
+  ImGui::Combo("part", &selected_part_, names.data(), int(names.size()));
+  const PartModel& part = model.parts[std::size_t(selected_part_)];
+  const RigPart& rig_part = scene_->rig.parts[std::size_t(selected_part_)];
+  ImGui::Text("spine: L = %.3f m, EI = %.3g N m^2, EA = %.3g N", part.spine_length,
+              part.spine_stiffness.bending, part.spine_stiffness.axial);
+  static float youngs = 0.0f, poisson = 0.0f, radius = 0.0f, wall = 0.0f;
+  static int shown_part = -1;
+  if (shown_part != selected_part_) {
+    youngs = float(rig_part.spine_wire.material.youngs_modulus);
+    poisson = float(rig_part.spine_wire.material.poisson_ratio);
+    // A tube's area is 2 pi r h (mean radius r, wall h); the wall is the scene's skin thickness.
+    wall = float(scene_->description.skin_thickness);
+    radius = float(rig_part.spine_wire.section.area / (2.0 * 3.14159265358979 * double(wall)));
+    shown_part = selected_part_;
+  }
+  ImGui::InputFloat("E (Pa)", &youngs, 0.0f, 0.0f, "%.4g");
+  ImGui::SliderFloat("nu", &poisson, 0.0f, 0.49f);
+  ImGui::InputFloat("tube r (m)", &radius, 0.0f, 0.0f, "%.4g");
+  ImGui::InputFloat("tube h (m)", &wall, 0.0f, 0.0f, "%.4g");
+  int boundary = 2;
+  if (clip_ != &rest_clip_ && !clip_->parts[std::size_t(selected_part_)].boundary.empty())
+    boundary = int(clip_->parts[std::size_t(selected_part_)].boundary.front().boundary);
+  const bool boundary_changed = ImGui::Combo("boundary", &boundary, kBoundaryNames, 4);
+  if (ImGui::Button("apply") || boundary_changed) {
+    SceneDescription edited = scene_->description;
+    PartSettings& settings = edited.parts[part.name];
+    Material material = rig_part.spine_wire.material;
+    material.youngs_modulus = double(youngs);
+    material.poisson_ratio = double(poisson);
+    settings.spine_material = material;
+    if (ValidateTube(double(radius), double(wall)).ok())
+      settings.spine_section = TubeSection(double(radius), double(wall));
+    for (RawClip& clip : edited.clips) {
+      if (clip.name != clip_->name) continue;
+      auto it = std::find_if(clip.parts.begin(), clip.parts.end(),
+                             [&](const RawPartTracks& t) { return t.part == part.name; });
+      if (it == clip.parts.end()) {
+        clip.parts.push_back({part.name, {}});
+        it = clip.parts.end() - 1;
+      }
+      it->channels.boundary = {{0.0, static_cast<BoundaryCondition>(boundary)}};
+    }
+    Apply(std::move(edited));
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("undo") && !undo_.empty()) {
+    SceneDescription previous = undo_.back();
+    undo_.pop_back();
+    Result<bool> opened = Open(previous);
+    status_ = opened ? "undone" : opened.error();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("save")) {
+    const std::filesystem::path path =
+        options_.scene.parent_path() /
+        (options_.scene.stem().stem().string() + ".edited.scene.json");
+    Result<std::filesystem::path> saved = SaveScene(scene_->description, path);
+    status_ = saved ? "saved " + path.string() : saved.error();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("export .glb") && clip_ != &rest_clip_) {
+    const std::filesystem::path path =
+        options_.scene.parent_path() / (scene_->description.name + ".glb");
+    Result<BakedAnimation> bake =
+        BakeClip(scene_->mesh, scene_->model, *clip_, scene_->description.playback, BakeOptions{});
+    Result<GltfExportReport> exported =
+        bake ? ExportGltf(scene_->mesh, bake.value(), GltfExportOptions{}, path)
+             : Result<GltfExportReport>(Error{bake.error()});
+    status_ = exported ? "exported " + path.string() : exported.error();
+  }
+  if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
+  ImGui::TextWrapped("Drag a wire to push it; drag elsewhere to orbit.");
+  ImGui::End();
+}
+
+void SceneViewer::OnGui() { DrawEditor(); }
+
+void SceneViewer::OnShutdown() {
+  std::printf(
+      "view: picks=%d force=%s wire_moved=%s mesh_moved=%s max_wire_motion=%.4f m "
+      "max_mesh_motion=%.4f m peak_force=%.3g N frames=%d\n",
+      picks_, peak_force_ > 0.0 ? "yes" : "no", max_wire_motion_ > 1e-2 ? "yes" : "no",
+      max_mesh_motion_ > 1e-3 ? "yes" : "no", max_wire_motion_, max_mesh_motion_, peak_force_,
+      statistics().frame);
+}
+
+}  // namespace wirerig
