@@ -460,14 +460,6 @@ void Renderer::Render(const RenderFrame& frame, const Camera& camera, Size viewp
   const Mat4f proj = camera.ProjectionMatrix(viewport.Aspect());
   const Mat4f view_proj = proj * view;
 
-  // Background.
-  glDisable(GL_DEPTH_TEST);
-  glDepthMask(GL_FALSE);
-  glUseProgram(m.background.get());
-  SetVec3(m.background.get(), "u_top", options.background_top);
-  SetVec3(m.background.get(), "u_bottom", options.background_bottom);
-  glBindVertexArray(m.empty_vao.get());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LEQUAL);
@@ -491,31 +483,6 @@ void Renderer::Render(const RenderFrame& frame, const Camera& camera, Size viewp
     glBindTexture(GL_TEXTURE_2D, shadows ? m.shadow_texture.get() : 0);
     glUniform1i(Loc(p, "u_shadow_map"), 0);
   };
-
-  // Ground.
-  if (frame.ground) {
-    const GLuint p = m.ground.get();
-    glUseProgram(p);
-    set_lights(p);
-    SetMat4(p, "u_view_proj", view_proj);
-    const float half = 4.0f * radius;
-    glUniform4f(Loc(p, "u_ground"), center.x(), ground_y, center.z(), half);
-    SetVec3(p, "u_ground_albedo", Vec3f(0.50f, 0.50f, 0.48f));
-    const float spacing = std::pow(10.0f, std::floor(std::log10(0.5f * radius)));
-    glUniform1f(Loc(p, "u_grid_spacing"), spacing);
-    glUniform4f(Loc(p, "u_footprint"), center.x(), center.z(),
-                0.5f * (bounds.max.x() - bounds.min.x()), 0.5f * (bounds.max.z() - bounds.min.z()));
-    glUniform1f(Loc(p, "u_footprint_lift"), std::max(bounds.min.y() - ground_y, 0.0f));
-    glUniform1f(Loc(p, "u_model_radius"), radius);
-    SetVec3(p, "u_top", options.background_top);
-    SetVec3(p, "u_bottom", options.background_bottom);
-    glUniform1f(Loc(p, "u_viewport_height"), float(std::max(viewport.height, 1)));
-    glBindVertexArray(m.empty_vao.get());
-    // The ground never hides what is above it: drawn first, without writing depth.
-    glDepthMask(GL_FALSE);
-    glDrawArrays(GL_TRIANGLES, 0, 6);
-    glDepthMask(GL_TRUE);
-  }
 
   // Meshes.
   const GLuint mp = m.mesh.get();
@@ -569,6 +536,39 @@ void Renderer::Render(const RenderFrame& frame, const Camera& camera, Size viewp
       glDrawArrays(GL_TRIANGLES, m.arrow_first[i], m.arrow_count[i]);
     }
   }
+
+  // Opaque things front to back where it helps llvmpipe's early depth test: the model and arrows
+  // first, then the ground (only where the model does not cover it), then the background.
+  // Ground.
+  if (frame.ground) {
+    const GLuint p = m.ground.get();
+    glUseProgram(p);
+    set_lights(p);
+    SetMat4(p, "u_view_proj", view_proj);
+    const float half = 4.0f * radius;
+    glUniform4f(Loc(p, "u_ground"), center.x(), ground_y, center.z(), half);
+    SetVec3(p, "u_ground_albedo", Vec3f(0.50f, 0.50f, 0.48f));
+    const float spacing = std::pow(10.0f, std::floor(std::log10(0.5f * radius)));
+    glUniform1f(Loc(p, "u_grid_spacing"), spacing);
+    glUniform4f(Loc(p, "u_footprint"), center.x(), center.z(),
+                0.5f * (bounds.max.x() - bounds.min.x()), 0.5f * (bounds.max.z() - bounds.min.z()));
+    glUniform1f(Loc(p, "u_footprint_lift"), std::max(bounds.min.y() - ground_y, 0.0f));
+    glUniform1f(Loc(p, "u_model_radius"), radius);
+    SetVec3(p, "u_top", options.background_top);
+    SetVec3(p, "u_bottom", options.background_bottom);
+    glUniform1f(Loc(p, "u_viewport_height"), float(std::max(viewport.height, 1)));
+    glBindVertexArray(m.empty_vao.get());
+    glDrawArrays(GL_TRIANGLES, 0, 6);
+  }
+
+  // Background: at the far plane, so only pixels nothing else covered are shaded.
+  glUseProgram(m.background.get());
+  SetVec3(m.background.get(), "u_top", options.background_top);
+  SetVec3(m.background.get(), "u_bottom", options.background_bottom);
+  glBindVertexArray(m.empty_vao.get());
+  glDepthMask(GL_FALSE);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDepthMask(GL_TRUE);
 
   // Wires: the hidden parts faded, then the visible parts.
   if (options.show_wires && !m.wire_first.empty()) {
