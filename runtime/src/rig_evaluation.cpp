@@ -477,8 +477,23 @@ Status EvaluateRigJob::Run() const {
            VertexPass::Tasks(w.layout.pairs.size()) + VertexPass::Tasks(w.layout.caps.size()),
            &VertexPass::Vertices, &pass);
 
-  // 7. Area-weighted vertex normals: every triangle's, then per vertex the sum of its own.
+  // 7. Area-weighted vertex normals.
   if (normals.empty()) return Status::Ok();
+  // One thread: accumulate every triangle's normal into its vertices in one pass (the fewest
+  // memory passes). Threads: every triangle's normal, then per vertex the sum of its triangles'
+  // in increasing triangle order. Both add the same terms in the same order: identical sums.
+  if (parallel == nullptr || parallel->concurrency() <= 1) {
+    std::fill(w.normal_accumulator.begin(), w.normal_accumulator.end(), Vec3::Zero());
+    for (const Triangle& t : model->triangles) {
+      const Vec3 n = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
+      for (std::uint32_t index : t) w.normal_accumulator[index] += n;
+    }
+    for (std::size_t v = 0; v < normals.size(); ++v) {
+      const double length = w.normal_accumulator[v].norm();
+      normals[v] = length > 0.0 ? Vec3(w.normal_accumulator[v] * (1.0 / length)) : Vec3::UnitY();
+    }
+    return Status::Ok();
+  }
   RunTasks(parallel, VertexPass::Tasks(model->triangles.size()), &VertexPass::TriangleNormals,
            &pass);
   RunTasks(parallel, VertexPass::Tasks(normals.size()), &VertexPass::VertexNormals, &pass);

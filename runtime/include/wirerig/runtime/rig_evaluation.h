@@ -122,7 +122,7 @@ struct RigWorkspace {
   std::vector<double> axial;                       // scratch for the axial job
   std::vector<std::vector<double>> strain;         // per part, per spine sample: N / EA
   std::vector<std::vector<double>> profile_scale;  // per part, per profile: in-plane scale
-  std::vector<Vec3> normal_accumulator;            // per vertex
+  std::vector<Vec3> normal_accumulator;            // per vertex (normals on one thread)
   std::vector<double> profile_samples;             // per point of the longest profile
   std::vector<Vec3> profile_displacement;          // likewise
   // The vertex pass's inputs: the model's bindings laid out flat, and per frame every profile's
@@ -133,7 +133,7 @@ struct RigWorkspace {
   std::vector<Vec3> pair_centres;
   std::vector<Vec3> cap_origins;
   std::vector<Mat3> cap_axes;
-  std::vector<Vec3> triangle_normals;  // per triangle: (p1 - p0) x (p2 - p0)
+  std::vector<Vec3> triangle_normals;  // per triangle: (p1 - p0) x (p2 - p0); threaded normals
 };
 RigWorkspace MakeRigWorkspace(const RigModel& model);
 
