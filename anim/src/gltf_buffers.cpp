@@ -27,9 +27,8 @@ int Components(int type) {
 
 // Appends `bytes` to buffer 0 (created when missing) at a 4-byte aligned offset, as a new view.
 int AddBufferView(tinygltf::Model& model, const void* bytes, std::size_t size, int target) {
-  if (model.buffers.empty()) model.buffers.emplace_back();
+  AlignedBufferEnd(model);
   std::vector<unsigned char>& data = model.buffers[0].data;
-  data.resize((data.size() + 3) / 4 * 4, 0);
   tinygltf::BufferView view;
   view.buffer = 0;
   view.byteOffset = data.size();
@@ -41,17 +40,38 @@ int AddBufferView(tinygltf::Model& model, const void* bytes, std::size_t size, i
   return static_cast<int>(model.bufferViews.size()) - 1;
 }
 
-int AddAccessor(tinygltf::Model& model, int view, int component_type, int type, std::size_t count) {
+}  // namespace
+
+std::size_t AlignedBufferEnd(tinygltf::Model& model) {
+  if (model.buffers.empty()) model.buffers.emplace_back();
+  std::vector<unsigned char>& data = model.buffers[0].data;
+  data.resize((data.size() + 3) / 4 * 4, 0);
+  return data.size();
+}
+
+int AddReservedView(tinygltf::Model& model, std::size_t offset, std::size_t size,
+                    std::size_t stride, int target) {
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = offset;
+  view.byteLength = size;
+  view.byteStride = stride;
+  view.target = target;
+  model.bufferViews.push_back(view);
+  return static_cast<int>(model.bufferViews.size()) - 1;
+}
+
+int AddAccessor(tinygltf::Model& model, int view, int component_type, int type, std::size_t count,
+                bool normalized) {
   tinygltf::Accessor accessor;
   accessor.bufferView = view;
   accessor.componentType = component_type;
   accessor.type = type;
   accessor.count = count;
+  accessor.normalized = normalized;
   model.accessors.push_back(accessor);
   return static_cast<int>(model.accessors.size()) - 1;
 }
-
-}  // namespace
 
 int AddFloatAccessor(tinygltf::Model& model, std::span<const float> values, int type, int target,
                      bool min_max) {

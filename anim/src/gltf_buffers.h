@@ -1,8 +1,10 @@
 // Appending binary data to a tinygltf model: every accessor gets its own buffer view in the
 // model's single buffer (buffer 0), 4-byte aligned, so accessors of any component type are
-// aligned as glTF requires.
+// aligned as glTF requires. Buffer 0's `data` holds the bytes built in memory; morph targets
+// reserve views after them (AddReservedView) whose bytes are produced while the file is written.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -26,5 +28,18 @@ int AddIndexAccessor(tinygltf::Model& model, std::span<const std::uint32_t> indi
 // unsigned short (joint_count <= 65536).
 int AddJointAccessor(tinygltf::Model& model, std::span<const std::uint16_t> joints,
                      std::size_t joint_count);
+
+// Pads buffer 0's in-memory data (created when missing) to a multiple of 4 bytes and returns
+// its size: the offset at which reserved views may start.
+std::size_t AlignedBufferEnd(tinygltf::Model& model);
+
+// A view of `size` bytes at byte `offset` of buffer 0 that its in-memory data does not hold
+// (streamed when the file is written). `stride` 0: tightly packed.
+int AddReservedView(tinygltf::Model& model, std::size_t offset, std::size_t size,
+                    std::size_t stride, int target);
+
+// An accessor of `count` elements on `view` (at byte 0 of it).
+int AddAccessor(tinygltf::Model& model, int view, int component_type, int type, std::size_t count,
+                bool normalized = false);
 
 }  // namespace wirerig::gltf

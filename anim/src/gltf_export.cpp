@@ -2,6 +2,11 @@
 // morph targets or skeleton and skin, all keyed on one time accessor) and writes it.
 #include "wirerig/anim/gltf_export.h"
 
+#include <algorithm>
+#include <memory>
+#include <span>
+#include <utility>
+
 #include "gltf_buffers.h"
 #include "gltf_input.h"
 #include "gltf_material.h"
@@ -17,35 +22,70 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Position and normal deltas of every key against the base (#K x #V x 3 each; normals empty
-// when either side has none).
-void KeyDeltas(const gltf::BaseVertices& base, const BakedAnimation& bake,
-               std::vector<float>* positions, std::vector<float>* normals) {
-  const std::size_t vertices = base.Count();
-  for (std::size_t k = 0; k < bake.KeyCount(); ++k) {
+// Quantized position deltas may round each vertex by at most this fraction of the rest mesh's
+// bounding-box diagonal (the round-trip tolerance of the tests).
+constexpr double kQuantizationTolerance = 1e-4;
+
+// Morph mode's targets: per key, bake - base (positions; normals when both sides have them).
+gltf::MorphTargetSet KeyDeltas(const gltf::BaseVertices& base, const BakedAnimation& bake) {
+  gltf::MorphTargetSet set;
+  set.key_count = bake.KeyCount();
+  set.vertex_count = base.Count();
+  set.normals = !base.normals.empty() && !bake.normals.empty();
+  set.deltas = [&base, &bake](std::size_t k, std::span<float> positions,
+                              std::span<float> normals) {
+    const std::size_t vertices = base.Count();
+    const Vec3f* baked = bake.positions.data() + k * vertices;
     for (std::size_t v = 0; v < vertices; ++v) {
-      for (int c = 0; c < 3; ++c) {
-        const std::size_t i = v * 3 + static_cast<std::size_t>(c);
-        positions->push_back(bake.positions[k * vertices + v][c] - base.positions[i]);
-        if (!base.normals.empty() && !bake.normals.empty()) {
-          normals->push_back(bake.normals[k * vertices + v][c] - base.normals[i]);
-        }
+      for (std::size_t c = 0; c < 3; ++c) {
+        positions[v * 3 + c] = baked[v][static_cast<Eigen::Index>(c)] - base.positions[v * 3 + c];
       }
     }
-  }
+    if (normals.empty()) return;
+    const Vec3f* baked_normals = bake.normals.data() + k * vertices;
+    for (std::size_t v = 0; v < vertices; ++v) {
+      for (std::size_t c = 0; c < 3; ++c) {
+        normals[v * 3 + c] =
+            baked_normals[v][static_cast<Eigen::Index>(c)] - base.normals[v * 3 + c];
+      }
+    }
+  };
+  return set;
+}
+
+// Skin mode's residual targets, copied from the fit (#K x #V x 3 each).
+gltf::MorphTargetSet ResidualDeltas(gltf::SkinFit fit, std::size_t keys, std::size_t vertices) {
+  gltf::MorphTargetSet set;
+  set.key_count = keys;
+  set.vertex_count = vertices;
+  set.normals = !fit.residual_normals.empty();
+  const auto shared = std::make_shared<const gltf::SkinFit>(std::move(fit));
+  set.deltas = [shared, vertices](std::size_t k, std::span<float> positions,
+                                  std::span<float> normals) {
+    const std::size_t values = vertices * 3;
+    std::copy_n(shared->residual_positions.begin() + static_cast<std::ptrdiff_t>(k * values),
+                values, positions.begin());
+    if (normals.empty()) return;
+    std::copy_n(shared->residual_normals.begin() + static_cast<std::ptrdiff_t>(k * values), values,
+                normals.begin());
+  };
+  return set;
 }
 
 // Adds the skeleton, skin and (optionally) residual targets; fills the skin numbers of `report`.
-void AddSkinMode(tinygltf::Model& model, tinygltf::Animation& animation, const Mesh& mesh,
-                 const BakedAnimation& bake, const gltf::BaseVertices& base, bool residuals,
-                 int mesh_index, int time_accessor, GltfExportReport* report) {
+// Returns the residual targets (none without residuals).
+gltf::MorphTargetsAdded AddSkinMode(tinygltf::Model& model, tinygltf::Animation& animation,
+                                    const Mesh& mesh, const BakedAnimation& bake,
+                                    const gltf::BaseVertices& base, bool residuals,
+                                    const gltf::MorphQuantization& quantization, int mesh_index,
+                                    int time_accessor, GltfExportReport* report) {
   const gltf::Skeleton skeleton = gltf::BuildSkeleton(bake);
   const gltf::SkinInfluences influences = gltf::MakeSkinInfluences(bake);
   std::vector<int> roots;
   model.nodes[0].skin = gltf::AddSkeleton(model, animation, skeleton, time_accessor, &roots);
   model.scenes[0].nodes.insert(model.scenes[0].nodes.end(), roots.begin(), roots.end());
   gltf::AddSkinAttributes(model, mesh_index, influences, skeleton.JointCount());
-  const gltf::SkinFit fit = gltf::FitSkin(skeleton, influences, base, bake, residuals);
+  gltf::SkinFit fit = gltf::FitSkin(skeleton, influences, base, bake, residuals);
   report->joint_count = skeleton.JointCount();
   report->skin_max_error = fit.max_error;
   report->skin_rms_error = fit.rms_error;
@@ -54,13 +94,14 @@ void AddSkinMode(tinygltf::Model& model, tinygltf::Animation& animation, const M
     report->skin_max_error_relative = fit.max_error / diagonal;
     report->skin_rms_error_relative = fit.rms_error / diagonal;
   }
-  if (residuals) {
-    gltf::AddMorphTargets(model, mesh_index, fit.residual_positions, fit.residual_normals,
-                          bake.KeyCount());
-    gltf::AddKeyWeightsChannel(model, animation, 0, time_accessor, bake.KeyCount());
-    report->morph_target_count = bake.KeyCount();
-    report->residual_max_error = fit.residual_max_error;
-  }
+  if (!residuals) return {};
+  report->morph_target_count = bake.KeyCount();
+  report->residual_max_error = fit.residual_max_error;
+  // The weights' keys first: the targets are the last (streamed) part of the buffer.
+  gltf::AddKeyWeightsChannel(model, animation, 0, time_accessor, bake.KeyCount());
+  return gltf::AddMorphTargets(
+      model, mesh_index, ResidualDeltas(std::move(fit), bake.KeyCount(), base.Count()),
+      quantization);
 }
 
 }  // namespace
@@ -111,20 +152,31 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
       gltf::AddFloatAccessor(model, times, TINYGLTF_TYPE_SCALAR, 0, /*min_max=*/true);
   tinygltf::Animation animation;
   animation.name = bake.name.empty() ? name : bake.name;
+  gltf::MorphQuantization quantization;
+  quantization.enabled = options.quantize;
+  quantization.max_position_error = kQuantizationTolerance * ComputeBounds(mesh).Diagonal();
+  gltf::MorphTargetsAdded targets;
   if (options.mode == GltfAnimationMode::kMorph) {
-    std::vector<float> positions;
-    std::vector<float> normals;
-    KeyDeltas(base, bake, &positions, &normals);
-    gltf::AddMorphTargets(model, mesh_index, positions, normals, bake.KeyCount());
+    // The weights' keys first: the targets are the last (streamed) part of the buffer.
     gltf::AddKeyWeightsChannel(model, animation, 0, time_accessor, bake.KeyCount());
+    targets = gltf::AddMorphTargets(model, mesh_index, KeyDeltas(base, bake), quantization);
     report.morph_target_count = bake.KeyCount();
   } else {
-    AddSkinMode(model, animation, mesh, bake, base, options.residual_morph_targets, mesh_index,
-                time_accessor, &report);
+    targets = AddSkinMode(model, animation, mesh, bake, base, options.residual_morph_targets,
+                          quantization, mesh_index, time_accessor, &report);
   }
   model.animations.push_back(std::move(animation));
+  report.quantized_position_targets = targets.quantized_position_targets;
+  report.quantized_normal_targets = targets.quantized_normal_targets;
+  report.quantization_max_error = targets.quantization_max_error;
+  report.primitive_count = model.meshes[static_cast<std::size_t>(mesh_index)].primitives.size();
+  report.material_count = model.materials.size();
 
-  Result<std::vector<fs::path>> files = gltf::WriteModel(model, out, extension == ".glb");
+  gltf::BufferTail tail;
+  tail.size = targets.stream.Size();
+  tail.write = [&targets](const gltf::ByteSink& sink) { return targets.stream.Write(sink); };
+  Result<std::vector<fs::path>> files =
+      gltf::WriteModel(std::move(model), tail, out, extension == ".glb");
   if (!files) return Error{files.error()};
   report.files = std::move(files.value());
   for (const fs::path& file : report.files) {
@@ -133,9 +185,7 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
   }
   report.vertex_count = mesh.positions.size();
   report.triangle_count = mesh.triangles.size();
-  report.primitive_count = model.meshes[static_cast<std::size_t>(mesh_index)].primitives.size();
   report.key_count = bake.KeyCount();
-  report.material_count = model.materials.size();
   report.texture_count = materials.texture_count;
   return report;
 }

@@ -1,34 +1,296 @@
 #include "gltf_morph.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <condition_variable>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <mutex>
 #include <string>
-#include <vector>
+#include <thread>
+#include <utility>
 
 #include "gltf_buffers.h"
 
 namespace wirerig::gltf {
+namespace {
 
-void AddMorphTargets(tinygltf::Model& model, int mesh_index, std::span<const float> position_deltas,
-                     std::span<const float> normal_deltas, std::size_t key_count) {
-  const std::size_t per_key = position_deltas.size() / key_count;
-  std::vector<std::map<std::string, int>> targets(key_count);
+constexpr const char* kQuantization = "KHR_mesh_quantization";
+constexpr std::size_t kFloatStride = 3 * sizeof(float);                  // 12 bytes
+constexpr std::size_t kShortStride = 4 * sizeof(std::int16_t);           // 8: 4-byte aligned
+constexpr std::size_t kBlockBytes = std::size_t{4} << 20;                // write blocks, ~4 MB
+constexpr double kShortScale = 32767.0;
+
+// Threads for `jobs` independent jobs: up to 2 (the machines wirerig runs on share few cores).
+std::size_t ThreadCount(std::size_t jobs) {
+  const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
+  return std::max<std::size_t>(1, std::min({cores, std::size_t{2}, jobs}));
+}
+
+// Normalized signed short of a value in [-1, 1] (round to nearest), and back (glTF's decoding).
+std::int16_t ToShort(float value) {
+  return static_cast<std::int16_t>(std::lrint(static_cast<double>(value) * kShortScale));
+}
+double FromShort(std::int16_t value) { return std::max(value / kShortScale, -1.0); }
+
+// One key's deltas, measured: per-component range of the positions, largest normal component,
+// and (when asked and the positions fit in [-1, 1]) the largest vertex rounding error as shorts.
+struct KeyStats {
+  std::array<float, 3> low{};
+  std::array<float, 3> high{};
+  float normal_magnitude = 0.0f;  // max |component|
+  double rounding = 0.0;          // m
+  bool positions_fit = false;     // every component in [-1, 1]
+};
+
+KeyStats MeasureKey(std::span<const float> positions, std::span<const float> normals,
+                    bool quantize) {
+  KeyStats stats;
+  stats.low.fill(std::numeric_limits<float>::max());
+  stats.high.fill(std::numeric_limits<float>::lowest());
+  const std::size_t vertices = positions.size() / 3;
+  for (std::size_t v = 0; v < vertices; ++v) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      const float d = positions[v * 3 + c];
+      stats.low[c] = std::min(stats.low[c], d);
+      stats.high[c] = std::max(stats.high[c], d);
+    }
+  }
+  for (float n : normals) stats.normal_magnitude = std::max(stats.normal_magnitude, std::abs(n));
+  stats.positions_fit = vertices > 0;
+  for (std::size_t c = 0; c < 3; ++c) {
+    stats.positions_fit = stats.positions_fit && stats.low[c] >= -1.0f && stats.high[c] <= 1.0f;
+  }
+  if (quantize && stats.positions_fit) {
+    for (std::size_t v = 0; v < vertices; ++v) {
+      double squared = 0.0;
+      for (std::size_t c = 0; c < 3; ++c) {
+        const float d = positions[v * 3 + c];
+        const double e = FromShort(ToShort(d)) - static_cast<double>(d);
+        squared += e * e;
+      }
+      stats.rounding = std::max(stats.rounding, std::sqrt(squared));
+    }
+  }
+  return stats;
+}
+
+// Runs job(thread, first, last) over [0, count) split into one contiguous range per thread.
+template <typename Job>
+void ParallelRanges(std::size_t count, std::size_t threads, const Job& job) {
+  if (threads <= 1) {
+    job(std::size_t{0}, std::size_t{0}, count);
+    return;
+  }
+  std::vector<std::thread> workers;
+  const std::size_t per_thread = (count + threads - 1) / threads;
+  for (std::size_t t = 1; t < threads; ++t) {
+    const std::size_t first = std::min(count, t * per_thread);
+    const std::size_t last = std::min(count, first + per_thread);
+    workers.emplace_back([&job, t, first, last] { job(t, first, last); });
+  }
+  job(std::size_t{0}, std::size_t{0}, std::min(count, per_thread));
+  for (std::thread& worker : workers) worker.join();
+}
+
+void AddExtension(std::vector<std::string>& list, const std::string& name) {
+  if (std::find(list.begin(), list.end(), name) == list.end()) list.push_back(name);
+}
+
+}  // namespace
+
+StreamedTargets::StreamedTargets(MorphTargetSet set, std::vector<bool> quantized_positions,
+                                 std::vector<bool> quantized_normals)
+    : set_(std::move(set)),
+      quantized_positions_(std::move(quantized_positions)),
+      quantized_normals_(std::move(quantized_normals)) {
+  for (std::size_t k = 0; k < set_.key_count; ++k) size_ += PositionBytes(k) + NormalBytes(k);
+}
+
+std::size_t StreamedTargets::PositionBytes(std::size_t key) const {
+  return set_.vertex_count * (quantized_positions_[key] ? kShortStride : kFloatStride);
+}
+
+std::size_t StreamedTargets::NormalBytes(std::size_t key) const {
+  if (!set_.normals) return 0;
+  return set_.vertex_count * (quantized_normals_[key] ? kShortStride : kFloatStride);
+}
+
+void StreamedTargets::EncodeKey(std::size_t key, std::span<float> positions,
+                                std::span<float> normals, unsigned char* out) const {
+  set_.deltas(key, positions, normals);
+  const auto encode = [this](std::span<const float> values, bool quantized, unsigned char* to) {
+    if (!quantized) {
+      std::memcpy(to, values.data(), values.size_bytes());
+      return;
+    }
+    for (std::size_t v = 0; v < set_.vertex_count; ++v) {
+      const std::array<std::int16_t, 4> q{ToShort(values[v * 3]), ToShort(values[v * 3 + 1]),
+                                          ToShort(values[v * 3 + 2]), 0};
+      std::memcpy(to + v * kShortStride, q.data(), kShortStride);
+    }
+  };
+  encode(positions, quantized_positions_[key], out);
+  if (set_.normals) encode(normals, quantized_normals_[key], out + PositionBytes(key));
+}
+
+void StreamedTargets::EncodeKeys(std::size_t first, std::size_t last, std::vector<float>& scratch,
+                                 std::vector<unsigned char>& out) const {
+  std::size_t bytes = 0;
+  for (std::size_t k = first; k < last; ++k) bytes += PositionBytes(k) + NormalBytes(k);
+  out.resize(bytes);
+  const std::size_t values = set_.vertex_count * 3;
+  scratch.resize(set_.normals ? 2 * values : values);
+  const std::span<float> positions(scratch.data(), values);
+  const std::span<float> normals =
+      set_.normals ? std::span<float>(scratch.data() + values, values) : std::span<float>();
+  std::size_t offset = 0;
+  for (std::size_t k = first; k < last; ++k) {
+    EncodeKey(k, positions, normals, out.data() + offset);
+    offset += PositionBytes(k) + NormalBytes(k);
+  }
+}
+
+bool StreamedTargets::Write(const Sink& sink) const {
+  // Blocks of whole keys, in order.
+  std::vector<std::pair<std::size_t, std::size_t>> blocks;
+  const std::size_t key_bytes = std::max<std::size_t>(1, 2 * set_.vertex_count * kFloatStride);
+  const std::size_t keys_per_block = std::max<std::size_t>(1, kBlockBytes / key_bytes);
+  for (std::size_t k = 0; k < set_.key_count; k += keys_per_block) {
+    blocks.emplace_back(k, std::min(set_.key_count, k + keys_per_block));
+  }
+  if (ThreadCount(blocks.size()) <= 1) {
+    std::vector<float> scratch;
+    std::vector<unsigned char> block;
+    for (const auto& [first, last] : blocks) {
+      EncodeKeys(first, last, scratch, block);
+      if (!sink(block)) return false;
+    }
+    return true;
+  }
+  // Two slots: a producer thread encodes block b into slot b % 2 while this thread hands the
+  // previous block to the sink.
+  std::array<std::vector<unsigned char>, 2> slots;
+  std::array<std::size_t, 2> filled{};  // block index + 1 held by each slot, 0 when free
+  bool stop = false;
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::thread producer([&] {
+    std::vector<float> scratch;
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      const std::size_t slot = b % 2;
+      {
+        std::unique_lock lock(mutex);
+        changed.wait(lock, [&] { return stop || filled[slot] == 0; });
+        if (stop) return;
+      }
+      EncodeKeys(blocks[b].first, blocks[b].second, scratch, slots[slot]);
+      {
+        std::lock_guard lock(mutex);
+        filled[slot] = b + 1;
+      }
+      changed.notify_all();
+    }
+  });
+  bool ok = true;
+  for (std::size_t b = 0; b < blocks.size() && ok; ++b) {
+    const std::size_t slot = b % 2;
+    {
+      std::unique_lock lock(mutex);
+      changed.wait(lock, [&] { return filled[slot] == b + 1; });
+    }
+    ok = sink(slots[slot]);
+    {
+      std::lock_guard lock(mutex);
+      filled[slot] = 0;
+      stop = !ok;
+    }
+    changed.notify_all();
+  }
+  producer.join();
+  return ok;
+}
+
+MorphTargetsAdded AddMorphTargets(tinygltf::Model& model, int mesh_index, MorphTargetSet set,
+                                  const MorphQuantization& quantization) {
+  const std::size_t keys = set.key_count;
+  const std::size_t values = set.vertex_count * 3;
+
+  // Pass 1: measure every key (ranges per thread; the results are per key).
+  std::vector<KeyStats> stats(keys);
+  const std::size_t threads = ThreadCount(keys);
+  ParallelRanges(keys, threads, [&](std::size_t, std::size_t first, std::size_t last) {
+    std::vector<float> positions(values);
+    std::vector<float> normals(set.normals ? values : 0);
+    for (std::size_t k = first; k < last; ++k) {
+      set.deltas(k, positions, normals);
+      stats[k] = MeasureKey(positions, normals, quantization.enabled);
+    }
+  });
+
+  MorphTargetsAdded added;
+  std::vector<bool> quantized_positions(keys, false);
+  std::vector<bool> quantized_normals(keys, false);
+  for (std::size_t k = 0; k < keys; ++k) {
+    if (!quantization.enabled) break;
+    quantized_positions[k] =
+        stats[k].positions_fit && stats[k].rounding <= quantization.max_position_error;
+    quantized_normals[k] = set.normals && stats[k].normal_magnitude <= 1.0f;
+    if (quantized_positions[k]) {
+      ++added.quantized_position_targets;
+      added.quantization_max_error = std::max(added.quantization_max_error, stats[k].rounding);
+    }
+    if (quantized_normals[k]) ++added.quantized_normal_targets;
+  }
+  if (added.quantized_position_targets + added.quantized_normal_targets > 0) {
+    AddExtension(model.extensionsUsed, kQuantization);
+    AddExtension(model.extensionsRequired, kQuantization);
+  }
+
+  // Views and accessors, key after key (POSITION then NORMAL), after the in-memory data.
+  const int target = TINYGLTF_TARGET_ARRAY_BUFFER;
+  const std::size_t vertices = set.vertex_count;
+  const bool normals = set.normals;
+  added.stream =
+      StreamedTargets(std::move(set), std::move(quantized_positions), std::move(quantized_normals));
+  const StreamedTargets& stream = added.stream;
+  std::size_t offset = AlignedBufferEnd(model);
+  std::vector<std::map<std::string, int>> targets(keys);
   std::vector<tinygltf::Value> names;
-  for (std::size_t k = 0; k < key_count; ++k) {
-    targets[k]["POSITION"] = AddFloatAccessor(model, position_deltas.subspan(k * per_key, per_key),
-                                              TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER,
-                                              /*min_max=*/true);
-    if (!normal_deltas.empty()) {
-      targets[k]["NORMAL"] =
-          AddFloatAccessor(model, normal_deltas.subspan(k * per_key, per_key), TINYGLTF_TYPE_VEC3,
-                           TINYGLTF_TARGET_ARRAY_BUFFER, false);
+  const auto add = [&](std::size_t bytes, bool quantized) {
+    const int view =
+        AddReservedView(model, offset, bytes, quantized ? kShortStride : 0, target);
+    offset += bytes;
+    return AddAccessor(model, view,
+                       quantized ? TINYGLTF_COMPONENT_TYPE_SHORT : TINYGLTF_COMPONENT_TYPE_FLOAT,
+                       TINYGLTF_TYPE_VEC3, vertices, quantized);
+  };
+  for (std::size_t k = 0; k < keys; ++k) {
+    const bool quantized = stream.PositionsQuantized(k);
+    const int position = add(stream.PositionBytes(k), quantized);
+    tinygltf::Accessor& accessor = model.accessors[static_cast<std::size_t>(position)];
+    for (std::size_t c = 0; c < 3; ++c) {
+      accessor.minValues.push_back(quantized ? ToShort(stats[k].low[c])
+                                             : static_cast<double>(stats[k].low[c]));
+      accessor.maxValues.push_back(quantized ? ToShort(stats[k].high[c])
+                                             : static_cast<double>(stats[k].high[c]));
+    }
+    targets[k]["POSITION"] = position;
+    if (normals) {
+      targets[k]["NORMAL"] = add(stream.NormalBytes(k), stream.NormalsQuantized(k));
     }
     names.emplace_back("key_" + std::to_string(k));
   }
+
   tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(mesh_index)];
   for (tinygltf::Primitive& primitive : mesh.primitives) primitive.targets = targets;
-  mesh.weights.assign(key_count, 0.0);
+  mesh.weights.assign(keys, 0.0);
   tinygltf::Value::Object extras;
   extras["targetNames"] = tinygltf::Value(std::move(names));
   mesh.extras = tinygltf::Value(std::move(extras));
+  return added;
 }
 
 void AddKeyWeightsChannel(tinygltf::Model& model, tinygltf::Animation& animation, int node,

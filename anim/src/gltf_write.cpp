@@ -1,10 +1,19 @@
 #include "gltf_write.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
+#include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <system_error>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -16,34 +25,164 @@ namespace {
 
 namespace fs = std::filesystem;
 
-Result<std::string> Serialize(const tinygltf::Model& model, bool binary) {
+constexpr std::uint32_t kGlbMagic = 0x46546C67u;  // "glTF"
+constexpr std::uint32_t kGlbVersion = 2;
+constexpr std::uint32_t kJsonChunk = 0x4E4F534Au;  // "JSON"
+constexpr std::uint32_t kBinChunk = 0x004E4942u;   // "BIN\0"
+constexpr std::size_t kGlbHeader = 12;
+constexpr std::size_t kChunkHeader = 8;
+
+std::size_t Padded4(std::size_t size) { return (size + 3) / 4 * 4; }
+
+// The model's JSON without buffers (buffer 0 is written by the caller), compact.
+Result<std::string> SerializeJson(tinygltf::Model& model) {
+  model.buffers.clear();
   tinygltf::TinyGLTF writer;
   writer.SetImageWriter(nullptr, nullptr);  // keep every image's URI; never re-encode
   std::ostringstream stream;
-  if (!writer.WriteGltfSceneToStream(&model, stream, /*prettyPrint=*/!binary, binary) || !stream) {
+  if (!writer.WriteGltfSceneToStream(&model, stream, /*prettyPrint=*/false, /*writeBinary=*/false) ||
+      !stream) {
     return Error{"tinygltf could not serialize the model"};
   }
-  return stream.str();
-}
-
-std::uint32_t ReadU32(const std::string& bytes, std::size_t offset) {
-  std::uint32_t value = 0;
-  std::memcpy(&value, bytes.data() + offset, sizeof value);
-  return value;  // glTF is little-endian, as is every platform wirerig builds on
-}
-
-// A .glb: header "glTF", version 2, total length, then a JSON chunk and a BIN chunk of the buffer.
-std::optional<std::string> CheckGlb(const std::string& bytes, std::size_t buffer_size) {
-  if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0 || ReadU32(bytes, 4) != 2 ||
-      ReadU32(bytes, 8) != bytes.size()) {
-    return "tinygltf wrote no valid GLB header";
+  std::string json = std::move(stream).str();
+  while (!json.empty() && (json.back() == '\n' || json.back() == ' ')) json.pop_back();
+  if (json.size() < 2 || json.front() != '{' || json.back() != '}') {
+    return Error{"tinygltf wrote no JSON object"};
   }
-  const std::size_t bin = 20 + std::size_t{ReadU32(bytes, 12)};
-  if (buffer_size > 0 && (bin + 8 > bytes.size() || ReadU32(bytes, bin) < buffer_size ||
-                          ReadU32(bytes, bin + 4) != 0x004E4942u)) {
-    return "tinygltf wrote no BIN chunk holding the buffer";
+  return json;
+}
+
+void PutU32(std::string& bytes, std::uint32_t value) {
+  char raw[4];
+  std::memcpy(raw, &value, sizeof raw);  // glTF is little-endian, as is every platform
+  bytes.append(raw, sizeof raw);         // wirerig builds on
+}
+
+std::uint32_t GetU32(const unsigned char* bytes) {
+  std::uint32_t value = 0;
+  std::memcpy(&value, bytes, sizeof value);
+  return value;
+}
+
+// Writes the bytes `produce` hands to its sink to `path` atomically: a temporary file in the
+// same folder, checked (its size is `size`; `check` may look at the open file), then renamed
+// over `path`. On failure the target is untouched and no temporary file is left behind.
+Result<fs::path> WriteStreamAtomically(
+    const fs::path& path, std::uintmax_t size, const std::function<bool(const ByteSink&)>& produce,
+    const std::function<std::optional<std::string>(int)>& check = nullptr) {
+  const fs::path temp = path.string() + ".tmp" + std::to_string(::getpid());
+  const int fd = ::open(temp.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) return Error{path.string() + ": cannot write (" + std::strerror(errno) + ")"};
+  std::uintmax_t written = 0;
+  int write_error = 0;
+  const ByteSink sink = [&](std::span<const unsigned char> block) {
+    const unsigned char* p = block.data();
+    std::size_t left = block.size();
+    while (left > 0) {
+      const ::ssize_t n = ::write(fd, p, left);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        write_error = n < 0 ? errno : EIO;
+        return false;
+      }
+      p += n;
+      left -= static_cast<std::size_t>(n);
+      written += static_cast<std::uintmax_t>(n);
+    }
+    return true;
+  };
+  std::optional<std::string> problem;
+  if (!produce(sink)) {
+    problem = std::string("write failed (") + std::strerror(write_error != 0 ? write_error : EIO) +
+              ")";
+  }
+  struct stat status {};
+  if (!problem && (written != size || ::fstat(fd, &status) != 0 ||
+                   static_cast<std::uintmax_t>(status.st_size) != size)) {
+    problem = "written file has the wrong size";
+  }
+  if (!problem && check) problem = check(fd);
+  if (::close(fd) != 0 && !problem) {
+    problem = std::string("write failed (") + std::strerror(errno) + ")";
+  }
+  std::error_code ignored;
+  if (problem) {
+    fs::remove(temp, ignored);
+    return Error{path.string() + ": " + *problem};
+  }
+  std::error_code error;
+  fs::rename(temp, path, error);
+  if (error) {
+    fs::remove(temp, ignored);
+    return Error{path.string() + ": cannot replace (" + error.message() + ")"};
+  }
+  return path;
+}
+
+// The file's first 20 bytes are the GLB header we wrote and its JSON chunk header.
+std::optional<std::string> CheckGlbHeader(int fd, std::size_t total, std::size_t json_chunk) {
+  std::array<unsigned char, kGlbHeader + kChunkHeader> header{};
+  if (::pread(fd, header.data(), header.size(), 0) != static_cast<::ssize_t>(header.size()) ||
+      GetU32(&header[0]) != kGlbMagic || GetU32(&header[4]) != kGlbVersion ||
+      GetU32(&header[8]) != total || GetU32(&header[12]) != json_chunk ||
+      GetU32(&header[16]) != kJsonChunk) {
+    return std::string("written file has no valid GLB header");
   }
   return std::nullopt;
+}
+
+// Hands buffer 0 (in-memory data, then the tail) to `sink`.
+bool WriteBuffer(std::span<const unsigned char> data, const BufferTail& tail,
+                 const ByteSink& sink) {
+  if (!data.empty() && !sink(data)) return false;
+  return tail.size == 0 || tail.write(sink);
+}
+
+Result<std::vector<fs::path>> WriteGlb(tinygltf::Model model, const BufferTail& tail,
+                                       const fs::path& out) {
+  std::vector<unsigned char> data;
+  if (!model.buffers.empty()) data = std::move(model.buffers[0].data);
+  const std::size_t buffer_size = data.size() + tail.size;
+  Result<std::string> serialized = SerializeJson(model);
+  if (!serialized) return Error{out.string() + ": " + serialized.error()};
+  std::string& json = serialized.value();
+  if (buffer_size > 0) {
+    json.pop_back();
+    json.append(R"(,"buffers":[{"byteLength":)")
+        .append(std::to_string(buffer_size))
+        .append("}]}");
+  }
+  const std::size_t json_chunk = Padded4(json.size());
+  const std::size_t bin_chunk = Padded4(buffer_size);
+  const std::size_t total = kGlbHeader + kChunkHeader + json_chunk +
+                            (buffer_size > 0 ? kChunkHeader + bin_chunk : 0);
+  if (total > std::numeric_limits<std::uint32_t>::max()) {
+    return Error{out.string() + ": " + std::to_string(total) +
+                 " bytes is too large for a .glb (4 GiB at most); use .gltf"};
+  }
+  // Header, JSON chunk and BIN chunk header in one block; then the buffer and its padding.
+  std::string head;
+  head.reserve(kGlbHeader + 2 * kChunkHeader + json_chunk);
+  PutU32(head, kGlbMagic);
+  PutU32(head, kGlbVersion);
+  PutU32(head, static_cast<std::uint32_t>(total));
+  PutU32(head, static_cast<std::uint32_t>(json_chunk));
+  PutU32(head, kJsonChunk);
+  head.append(json).append(json_chunk - json.size(), ' ');
+  if (buffer_size > 0) {
+    PutU32(head, static_cast<std::uint32_t>(bin_chunk));
+    PutU32(head, kBinChunk);
+  }
+  const auto produce = [&](const ByteSink& sink) {
+    const std::array<unsigned char, 4> zeros{};
+    return sink({reinterpret_cast<const unsigned char*>(head.data()), head.size()}) &&
+           WriteBuffer(data, tail, sink) &&
+           sink({zeros.data(), bin_chunk - buffer_size});
+  };
+  Result<fs::path> written = WriteStreamAtomically(
+      out, total, produce, [&](int fd) { return CheckGlbHeader(fd, total, json_chunk); });
+  if (!written) return Error{written.error()};
+  return std::vector<fs::path>{out};
 }
 
 // The file on disk has exactly `size` bytes.
@@ -54,47 +193,29 @@ std::optional<std::string> CheckWritten(const fs::path& path, std::size_t size) 
   return std::nullopt;
 }
 
-Result<std::vector<fs::path>> WriteGlb(const tinygltf::Model& model, const fs::path& out) {
-  Result<std::string> bytes = Serialize(model, true);
-  if (!bytes) return Error{out.string() + ": " + bytes.error()};
-  const std::size_t buffer_size = model.buffers.empty() ? 0 : model.buffers[0].data.size();
-  if (auto problem = CheckGlb(bytes.value(), buffer_size))
-    return Error{out.string() + ": " + *problem};
-  if (Result<fs::path> written = WriteFileAtomically(out, bytes.value()); !written) {
-    return Error{written.error()};
-  }
-  if (auto problem = CheckWritten(out, bytes.value().size())) {
-    std::error_code ignored;
-    fs::remove(out, ignored);
-    return Error{*problem};
-  }
-  return std::vector<fs::path>{out};
-}
-
-Result<std::vector<fs::path>> WriteGltfAndBin(tinygltf::Model model, const fs::path& out) {
+Result<std::vector<fs::path>> WriteGltfAndBin(tinygltf::Model model, const BufferTail& tail,
+                                              const fs::path& out) {
   fs::path bin_path = out;
   bin_path.replace_extension(".bin");
-  std::string bin;
-  if (!model.buffers.empty()) {
-    bin.assign(model.buffers[0].data.begin(), model.buffers[0].data.end());
-    model.buffers[0].data.clear();  // serialized below as a URI, not embedded
-  }
-  Result<std::string> text = Serialize(model, false);
+  std::vector<unsigned char> data;
+  if (!model.buffers.empty()) data = std::move(model.buffers[0].data);
+  const std::size_t buffer_size = data.size() + tail.size;
+  Result<std::string> text = SerializeJson(model);
   if (!text) return Error{out.string() + ": " + text.error()};
   nlohmann::json document =
       nlohmann::json::parse(text.value(), nullptr, /*allow_exceptions=*/false);
   if (document.is_discarded()) return Error{out.string() + ": tinygltf wrote invalid JSON"};
-  if (!bin.empty()) {
+  if (buffer_size > 0) {
     document["buffers"] = nlohmann::json::array(
-        {{{"byteLength", bin.size()}, {"uri", PathToUri(bin_path.filename())}}});
+        {{{"byteLength", buffer_size}, {"uri", PathToUri(bin_path.filename())}}});
   }
   const std::string json = document.dump(2).append("\n");
 
   std::vector<fs::path> files;
-  if (!bin.empty()) {
-    if (Result<fs::path> written = WriteFileAtomically(bin_path, bin); !written) {
-      return Error{written.error()};
-    }
+  if (buffer_size > 0) {
+    Result<fs::path> written = WriteStreamAtomically(
+        bin_path, buffer_size, [&](const ByteSink& sink) { return WriteBuffer(data, tail, sink); });
+    if (!written) return Error{written.error()};
     files.push_back(bin_path);
   }
   std::optional<std::string> problem;
@@ -102,10 +223,7 @@ Result<std::vector<fs::path>> WriteGltfAndBin(tinygltf::Model model, const fs::p
     problem = written.error();
   } else {
     files.push_back(out);
-  }
-  for (const fs::path& file : files) {
-    if (problem) break;
-    problem = CheckWritten(file, file == out ? json.size() : bin.size());
+    problem = CheckWritten(out, json.size());
   }
   if (problem) {
     std::error_code ignored;
@@ -117,9 +235,10 @@ Result<std::vector<fs::path>> WriteGltfAndBin(tinygltf::Model model, const fs::p
 
 }  // namespace
 
-Result<std::vector<fs::path>> WriteModel(const tinygltf::Model& model, const fs::path& out,
-                                         bool binary) {
-  return binary ? WriteGlb(model, out) : WriteGltfAndBin(model, out);
+Result<std::vector<fs::path>> WriteModel(tinygltf::Model model, const BufferTail& tail,
+                                         const fs::path& out, bool binary) {
+  return binary ? WriteGlb(std::move(model), tail, out)
+                : WriteGltfAndBin(std::move(model), tail, out);
 }
 
 }  // namespace wirerig::gltf

@@ -17,7 +17,9 @@
 //    (up to float rounding) at that key.
 //
 // Files are written atomically (temporary file in the same folder, then renamed); on any error
-// no output file is created or left half-written.
+// no output file is created or left half-written. Morph targets are streamed to the file while
+// it is written (never held in memory as a whole), on up to two threads; the bytes written do
+// not depend on the thread count.
 #pragma once
 
 #include <cstddef>
@@ -45,6 +47,14 @@ struct GltfExportOptions {
   // to the output file's folder. A texture that does not exist, is not PNG or JPEG, or whose
   // mesh has no UVs is left out with a report warning. Empty: no textures are exported.
   std::filesystem::path texture_dir;
+  // Morph targets (kMorph, and kSkin's residual targets) as KHR_mesh_quantization normalized
+  // signed shorts (value / 32767, at an 8-byte stride) instead of float: a key's POSITION
+  // deltas when every component lies within [-1, 1] m and its largest vertex rounding error
+  // (at most sqrt(3) / 2 / 32767 = 2.6e-5 m) is at most 1e-4 of the rest mesh's bounding-box
+  // diagonal; its NORMAL deltas when every component lies within [-1, 1]. Other keys stay
+  // float. The extension is then required: readers without it (Assimp 5.2) cannot load the
+  // file. Off by default: exact float deltas, readable everywhere.
+  bool quantize = false;
 };
 
 struct GltfExportReport {
@@ -68,8 +78,14 @@ struct GltfExportReport {
   double skin_rms_error = 0.0;
   double skin_max_error_relative = 0.0;
   double skin_rms_error_relative = 0.0;
-  // kSkin with residual morph targets: the same max error once the residuals are applied, m.
+  // kSkin with residual morph targets: the same max error once the residuals are applied, m
+  // (float residuals; quantized ones add at most quantization_max_error).
   double residual_max_error = 0.0;
+  // With options.quantize: the targets stored as shorts, and the largest position rounding
+  // error among them, m (measured against the float deltas).
+  std::size_t quantized_position_targets = 0;
+  std::size_t quantized_normal_targets = 0;
+  double quantization_max_error = 0.0;
 };
 
 // Exports `bake` of `mesh` to `out` (".glb", or ".gltf" plus "<stem>.bin"; the extension is
