@@ -32,23 +32,17 @@ gltf::MorphTargetSet KeyDeltas(const gltf::BaseVertices& base, const BakedAnimat
   set.key_count = bake.KeyCount();
   set.vertex_count = base.Count();
   set.normals = !base.normals.empty() && !bake.normals.empty();
+  static_assert(sizeof(Vec3f) == 3 * sizeof(float), "bake vectors are read as float arrays");
   set.deltas = [&base, &bake](std::size_t k, std::span<float> positions,
                               std::span<float> normals) {
-    const std::size_t vertices = base.Count();
-    const Vec3f* baked = bake.positions.data() + k * vertices;
-    for (std::size_t v = 0; v < vertices; ++v) {
-      for (std::size_t c = 0; c < 3; ++c) {
-        positions[v * 3 + c] = baked[v][static_cast<Eigen::Index>(c)] - base.positions[v * 3 + c];
-      }
-    }
+    const std::size_t values = base.positions.size();
+    const float* baked = bake.positions[k * base.Count()].data();
+    const float* rest = base.positions.data();
+    for (std::size_t i = 0; i < values; ++i) positions[i] = baked[i] - rest[i];
     if (normals.empty()) return;
-    const Vec3f* baked_normals = bake.normals.data() + k * vertices;
-    for (std::size_t v = 0; v < vertices; ++v) {
-      for (std::size_t c = 0; c < 3; ++c) {
-        normals[v * 3 + c] =
-            baked_normals[v][static_cast<Eigen::Index>(c)] - base.normals[v * 3 + c];
-      }
-    }
+    const float* baked_normals = bake.normals[k * base.Count()].data();
+    const float* rest_normals = base.normals.data();
+    for (std::size_t i = 0; i < values; ++i) normals[i] = baked_normals[i] - rest_normals[i];
   };
   return set;
 }

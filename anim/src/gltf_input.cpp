@@ -1,7 +1,10 @@
 #include "gltf_input.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 
 namespace wirerig::gltf {
 namespace {
@@ -38,6 +41,32 @@ template <typename V>
 Message CheckFinite(const std::vector<V>& values, const std::string& field) {
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (!AllFinite(values[i])) return Indexed(field, i).append(": not finite");
+  }
+  return std::nullopt;
+}
+
+// The bake's float vectors (#K x #V, up to ~10^7 values): their bits, scanned in blocks for an
+// all-ones exponent (infinity or NaN) without floating-point operations, so that the loop
+// vectorizes; the element is then located by the loop above.
+Message CheckFinite(const std::vector<Vec3f>& values, const std::string& field) {
+  static_assert(sizeof(Vec3f) == 3 * sizeof(float));
+  constexpr std::uint32_t kExponent = 0x7F800000u;
+  constexpr std::size_t kBlock = 3 * 1024;
+  const std::size_t count = values.size() * 3;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(values.data());
+  for (std::size_t first = 0; first < count; first += kBlock) {
+    const std::size_t last = std::min(count, first + kBlock);
+    std::uint32_t bad = 0;
+    for (std::size_t i = first; i < last; ++i) {
+      std::uint32_t bits = 0;
+      std::memcpy(&bits, bytes + i * sizeof(float), sizeof bits);
+      bad |= static_cast<std::uint32_t>((bits & kExponent) == kExponent);
+    }
+    if (bad != 0) {
+      for (std::size_t i = first / 3; i < last / 3; ++i) {
+        if (!AllFinite(values[i])) return Indexed(field, i).append(": not finite");
+      }
+    }
   }
   return std::nullopt;
 }

@@ -95,6 +95,10 @@ void ParallelRanges(std::size_t count, std::size_t threads, const Job& job) {
   for (std::thread& worker : workers) worker.join();
 }
 
+std::span<const unsigned char> AsBytes(const std::vector<float>& block) {
+  return {reinterpret_cast<const unsigned char*>(block.data()), block.size() * sizeof(float)};
+}
+
 void AddExtension(std::vector<std::string>& list, const std::string& name) {
   if (std::find(list.begin(), list.end(), name) == list.end()) list.push_back(name);
 }
@@ -118,38 +122,34 @@ std::size_t StreamedTargets::NormalBytes(std::size_t key) const {
   return set_.vertex_count * (quantized_normals_[key] ? kShortStride : kFloatStride);
 }
 
-void StreamedTargets::EncodeKey(std::size_t key, std::span<float> positions,
-                                std::span<float> normals, unsigned char* out) const {
-  set_.deltas(key, positions, normals);
-  const auto encode = [this](std::span<const float> values, bool quantized, unsigned char* to) {
-    if (!quantized) {
-      std::memcpy(to, values.data(), values.size_bytes());
-      return;
-    }
-    for (std::size_t v = 0; v < set_.vertex_count; ++v) {
-      const std::array<std::int16_t, 4> q{ToShort(values[v * 3]), ToShort(values[v * 3 + 1]),
-                                          ToShort(values[v * 3 + 2]), 0};
-      std::memcpy(to + v * kShortStride, q.data(), kShortStride);
-    }
-  };
-  encode(positions, quantized_positions_[key], out);
-  if (set_.normals) encode(normals, quantized_normals_[key], out + PositionBytes(key));
-}
-
 void StreamedTargets::EncodeKeys(std::size_t first, std::size_t last, std::vector<float>& scratch,
-                                 std::vector<unsigned char>& out) const {
+                                 std::vector<float>& out) const {
   std::size_t bytes = 0;
   for (std::size_t k = first; k < last; ++k) bytes += PositionBytes(k) + NormalBytes(k);
-  out.resize(bytes);
+  out.resize(bytes / sizeof(float));  // every block is a multiple of 4 bytes
   const std::size_t values = set_.vertex_count * 3;
-  scratch.resize(set_.normals ? 2 * values : values);
-  const std::span<float> positions(scratch.data(), values);
-  const std::span<float> normals =
-      set_.normals ? std::span<float>(scratch.data() + values, values) : std::span<float>();
-  std::size_t offset = 0;
+  scratch.resize(2 * values);
+  // Float deltas go straight to their place in `out`; quantized ones through `scratch`.
+  const auto pack = [this](std::span<const float> from, float* to) {
+    auto* bytes_to = reinterpret_cast<unsigned char*>(to);
+    for (std::size_t v = 0; v < set_.vertex_count; ++v) {
+      const std::array<std::int16_t, 4> q{ToShort(from[v * 3]), ToShort(from[v * 3 + 1]),
+                                          ToShort(from[v * 3 + 2]), 0};
+      std::memcpy(bytes_to + v * kShortStride, q.data(), kShortStride);
+    }
+  };
+  float* cursor = out.data();
   for (std::size_t k = first; k < last; ++k) {
-    EncodeKey(k, positions, normals, out.data() + offset);
-    offset += PositionBytes(k) + NormalBytes(k);
+    float* normals_at = cursor + PositionBytes(k) / sizeof(float);
+    const std::span<float> positions(PositionsQuantized(k) ? scratch.data() : cursor, values);
+    std::span<float> normals;
+    if (set_.normals) {
+      normals = std::span<float>(NormalsQuantized(k) ? scratch.data() + values : normals_at, values);
+    }
+    set_.deltas(k, positions, normals);
+    if (PositionsQuantized(k)) pack(positions, cursor);
+    if (NormalsQuantized(k)) pack(normals, normals_at);
+    cursor = normals_at + NormalBytes(k) / sizeof(float);
   }
 }
 
@@ -163,16 +163,16 @@ bool StreamedTargets::Write(const Sink& sink) const {
   }
   if (ThreadCount(blocks.size()) <= 1) {
     std::vector<float> scratch;
-    std::vector<unsigned char> block;
+    std::vector<float> block;
     for (const auto& [first, last] : blocks) {
       EncodeKeys(first, last, scratch, block);
-      if (!sink(block)) return false;
+      if (!sink(AsBytes(block))) return false;
     }
     return true;
   }
   // Two slots: a producer thread encodes block b into slot b % 2 while this thread hands the
   // previous block to the sink.
-  std::array<std::vector<unsigned char>, 2> slots;
+  std::array<std::vector<float>, 2> slots;
   std::array<std::size_t, 2> filled{};  // block index + 1 held by each slot, 0 when free
   bool stop = false;
   std::mutex mutex;
@@ -201,7 +201,7 @@ bool StreamedTargets::Write(const Sink& sink) const {
       std::unique_lock lock(mutex);
       changed.wait(lock, [&] { return filled[slot] == b + 1; });
     }
-    ok = sink(slots[slot]);
+    ok = sink(AsBytes(slots[slot]));
     {
       std::lock_guard lock(mutex);
       filled[slot] = 0;

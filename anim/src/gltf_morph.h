@@ -62,10 +62,9 @@ class StreamedTargets {
   bool NormalsQuantized(std::size_t key) const { return set_.normals && quantized_normals_[key]; }
 
  private:
-  void EncodeKey(std::size_t key, std::span<float> positions, std::span<float> normals,
-                 unsigned char* out) const;
+  // The bytes of keys [first, last) into `out` (held as floats: every part is 4-byte sized).
   void EncodeKeys(std::size_t first, std::size_t last, std::vector<float>& scratch,
-                  std::vector<unsigned char>& out) const;
+                  std::vector<float>& out) const;
 
   MorphTargetSet set_;
   std::vector<bool> quantized_positions_;
