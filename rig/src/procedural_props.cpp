@@ -119,6 +119,8 @@ std::string ValidateLampPostParameters(const LampPostParameters& p) {
     return "base_radius: must exceed pole_radius";
   if (!Positive(p.base_height) || p.base_height >= 0.5 * p.height)
     return "base_height: must be positive and below half the height";
+  if (6.0 * p.pole_radius >= p.height - p.base_height)
+    return "pole_radius: must be below a sixth of the height above the plinth";
   if (!Positive(p.lantern_radius)) return "lantern_radius: must be positive (m)";
   if (!Positive(p.lantern_height)) return "lantern_height: must be positive (m)";
   if (std::string e = CheckRings(p.rings, 24, "rings"); !e.empty()) return e;
@@ -204,14 +206,12 @@ Result<ProceduralRigSource> MakeTrunk(const TrunkParameters& p) {
 Result<ProceduralRigSource> MakeLampPost(const LampPostParameters& p) {
   if (std::string error = ValidateLampPostParameters(p); !error.empty()) return Error{error};
   ProceduralRigSource out;
-  // The post: a flat-bottomed plinth, a smooth taper to the pole, a collar under the top. Its
-  // profiles start above the plinth, so they all loop the pole (the plinth follows the first).
+  // The post: a flat-bottomed plinth and a smooth taper to the pole. Its profiles lie between
+  // the plinth and the lantern, so they all loop the plain pole (the plinth and the pole's top
+  // follow the end profiles).
   auto post_radius = [&](double y) {
-    double r = p.pole_radius +
-               (p.base_radius - p.pole_radius) * (1.0 - SmoothStep(0.55, 1.0, y / p.base_height));
-    const double collar = p.height - 0.1 * p.base_height / 0.4;
-    r += 0.5 * p.pole_radius * std::exp(-std::pow((y - collar) / (0.05 * p.base_height / 0.4), 2));
-    return r;
+    return p.pole_radius +
+           (p.base_radius - p.pole_radius) * (1.0 - SmoothStep(0.55, 1.0, y / p.base_height));
   };
   std::vector<Vec3> centres = {Vec3::Zero()};
   std::vector<double> radii = {0.0};
@@ -231,12 +231,12 @@ Result<ProceduralRigSource> MakeLampPost(const LampPostParameters& p) {
   centres.emplace_back(0.0, p.height, 0.0);
   radii.push_back(0.0);
   AppendMesh(out.mesh, MakeSweptTube(centres, radii, p.radial_segments, "post"));
-  out.description.parts.push_back(Part("post",
-                                       {Vec3(0, p.base_height, 0), Vec3(0, 0.97 * p.height, 0)},
-                                       p.profile_count, p.points_per_profile, ""));
+  out.description.parts.push_back(
+      Part("post", {Vec3(0, p.base_height, 0), Vec3(0, p.height - 3.0 * p.pole_radius, 0)},
+           p.profile_count, p.points_per_profile, ""));
 
   // The lantern: an egg-shaped globe standing on the post's top.
-  const Vec3 bottom(0.0, p.height - 0.02 * p.lantern_height, 0.0);
+  const Vec3 bottom(0.0, p.height - 0.2 * p.lantern_height, 0.0);
   const Vec3 top = bottom + Vec3(0.0, p.lantern_height, 0.0);
   AppendMesh(out.mesh, StraightTube(
                            bottom, top, std::max(p.rings / 3, 8), p.radial_segments,

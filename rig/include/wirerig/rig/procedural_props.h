@@ -10,7 +10,7 @@
 //                       one part "beam" whose spine runs along +X.
 //   trunk     (Fig. 7)  a straight, tapered tree trunk standing on +Y with a flared root and a
 //                       rounded top: one part "trunk".
-//   lamp_post (Fig. 8)  a post on +Y (plinth, tapered neck, pole, collar) with a lantern on
+//   lamp_post (Fig. 8)  a post on +Y (plinth, tapered neck, pole) with a globe lantern on
 //                       top: parts "post" (root) and "lantern" (child).
 //   chair     (Fig. 10) a cushion-like seat slab, a back slab at its rear (-Z) and four round
 //                       legs: parts "seat" (root), "back", "leg_0" ... "leg_3" (children).
