@@ -54,6 +54,7 @@ std::unique_ptr<Scene> MakeScene() {
   s->mesh.positions = s->positions;
   s->mesh.normals = s->normals;
   s->mesh.triangles = s->triangles;
+  s->mesh.cull_back_faces = true;  // closed and outward-oriented
   s->frame.meshes = {&s->mesh, 1};
   s->frame.polylines = s->lines;
   FrameCamera(s->camera, ComputeFrameBounds(s->frame), 1280.0f / 720.0f);

@@ -226,6 +226,19 @@ TEST_F(RendererTest, WiresArrowsScalarsAndWireframe) {
   EXPECT_GT(int(q[2]), int(q[0]) + 60) << int(q[0]) << " " << int(q[1]) << " " << int(q[2]);
 }
 
+TEST_F(RendererTest, BackFaceCullingLeavesAClosedMeshUnchanged) {
+  const OwnedMesh capsule = LyingCapsule(0.3f);
+  RenderMesh mesh = capsule.View();
+  RenderFrame frame;
+  frame.meshes = {&mesh, 1};
+  Camera camera;
+  FrameCamera(camera, ComputeFrameBounds(frame), size_.Aspect(), 1.5f);
+  const Image both = Render(frame, camera, "cull_off.png");
+  mesh.cull_back_faces = true;
+  const Image culled = Render(frame, camera, "cull_on.png");
+  EXPECT_LT(CountDifferentPixels(both, culled, 8), 20);
+}
+
 TEST_F(RendererTest, EmptyFrameRendersBackgroundAndGround) {
   const Image image = Render(RenderFrame{}, Camera{}, "empty.png");
   EXPECT_GT(Luminance(image.At(5, 5)), 100.0f);

@@ -62,7 +62,8 @@ inline OwnedMesh ToOwnedMesh(const Mesh& mesh) {
 // `lift` metres above y = 0.
 inline OwnedMesh LyingCapsule(float lift) {
   OwnedMesh mesh = ToOwnedMesh(MakeCapsule(0.2, 1.0, 48, 16, 8));
-  for (Vec3f& p : mesh.positions) p = Vec3f(p.y() - 0.5f, p.x() + lift, p.z());
+  // A rotation (not a mirror) keeps the triangles counter-clockwise seen from outside.
+  for (Vec3f& p : mesh.positions) p = Vec3f(p.y() - 0.5f, lift - p.x(), p.z());
   mesh.UpdateNormals();
   return mesh;
 }

@@ -64,6 +64,7 @@ class CantileverDemo : public Application {
     mesh_view_.normals = normals_;
     mesh_view_.triangles = triangles_;
     mesh_view_.scalars = scalars_;
+    mesh_view_.cull_back_faces = true;  // a closed procedural capsule
     polylines_[0].points = spine_;
     polylines_[0].kind = WireKind::kSpine;
     polylines_[0].id = kSpineId;

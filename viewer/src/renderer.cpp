@@ -505,8 +505,14 @@ void Renderer::Render(const RenderFrame& frame, const Camera& camera, Size viewp
     glUniform1i(Loc(mp, "u_mode"), has_scalars ? 1 : 0);
     SetVec3(mp, "u_base_color", mesh.base_color);
     glBindVertexArray(m.mesh_slots[i].vao.get());
+    if (mesh.cull_back_faces) {
+      glEnable(GL_CULL_FACE);
+      glCullFace(GL_BACK);
+      glFrontFace(GL_CCW);
+    }
     glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * mesh.triangles.size()), GL_UNSIGNED_INT,
                    nullptr);
+    glDisable(GL_CULL_FACE);
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
   if (options.wireframe && !frame.meshes.empty()) {

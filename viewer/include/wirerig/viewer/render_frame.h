@@ -44,6 +44,10 @@ struct RenderMesh {
   Vec3f base_color{0.80f, 0.30f, 0.10f};  // linear RGB (an sRGB orange)
   // Optional #V scalars coloured through RenderFrame::legend; empty for base_color.
   std::span<const float> scalars;
+  // Skip triangles facing away from the eye. Only for closed, outward-oriented meshes (such as
+  // the procedural ones); open or inconsistently wound meshes need both sides drawn. Saves
+  // rasterising the hidden back half on software rasterisers.
+  bool cull_back_faces = false;
 };
 
 // Which wire a polyline shows; picks its default colour (the paper's figures: profile wires
