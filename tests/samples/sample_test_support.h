@@ -52,11 +52,10 @@ struct PlayedScene {
   }
 };
 
-// Loads and builds the scene file and makes a playback of `clip` (the first if empty); null
-// after a test failure naming what went wrong.
-inline std::unique_ptr<PlayedScene> PlaySample(const std::string& relative,
-                                               const std::string& clip = "") {
-  Result<SceneDescription> description = LoadScene(SampleScenePath(relative));
+// Builds a scene description and makes a playback of `clip` (the first if empty); null after a
+// test failure naming what went wrong.
+inline std::unique_ptr<PlayedScene> PlayDescription(const Result<SceneDescription>& description,
+                                                    const std::string& clip = "") {
   if (!description) {
     ADD_FAILURE() << description.error();
     return nullptr;
@@ -84,6 +83,18 @@ inline std::unique_ptr<PlayedScene> PlaySample(const std::string& relative,
   played->normals.resize(played->positions.size());
   played->warnings.resize(played->scene.model.parts.size());
   return played;
+}
+
+// The sample's scene file, loaded, built and played.
+inline std::unique_ptr<PlayedScene> PlaySample(const std::string& relative,
+                                               const std::string& clip = "") {
+  return PlayDescription(LoadScene(SampleScenePath(relative)), clip);
+}
+
+// A (mutated) scene document, parsed as if it were in the samples folder, built and played.
+inline std::unique_ptr<PlayedScene> PlayDocument(const nlohmann::json& document,
+                                                 const std::string& clip = "") {
+  return PlayDescription(ParseScene(document, WIRERIG_SAMPLES_DIR), clip);
 }
 
 // What a (mutated) scene document is refused with, by ParseScene or then BuildScene; "ok" if it
