@@ -5,6 +5,9 @@
 //  * BM_Bake: BakeClip alone.
 //  * BM_Export: ExportGltf of a finished bake to a .glb (file written, then removed).
 //  * BM_BakeAndExport: both, what `wirerig bake` does after loading; reports the file size.
+//  * BM_ExportQuantized: BM_Export with GltfExportOptions::quantize (KHR_mesh_quantization);
+//    reports the file size, the quantized position / normal targets and the largest position
+//    rounding error (mm).
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -54,14 +57,21 @@ std::filesystem::path Output(const std::string& name) {
          ("wirerig_bake_bench_" + std::filesystem::path(name).stem().string() + ".glb");
 }
 
-std::uintmax_t Export(const BuiltScene& scene, const BakedAnimation& bake,
-                      const std::filesystem::path& out) {
-  Result<GltfExportReport> report = ExportGltf(scene.mesh, bake, GltfExportOptions{}, out);
+GltfExportReport ExportReport(const BuiltScene& scene, const BakedAnimation& bake,
+                              const std::filesystem::path& out, bool quantize) {
+  GltfExportOptions options;
+  options.quantize = quantize;
+  Result<GltfExportReport> report = ExportGltf(scene.mesh, bake, options, out);
   if (!report) {
     std::cerr << report.error() << "\n";
     std::exit(1);
   }
-  return report.value().bytes_written;
+  return std::move(report).value();
+}
+
+std::uintmax_t Export(const BuiltScene& scene, const BakedAnimation& bake,
+                      const std::filesystem::path& out) {
+  return ExportReport(scene, bake, out, false).bytes_written;
 }
 
 void SetCounters(benchmark::State& state, const BuiltScene& scene, std::uintmax_t bytes) {
@@ -86,6 +96,19 @@ void BM_Export(benchmark::State& state, const char* name) {
   SetCounters(state, scene, bytes);
 }
 
+void BM_ExportQuantized(benchmark::State& state, const char* name) {
+  const BuiltScene& scene = Scene(name);
+  const BakedAnimation bake = Bake(scene);
+  const auto out = Output(name);
+  GltfExportReport report;
+  for (auto _ : state) report = ExportReport(scene, bake, out, true);
+  std::filesystem::remove(out);
+  SetCounters(state, scene, report.bytes_written);
+  state.counters["q_positions"] = double(report.quantized_position_targets);
+  state.counters["q_normals"] = double(report.quantized_normal_targets);
+  state.counters["q_error_mm"] = report.quantization_max_error * 1e3;
+}
+
 void BM_BakeAndExport(benchmark::State& state, const char* name) {
   const BuiltScene& scene = Scene(name);
   const auto out = Output(name);
@@ -102,6 +125,10 @@ BENCHMARK_CAPTURE(BM_Bake, human, kHuman)->Unit(benchmark::kMillisecond)->UseRea
 BENCHMARK_CAPTURE(BM_Bake, octopus, kOctopus)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_Export, human, kHuman)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_Export, octopus, kOctopus)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_ExportQuantized, human, kHuman)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_ExportQuantized, octopus, kOctopus)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_BakeAndExport, human, kHuman)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_BakeAndExport, octopus, kOctopus)
     ->Unit(benchmark::kMillisecond)

@@ -33,8 +33,7 @@ gltf::MorphTargetSet KeyDeltas(const gltf::BaseVertices& base, const BakedAnimat
   set.vertex_count = base.Count();
   set.normals = !base.normals.empty() && !bake.normals.empty();
   static_assert(sizeof(Vec3f) == 3 * sizeof(float), "bake vectors are read as float arrays");
-  set.deltas = [&base, &bake](std::size_t k, std::span<float> positions,
-                              std::span<float> normals) {
+  set.deltas = [&base, &bake](std::size_t k, std::span<float> positions, std::span<float> normals) {
     const std::size_t values = base.positions.size();
     const float* baked = bake.positions[k * base.Count()].data();
     const float* rest = base.positions.data();
@@ -93,9 +92,9 @@ gltf::MorphTargetsAdded AddSkinMode(tinygltf::Model& model, tinygltf::Animation&
   report->residual_max_error = fit.residual_max_error;
   // The weights' keys first: the targets are the last (streamed) part of the buffer.
   gltf::AddKeyWeightsChannel(model, animation, 0, time_accessor, bake.KeyCount());
-  return gltf::AddMorphTargets(
-      model, mesh_index, ResidualDeltas(std::move(fit), bake.KeyCount(), base.Count()),
-      quantization);
+  return gltf::AddMorphTargets(model, mesh_index,
+                               ResidualDeltas(std::move(fit), bake.KeyCount(), base.Count()),
+                               quantization);
 }
 
 }  // namespace

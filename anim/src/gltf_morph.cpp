@@ -18,9 +18,9 @@ namespace wirerig::gltf {
 namespace {
 
 constexpr const char* kQuantization = "KHR_mesh_quantization";
-constexpr std::size_t kFloatStride = 3 * sizeof(float);                  // 12 bytes
-constexpr std::size_t kShortStride = 4 * sizeof(std::int16_t);           // 8: 4-byte aligned
-constexpr std::size_t kBlockBytes = std::size_t{4} << 20;                // write blocks, ~4 MB
+constexpr std::size_t kFloatStride = 3 * sizeof(float);         // 12 bytes
+constexpr std::size_t kShortStride = 4 * sizeof(std::int16_t);  // 8: 4-byte aligned
+constexpr std::size_t kBlockBytes = std::size_t{4} << 20;       // write blocks, ~4 MB
 constexpr double kShortScale = 32767.0;
 
 // Threads for `jobs` independent jobs: up to 2 (the machines wirerig runs on share few cores).
@@ -29,52 +29,59 @@ std::size_t ThreadCount(std::size_t jobs) {
   return std::max<std::size_t>(1, std::min({cores, std::size_t{2}, jobs}));
 }
 
-// Normalized signed short of a value in [-1, 1] (round to nearest), and back (glTF's decoding).
+// Normalized signed short of a value in [-1, 1] (to nearest, halves away from zero; exact in
+// double: a float times 32767 needs 39 bits). glTF decodes it as max(q / 32767, -1).
 std::int16_t ToShort(float value) {
-  return static_cast<std::int16_t>(std::lrint(static_cast<double>(value) * kShortScale));
+  const double scaled = static_cast<double>(value) * kShortScale;
+  return static_cast<std::int16_t>(scaled + (scaled >= 0.0 ? 0.5 : -0.5));
 }
-double FromShort(std::int16_t value) { return std::max(value / kShortScale, -1.0); }
 
-// One key's deltas, measured: per-component range of the positions, largest normal component,
-// and (when asked and the positions fit in [-1, 1]) the largest vertex rounding error as shorts.
+// Largest rounding of a vertex whose three components are rounded to shorts (half a step each).
+const double kShortRounding = std::sqrt(3.0) * 0.5 / kShortScale;
+
+// One key's deltas, measured: per-component range of the positions, largest normal component.
 struct KeyStats {
   std::array<float, 3> low{};
   std::array<float, 3> high{};
   float normal_magnitude = 0.0f;  // max |component|
-  double rounding = 0.0;          // m
-  bool positions_fit = false;     // every component in [-1, 1]
 };
 
-KeyStats MeasureKey(std::span<const float> positions, std::span<const float> normals,
-                    bool quantize) {
+KeyStats MeasureKey(std::span<const float> positions, std::span<const float> normals) {
+  // Four vertices (12 values) per step in separate lanes, so that the loop vectorizes.
+  constexpr std::size_t kLanes = 12;
+  std::array<float, kLanes> low;
+  std::array<float, kLanes> high;
+  low.fill(std::numeric_limits<float>::max());
+  high.fill(std::numeric_limits<float>::lowest());
+  const std::size_t whole = positions.size() / kLanes * kLanes;
+  for (std::size_t i = 0; i < whole; i += kLanes) {
+    for (std::size_t j = 0; j < kLanes; ++j) {
+      low[j] = std::min(low[j], positions[i + j]);
+      high[j] = std::max(high[j], positions[i + j]);
+    }
+  }
+  for (std::size_t i = whole; i < positions.size(); ++i) {
+    low[i - whole] = std::min(low[i - whole], positions[i]);
+    high[i - whole] = std::max(high[i - whole], positions[i]);
+  }
   KeyStats stats;
   stats.low.fill(std::numeric_limits<float>::max());
   stats.high.fill(std::numeric_limits<float>::lowest());
-  const std::size_t vertices = positions.size() / 3;
-  for (std::size_t v = 0; v < vertices; ++v) {
-    for (std::size_t c = 0; c < 3; ++c) {
-      const float d = positions[v * 3 + c];
-      stats.low[c] = std::min(stats.low[c], d);
-      stats.high[c] = std::max(stats.high[c], d);
-    }
+  for (std::size_t j = 0; j < kLanes; ++j) {
+    stats.low[j % 3] = std::min(stats.low[j % 3], low[j]);
+    stats.high[j % 3] = std::max(stats.high[j % 3], high[j]);
   }
-  for (float n : normals) stats.normal_magnitude = std::max(stats.normal_magnitude, std::abs(n));
-  stats.positions_fit = vertices > 0;
-  for (std::size_t c = 0; c < 3; ++c) {
-    stats.positions_fit = stats.positions_fit && stats.low[c] >= -1.0f && stats.high[c] <= 1.0f;
-  }
-  if (quantize && stats.positions_fit) {
-    for (std::size_t v = 0; v < vertices; ++v) {
-      double squared = 0.0;
-      for (std::size_t c = 0; c < 3; ++c) {
-        const float d = positions[v * 3 + c];
-        const double e = FromShort(ToShort(d)) - static_cast<double>(d);
-        squared += e * e;
-      }
-      stats.rounding = std::max(stats.rounding, std::sqrt(squared));
-    }
-  }
+  float magnitude = 0.0f;
+  for (float n : normals) magnitude = std::max(magnitude, std::abs(n));
+  stats.normal_magnitude = magnitude;
   return stats;
+}
+
+bool FitsShorts(const KeyStats& stats) {
+  for (std::size_t c = 0; c < 3; ++c) {
+    if (stats.low[c] < -1.0f || stats.high[c] > 1.0f) return false;
+  }
+  return true;
 }
 
 // Runs job(thread, first, last) over [0, count) split into one contiguous range per thread.
@@ -130,13 +137,15 @@ void StreamedTargets::EncodeKeys(std::size_t first, std::size_t last, std::vecto
   const std::size_t values = set_.vertex_count * 3;
   scratch.resize(2 * values);
   // Float deltas go straight to their place in `out`; quantized ones through `scratch`.
-  const auto pack = [this](std::span<const float> from, float* to) {
-    auto* bytes_to = reinterpret_cast<unsigned char*>(to);
+  // Quantized: all values to shorts in one flat (vectorizable) loop, then spread to 4 per vertex.
+  std::vector<std::int16_t> flat(values);
+  std::vector<std::int16_t> padded(set_.vertex_count * 4, 0);
+  const auto pack = [&](std::span<const float> from, float* to) {
+    for (std::size_t i = 0; i < values; ++i) flat[i] = ToShort(from[i]);
     for (std::size_t v = 0; v < set_.vertex_count; ++v) {
-      const std::array<std::int16_t, 4> q{ToShort(from[v * 3]), ToShort(from[v * 3 + 1]),
-                                          ToShort(from[v * 3 + 2]), 0};
-      std::memcpy(bytes_to + v * kShortStride, q.data(), kShortStride);
+      for (std::size_t c = 0; c < 3; ++c) padded[v * 4 + c] = flat[v * 3 + c];
     }
+    std::memcpy(to, padded.data(), padded.size() * sizeof(std::int16_t));
   };
   float* cursor = out.data();
   for (std::size_t k = first; k < last; ++k) {
@@ -144,7 +153,8 @@ void StreamedTargets::EncodeKeys(std::size_t first, std::size_t last, std::vecto
     const std::span<float> positions(PositionsQuantized(k) ? scratch.data() : cursor, values);
     std::span<float> normals;
     if (set_.normals) {
-      normals = std::span<float>(NormalsQuantized(k) ? scratch.data() + values : normals_at, values);
+      normals =
+          std::span<float>(NormalsQuantized(k) ? scratch.data() + values : normals_at, values);
     }
     set_.deltas(k, positions, normals);
     if (PositionsQuantized(k)) pack(positions, cursor);
@@ -226,7 +236,7 @@ MorphTargetsAdded AddMorphTargets(tinygltf::Model& model, int mesh_index, MorphT
     std::vector<float> normals(set.normals ? values : 0);
     for (std::size_t k = first; k < last; ++k) {
       set.deltas(k, positions, normals);
-      stats[k] = MeasureKey(positions, normals, quantization.enabled);
+      stats[k] = MeasureKey(positions, normals);
     }
   });
 
@@ -235,12 +245,12 @@ MorphTargetsAdded AddMorphTargets(tinygltf::Model& model, int mesh_index, MorphT
   std::vector<bool> quantized_normals(keys, false);
   for (std::size_t k = 0; k < keys; ++k) {
     if (!quantization.enabled) break;
-    quantized_positions[k] =
-        stats[k].positions_fit && stats[k].rounding <= quantization.max_position_error;
+    quantized_positions[k] = set.vertex_count > 0 && FitsShorts(stats[k]) &&
+                             kShortRounding <= quantization.max_position_error;
     quantized_normals[k] = set.normals && stats[k].normal_magnitude <= 1.0f;
     if (quantized_positions[k]) {
       ++added.quantized_position_targets;
-      added.quantization_max_error = std::max(added.quantization_max_error, stats[k].rounding);
+      added.quantization_max_error = kShortRounding;
     }
     if (quantized_normals[k]) ++added.quantized_normal_targets;
   }
@@ -260,8 +270,7 @@ MorphTargetsAdded AddMorphTargets(tinygltf::Model& model, int mesh_index, MorphT
   std::vector<std::map<std::string, int>> targets(keys);
   std::vector<tinygltf::Value> names;
   const auto add = [&](std::size_t bytes, bool quantized) {
-    const int view =
-        AddReservedView(model, offset, bytes, quantized ? kShortStride : 0, target);
+    const int view = AddReservedView(model, offset, bytes, quantized ? kShortStride : 0, target);
     offset += bytes;
     return AddAccessor(model, view,
                        quantized ? TINYGLTF_COMPONENT_TYPE_SHORT : TINYGLTF_COMPONENT_TYPE_FLOAT,

@@ -32,9 +32,9 @@ struct MorphTargetSet {
 
 // KHR_mesh_quantization for morph targets. A key's POSITION deltas are stored as normalized
 // signed shorts (value = round(d * 32767) / 32767, padded to an 8-byte stride as vertex
-// attributes must be 4-byte aligned) when every component lies in [-1, 1] m and the largest
-// vertex rounding error, measured, is at most `max_position_error` m; its NORMAL deltas
-// likewise when every component lies in [-1, 1] (rounding at most 1.5e-5 per component).
+// attributes must be 4-byte aligned) when every component lies in [-1, 1] m and the rounding
+// bound sqrt(3) / 2 / 32767 m = 2.6e-5 m per vertex is at most `max_position_error`; its NORMAL
+// deltas likewise when every component lies in [-1, 1] (rounding at most 1.5e-5 per component).
 // Otherwise that key's accessor stays float.
 struct MorphQuantization {
   bool enabled = false;
@@ -76,7 +76,7 @@ struct MorphTargetsAdded {
   StreamedTargets stream;
   std::size_t quantized_position_targets = 0;
   std::size_t quantized_normal_targets = 0;
-  double quantization_max_error = 0.0;  // m: largest position rounding of the quantized keys
+  double quantization_max_error = 0.0;  // m: bound of the position rounding, when quantized
 };
 
 // Adds `set.key_count` morph targets to every primitive of mesh `mesh_index`, all primitives

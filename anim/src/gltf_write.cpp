@@ -40,7 +40,8 @@ Result<std::string> SerializeJson(tinygltf::Model& model) {
   tinygltf::TinyGLTF writer;
   writer.SetImageWriter(nullptr, nullptr);  // keep every image's URI; never re-encode
   std::ostringstream stream;
-  if (!writer.WriteGltfSceneToStream(&model, stream, /*prettyPrint=*/false, /*writeBinary=*/false) ||
+  if (!writer.WriteGltfSceneToStream(&model, stream, /*prettyPrint=*/false,
+                                     /*writeBinary=*/false) ||
       !stream) {
     return Error{"tinygltf could not serialize the model"};
   }
@@ -93,8 +94,8 @@ Result<fs::path> WriteStreamAtomically(
   };
   std::optional<std::string> problem;
   if (!produce(sink)) {
-    problem = std::string("write failed (") + std::strerror(write_error != 0 ? write_error : EIO) +
-              ")";
+    problem =
+        std::string("write failed (") + std::strerror(write_error != 0 ? write_error : EIO) + ")";
   }
   struct stat status {};
   if (!problem && (written != size || ::fstat(fd, &status) != 0 ||
@@ -148,14 +149,12 @@ Result<std::vector<fs::path>> WriteGlb(tinygltf::Model model, const BufferTail& 
   std::string& json = serialized.value();
   if (buffer_size > 0) {
     json.pop_back();
-    json.append(R"(,"buffers":[{"byteLength":)")
-        .append(std::to_string(buffer_size))
-        .append("}]}");
+    json.append(R"(,"buffers":[{"byteLength":)").append(std::to_string(buffer_size)).append("}]}");
   }
   const std::size_t json_chunk = Padded4(json.size());
   const std::size_t bin_chunk = Padded4(buffer_size);
-  const std::size_t total = kGlbHeader + kChunkHeader + json_chunk +
-                            (buffer_size > 0 ? kChunkHeader + bin_chunk : 0);
+  const std::size_t total =
+      kGlbHeader + kChunkHeader + json_chunk + (buffer_size > 0 ? kChunkHeader + bin_chunk : 0);
   if (total > std::numeric_limits<std::uint32_t>::max()) {
     return Error{out.string() + ": " + std::to_string(total) +
                  " bytes is too large for a .glb (4 GiB at most); use .gltf"};
@@ -176,8 +175,7 @@ Result<std::vector<fs::path>> WriteGlb(tinygltf::Model model, const BufferTail& 
   const auto produce = [&](const ByteSink& sink) {
     const std::array<unsigned char, 4> zeros{};
     return sink({reinterpret_cast<const unsigned char*>(head.data()), head.size()}) &&
-           WriteBuffer(data, tail, sink) &&
-           sink({zeros.data(), bin_chunk - buffer_size});
+           WriteBuffer(data, tail, sink) && sink({zeros.data(), bin_chunk - buffer_size});
   };
   Result<fs::path> written = WriteStreamAtomically(
       out, total, produce, [&](int fd) { return CheckGlbHeader(fd, total, json_chunk); });

@@ -49,10 +49,10 @@ struct GltfExportOptions {
   std::filesystem::path texture_dir;
   // Morph targets (kMorph, and kSkin's residual targets) as KHR_mesh_quantization normalized
   // signed shorts (value / 32767, at an 8-byte stride) instead of float: a key's POSITION
-  // deltas when every component lies within [-1, 1] m and its largest vertex rounding error
-  // (at most sqrt(3) / 2 / 32767 = 2.6e-5 m) is at most 1e-4 of the rest mesh's bounding-box
-  // diagonal; its NORMAL deltas when every component lies within [-1, 1]. Other keys stay
-  // float. The extension is then required: readers without it (Assimp 5.2) cannot load the
+  // deltas when every component lies within [-1, 1] m and the rounding bound per vertex,
+  // sqrt(3) / 2 / 32767 m = 2.6e-5 m, is at most 1e-4 of the rest mesh's bounding-box diagonal
+  // (diagonal >= 0.26 m); its NORMAL deltas when every component lies within [-1, 1]. Other keys
+  // stay float. The extension is then required: readers without it (Assimp 5.2) cannot load the
   // file. Off by default: exact float deltas, readable everywhere.
   bool quantize = false;
 };
@@ -81,8 +81,8 @@ struct GltfExportReport {
   // kSkin with residual morph targets: the same max error once the residuals are applied, m
   // (float residuals; quantized ones add at most quantization_max_error).
   double residual_max_error = 0.0;
-  // With options.quantize: the targets stored as shorts, and the largest position rounding
-  // error among them, m (measured against the float deltas).
+  // With options.quantize: the targets stored as shorts, and the bound of their position
+  // rounding per vertex, m (sqrt(3) / 2 / 32767 = 2.6e-5 m; 0 when none is quantized).
   std::size_t quantized_position_targets = 0;
   std::size_t quantized_normal_targets = 0;
   double quantization_max_error = 0.0;
