@@ -30,7 +30,8 @@ namespace wirerig {
 struct MeshSource {
   std::filesystem::path file;  // relative to the scene's folder; empty for procedural meshes
   ImportOptions import;
-  // "octopus", "cylinder", "cone", "capsule" or "torus"; empty for files. Parameters by name
+  // "octopus", "cylinder", "cone", "capsule", "torus", or a prop of the paper's samples
+  // ("candles", "beam", "trunk", "lamp_post", "chair"); empty for files. Parameters by name
   // (metres, counts); those left out keep the generator's defaults.
   std::string procedural;
   std::map<std::string, double> parameters;
@@ -41,7 +42,7 @@ enum class RigSourceKind : int {
   kDescriptionFile = 1,  // a rig description file
   kDescription = 2,      // a rig description inline in the scene
   kAutomatic = 3,        // the mesh's skeleton, else its curve skeleton
-  kProcedural = 4,       // the procedural generator's own description (octopus)
+  kProcedural = 4,       // the procedural generator's own description (octopus, props)
 };
 
 struct RigSource {
