@@ -455,20 +455,34 @@ void BM_MakeWorkspace(benchmark::State& state, const Scene& (*get)()) {
   SetVertexCounters(state, scene.model.vertices.size());
 }
 
-BENCHMARK_CAPTURE(BM_WireEvaluation, human, &Human)->Arg(1)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_LinearBlendSkinning, human, &Human)->Unit(benchmark::kMicrosecond);
+// The fastest repetition too: on a loaded machine the minimum is the figure closest to an idle
+// one (run with many repetitions).
+double Minimum(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
+
+BENCHMARK_CAPTURE(BM_WireEvaluation, human, &Human)
+    ->Arg(1)
+    ->ComputeStatistics("min", Minimum)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_LinearBlendSkinning, human, &Human)
+    ->ComputeStatistics("min", Minimum)
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_WireEvaluation, subdivided, &Subdivided)
     ->Arg(1)
+    ->ComputeStatistics("min", Minimum)
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_LinearBlendSkinning, subdivided, &Subdivided)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_LinearBlendSkinning, subdivided, &Subdivided)
+    ->ComputeStatistics("min", Minimum)
+    ->Unit(benchmark::kMicrosecond);
 // Two threads (the vertex and normal passes on a ThreadPool): wall time is the figure.
 BENCHMARK_CAPTURE(BM_WireEvaluation, human_2_threads, &Human)
     ->Arg(2)
     ->UseRealTime()
+    ->ComputeStatistics("min", Minimum)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_WireEvaluation, subdivided_2_threads, &Subdivided)
     ->Arg(2)
     ->UseRealTime()
+    ->ComputeStatistics("min", Minimum)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_BindingPrecompute, subdivided, &Subdivided)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_MakeWorkspace, subdivided, &Subdivided)->Unit(benchmark::kMillisecond);
