@@ -124,13 +124,21 @@ void Run(benchmark::State& state, const Scene& scene, bool full) {
   state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
 }
 
+// One pool per thread count, made once per process (its threads are running and warm when a
+// repetition starts, as in an engine that keeps its pool).
+const ThreadPool& Pool(std::size_t threads) {
+  static std::vector<std::unique_ptr<ThreadPool>> pools(8);
+  std::unique_ptr<ThreadPool>& pool = pools.at(threads);
+  if (!pool) pool = std::make_unique<ThreadPool>(threads);
+  return *pool;
+}
+
 // All parts at once through the batch GenerateProfiles, on state.range(1) threads (a ThreadPool
 // made beforehand; 1: no pool). Wall time is the figure when threaded.
 void RunBatch(benchmark::State& state, const Scene& scene, bool full) {
   const int points = int(state.range(0));
   const auto threads = static_cast<std::size_t>(state.range(1));
-  const std::unique_ptr<ThreadPool> pool =
-      threads > 1 ? std::make_unique<ThreadPool>(threads) : nullptr;
+  const ThreadPool* pool = threads > 1 ? &Pool(threads) : nullptr;
   std::vector<ProfileRequest> requests(scene.curves.size());
   for (std::size_t i = 0; i < scene.curves.size(); ++i) {
     ProfileRequest& request = requests[i];
@@ -150,7 +158,7 @@ void RunBatch(benchmark::State& state, const Scene& scene, bool full) {
   }
   std::size_t rays = 0;
   for (auto _ : state) {
-    const std::vector<ProfileSet> sets = GenerateProfiles(requests, pool.get());
+    const std::vector<ProfileSet> sets = GenerateProfiles(requests, pool);
     for (const ProfileSet& set : sets) rays += set.diagnostics.rays;
     benchmark::DoNotOptimize(sets.data());
   }
