@@ -240,10 +240,13 @@ tinygltf::Model LoadWithTinygltf(const fs::path& file) {
   return model;
 }
 
-// The values of a float accessor, tightly packed (count x components).
+// The values of a float accessor, tightly packed (count x components). KHR_mesh_quantization's
+// normalized signed shorts are decoded as glTF says: max(q / 32767, -1).
 std::vector<float> ReadFloats(const tinygltf::Model& model, int index) {
   const tinygltf::Accessor& accessor = model.accessors.at(static_cast<std::size_t>(index));
-  EXPECT_EQ(accessor.componentType, TINYGLTF_COMPONENT_TYPE_FLOAT);
+  const bool shorts = accessor.componentType == TINYGLTF_COMPONENT_TYPE_SHORT;
+  EXPECT_TRUE(accessor.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+              (shorts && accessor.normalized));
   EXPECT_FALSE(accessor.sparse.isSparse);
   const tinygltf::BufferView& view =
       model.bufferViews.at(static_cast<std::size_t>(accessor.bufferView));
@@ -251,11 +254,20 @@ std::vector<float> ReadFloats(const tinygltf::Model& model, int index) {
       model.buffers.at(static_cast<std::size_t>(view.buffer)).data;
   const auto components = static_cast<std::size_t>(
       tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type)));
-  const std::size_t stride = view.byteStride != 0 ? view.byteStride : components * sizeof(float);
+  const std::size_t size = shorts ? sizeof(std::int16_t) : sizeof(float);
+  const std::size_t stride = view.byteStride != 0 ? view.byteStride : components * size;
   std::vector<float> values(accessor.count * components);
   for (std::size_t i = 0; i < accessor.count; ++i) {
-    std::memcpy(&values[i * components], &data[view.byteOffset + accessor.byteOffset + i * stride],
-                components * sizeof(float));
+    const unsigned char* element = &data.at(view.byteOffset + accessor.byteOffset + i * stride);
+    if (!shorts) {
+      std::memcpy(&values[i * components], element, components * sizeof(float));
+      continue;
+    }
+    for (std::size_t c = 0; c < components; ++c) {
+      std::int16_t q = 0;
+      std::memcpy(&q, element + c * sizeof q, sizeof q);
+      values[i * components + c] = std::max(static_cast<float>(q) / 32767.0f, -1.0f);
+    }
   }
   return values;
 }
@@ -734,6 +746,203 @@ TEST(GltfExport, PartsBecomePrimitivesSharingVerticesAndTargets) {
     EXPECT_NE(validation.output.find(": 0 errors, 0 warnings"), std::string::npos)
         << validation.output;
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// KHR_mesh_quantization (GltfExportOptions::quantize).
+
+bool RequiresQuantization(const tinygltf::Model& model) {
+  const auto has = [](const std::vector<std::string>& list) {
+    return std::find(list.begin(), list.end(), "KHR_mesh_quantization") != list.end();
+  };
+  return has(model.extensionsUsed) && has(model.extensionsRequired);
+}
+
+// Per target k of primitive 0: (POSITION quantized, NORMAL quantized); checks the layout of
+// the quantized ones (normalized shorts at an 8-byte stride, POSITION min/max in shorts).
+std::vector<std::pair<bool, bool>> QuantizedTargets(const tinygltf::Model& model) {
+  std::vector<std::pair<bool, bool>> result;
+  const auto quantized = [&model](int index) {
+    const tinygltf::Accessor& a = model.accessors.at(static_cast<std::size_t>(index));
+    const tinygltf::BufferView& view = model.bufferViews.at(static_cast<std::size_t>(a.bufferView));
+    if (a.componentType != TINYGLTF_COMPONENT_TYPE_SHORT) {
+      EXPECT_EQ(a.componentType, TINYGLTF_COMPONENT_TYPE_FLOAT);
+      return false;
+    }
+    EXPECT_TRUE(a.normalized);
+    EXPECT_EQ(view.byteStride, 8u);
+    EXPECT_EQ(view.byteLength, a.count * 8);
+    for (double m : a.minValues) EXPECT_EQ(m, std::round(m));
+    return true;
+  };
+  for (const auto& target : model.meshes.at(0).primitives.at(0).targets) {
+    result.emplace_back(quantized(target.at("POSITION")),
+                        target.count("NORMAL") > 0 && quantized(target.at("NORMAL")));
+  }
+  return result;
+}
+
+// The keys whose normal deltas (bake - unit rest normal) all lie within [-1, 1].
+std::vector<std::size_t> NormalsWithinOne(const Scene& scene) {
+  std::vector<std::size_t> keys;
+  const std::size_t vertices = scene.bake.vertex_count;
+  for (std::size_t k = 0; k < scene.bake.KeyCount(); ++k) {
+    double largest = 0.0;
+    for (std::size_t v = 0; v < vertices; ++v) {
+      const Vec3 rest = scene.mesh.normals[v].normalized().cast<float>().cast<double>();
+      const Vec3 delta = scene.bake.normals[k * vertices + v].cast<double>() - rest;
+      largest = std::max(largest, delta.cwiseAbs().maxCoeff());
+    }
+    if (largest <= 1.0) keys.push_back(k);
+  }
+  return keys;
+}
+
+struct QuantizedCase {
+  const char* name;
+  const char* extension;
+  GltfAnimationMode mode;
+};
+
+class GltfExportQuantized : public testing::TestWithParam<QuantizedCase> {};
+
+TEST_P(GltfExportQuantized, IsSmallerWithinToleranceAndValid) {
+  const QuantizedCase& param = GetParam();
+  TempDir dir;
+  const Scene scene = MakeScene(BendCase{});
+  GltfExportOptions options;
+  options.mode = param.mode;
+  options.residual_morph_targets = param.mode == GltfAnimationMode::kSkin;
+  const fs::path plain = dir.path() / (std::string("plain") + param.extension);
+  const Result<GltfExportReport> float_report = ExportGltf(scene.mesh, scene.bake, options, plain);
+  ASSERT_TRUE(float_report.ok()) << float_report.error();
+  EXPECT_EQ(float_report.value().quantized_position_targets, 0u);
+  EXPECT_FALSE(RequiresQuantization(LoadWithTinygltf(plain)));
+
+  options.quantize = true;
+  const fs::path out = dir.path() / (std::string("bend") + param.extension);
+  const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
+  ASSERT_TRUE(report.ok()) << report.error();
+  const GltfExportReport& r = report.value();
+  const std::size_t keys = scene.bake.KeyCount();
+  // Deltas within 0.4 m: every position target fits. Morph normals turned by up to 90 degrees:
+  // the cap rims' normals (between side and cap) leave [-1, 1] at the last keys. Skin residual
+  // normals are small (the joints turn them): all fit.
+  const bool morph = param.mode == GltfAnimationMode::kMorph;
+  std::vector<std::size_t> normal_keys = NormalsWithinOne(scene);
+  EXPECT_GE(normal_keys.size(), 2u);
+  if (!morph) {
+    normal_keys.resize(keys);
+    for (std::size_t k = 0; k < keys; ++k) normal_keys[k] = k;
+  }
+  EXPECT_EQ(r.quantized_position_targets, keys);
+  EXPECT_EQ(r.quantized_normal_targets, normal_keys.size());
+  EXPECT_NEAR(r.quantization_max_error, std::sqrt(3.0) / 2.0 / 32767.0, 1e-12);
+  EXPECT_LT(r.bytes_written, float_report.value().bytes_written);
+  std::printf("[ measured ] %s: %ju bytes quantized, %ju as float\n", param.name, r.bytes_written,
+              float_report.value().bytes_written);
+
+  const tinygltf::Model model = LoadWithTinygltf(out);
+  EXPECT_TRUE(RequiresQuantization(model));
+  const std::vector<std::pair<bool, bool>> targets = QuantizedTargets(model);
+  ASSERT_EQ(targets.size(), keys);
+  for (std::size_t k = 0; k < keys; ++k) {
+    EXPECT_TRUE(targets[k].first) << k;
+    EXPECT_EQ(targets[k].second, std::count(normal_keys.begin(), normal_keys.end(), k) == 1) << k;
+  }
+  const Errors errors = ReconstructionErrors(model, scene.bake);
+  std::printf("[ measured ] %s: reconstruction from the file: max %.3g m, rms %.3g m\n", param.name,
+              errors.max, errors.rms);
+  EXPECT_LE(errors.max, 1e-4 * scene.diagonal);
+  EXPECT_LE(errors.max, r.quantization_max_error + 1e-6);
+  // Quantized normals: within a few short steps of the bake's.
+  const tinygltf::Primitive& primitive = model.meshes[0].primitives[0];
+  const std::vector<float> base = ReadFloats(model, primitive.attributes.at("NORMAL"));
+  if (morph) {
+    double normal_error = 0.0;
+    for (std::size_t k = 0; k < keys; ++k) {
+      const std::vector<float> delta = ReadFloats(model, primitive.targets[k].at("NORMAL"));
+      for (std::size_t i = 0; i < delta.size(); ++i) {
+        const double baked =
+            scene.bake
+                .normals[k * scene.bake.vertex_count + i / 3][static_cast<Eigen::Index>(i % 3)];
+        normal_error = std::max(normal_error, std::abs(base[i] + delta[i] - baked));
+      }
+    }
+    EXPECT_LE(normal_error, 1.0 / 32767.0);
+  }
+  const Validation validation = Validate(out);
+  std::printf("%s", validation.output.c_str());
+  EXPECT_EQ(validation.exit_code, 0) << validation.output;
+  EXPECT_NE(validation.output.find(": 0 errors, 0 warnings"), std::string::npos)
+      << validation.output;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    GltfExport, GltfExportQuantized,
+    testing::Values(QuantizedCase{"morph_glb", ".glb", GltfAnimationMode::kMorph},
+                    QuantizedCase{"morph_gltf", ".gltf", GltfAnimationMode::kMorph},
+                    QuantizedCase{"skin_residual_glb", ".glb", GltfAnimationMode::kSkin}),
+    [](const testing::TestParamInfo<QuantizedCase>& p) { return std::string(p.param.name); });
+
+TEST(GltfExport, QuantizationFallsBackToFloatPerKey) {
+  TempDir dir;
+  Scene scene = MakeScene(BendCase{});
+  const std::size_t vertices = scene.bake.vertex_count;
+  // Key 2 moved 2 m along +X (beyond the shorts' 1 m); key 4's normals reversed (deltas -2n).
+  for (std::size_t v = 0; v < vertices; ++v) {
+    scene.bake.positions[2 * vertices + v].x() += 2.0f;
+    scene.bake.normals[4 * vertices + v] = -scene.bake.normals[4 * vertices + v];
+  }
+  GltfExportOptions options;
+  options.quantize = true;
+  const fs::path out = dir.path() / "mixed.glb";
+  const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
+  ASSERT_TRUE(report.ok()) << report.error();
+  const std::size_t keys = scene.bake.KeyCount();
+  std::vector<std::size_t> normal_keys = NormalsWithinOne(scene);
+  EXPECT_EQ(std::count(normal_keys.begin(), normal_keys.end(), 4), 0);
+  EXPECT_GE(normal_keys.size(), 2u);
+  EXPECT_EQ(report.value().quantized_position_targets, keys - 1);
+  EXPECT_EQ(report.value().quantized_normal_targets, normal_keys.size());
+  const tinygltf::Model model = LoadWithTinygltf(out);
+  EXPECT_TRUE(RequiresQuantization(model));
+  const std::vector<std::pair<bool, bool>> targets = QuantizedTargets(model);
+  ASSERT_EQ(targets.size(), keys);
+  for (std::size_t k = 0; k < keys; ++k) {
+    EXPECT_EQ(targets[k].first, k != 2) << k;
+    EXPECT_EQ(targets[k].second, std::count(normal_keys.begin(), normal_keys.end(), k) == 1) << k;
+  }
+  EXPECT_LE(ReconstructionErrors(model, scene.bake).max, 1e-4 * scene.diagonal);
+  const Validation validation = Validate(out);
+  EXPECT_EQ(validation.exit_code, 0) << validation.output;
+  EXPECT_NE(validation.output.find(": 0 errors, 0 warnings"), std::string::npos)
+      << validation.output;
+}
+
+TEST(GltfExport, SmallMeshesAreNotQuantized) {
+  // A tenth of the cylinder (diagonal 0.104 m): 1e-4 of it is below the shorts' 2.6e-5 m.
+  TempDir dir;
+  Scene scene = MakeScene(BendCase{});
+  for (Vec3& p : scene.mesh.positions) p *= 0.1;
+  for (Vec3& p : scene.mesh.welded_positions) p *= 0.1;
+  for (Vec3f& p : scene.bake.positions) p *= 0.1f;
+  scene.diagonal = ComputeBounds(scene.mesh).Diagonal();
+  ASSERT_NEAR(scene.diagonal, 0.104, 1e-3);
+  GltfExportOptions options;
+  options.quantize = true;
+  const fs::path out = dir.path() / "small.glb";
+  const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
+  ASSERT_TRUE(report.ok()) << report.error();
+  EXPECT_EQ(report.value().quantized_position_targets, 0u);
+  EXPECT_EQ(report.value().quantized_normal_targets, NormalsWithinOne(scene).size());
+  EXPECT_EQ(report.value().quantization_max_error, 0.0);
+  const tinygltf::Model model = LoadWithTinygltf(out);
+  EXPECT_LE(ReconstructionErrors(model, scene.bake).max, 1e-4 * scene.diagonal);
+  const Validation validation = Validate(out);
+  EXPECT_EQ(validation.exit_code, 0) << validation.output;
+  EXPECT_NE(validation.output.find(": 0 errors, 0 warnings"), std::string::npos)
+      << validation.output;
 }
 
 TEST(GltfExport, ASingleKeyIsAValidAnimation) {
