@@ -1,5 +1,7 @@
 #include "wirerig/anim/clip_sampling.h"
 
+#include "wirerig/runtime/spine_interpolation.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -8,18 +10,16 @@ namespace {
 
 double Clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
 
-// The rest frame a world-axes load at v turns into: the spine sample nearest v, or for a
-// profile wire (spine == nullptr) its own spine frame.
+// The rest frame a world-axes load at v turns into: the spine's frame at v (interpolated as the
+// evaluation interpolates it), or for a profile wire (spine == nullptr) its own spine frame.
 struct LoadFrames {
   const PartModel* spine = nullptr;
   Frame profile;
   Vec3 ToLocal(const Vec3& world, double v) const {
-    const Frame* f = &profile;
-    if (spine) {
-      const auto last = static_cast<double>(spine->spine_frames.size() - 1);
-      f = &spine->spine_frames[static_cast<std::size_t>(std::lround(v * last))];
-    }
-    return {world.dot(f->normal), world.dot(f->binormal), world.dot(f->tangent)};
+    Vec3 origin;
+    const Frame f =
+        spine ? InterpolateSpine(spine->spine_points, spine->spine_frames, v, &origin) : profile;
+    return {world.dot(f.normal), world.dot(f.binormal), world.dot(f.tangent)};
   }
 };
 
@@ -136,10 +136,11 @@ void SampleClip(const Clip& clip, double t, ClipSample* sample) {
     const Clip::ProfileGroup& group = clip.profiles[g];
     const PartModel& part = s.model->parts[group.part];
     for (std::uint32_t profile : group.channels.profiles) {
-      // A profile's world-axes loads turn into its spine frame (the nearest spine sample).
-      const auto last = static_cast<double>(part.spine_frames.size() - 1);
-      const LoadFrames frames{nullptr, part.spine_frames[static_cast<std::size_t>(
-                                           std::lround(part.profiles[profile].spine_v * last))]};
+      // A profile's world-axes loads turn into its own spine frame (at its spine_v, as the
+      // evaluation places it).
+      Vec3 origin;
+      const LoadFrames frames{nullptr, InterpolateSpine(part.spine_points, part.spine_frames,
+                                                        part.profiles[profile].spine_v, &origin)};
       std::vector<PointLoad>& points = s.point_loads[parts + next];
       std::vector<LineLoad>& lines = s.line_loads[parts + next];
       const std::size_t point_count =

@@ -5,6 +5,7 @@
 #include "wirerig/anim/scene.h"
 #include "wirerig/rig/automatic_description.h"
 #include "wirerig/rig/mesh_import.h"
+#include "wirerig/rig/mesh_subdivision.h"
 #include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/procedural_octopus.h"
 #include "wirerig/rig/procedural_props.h"
@@ -243,7 +244,9 @@ Result<BuiltScene> BuildScene(const SceneDescription& scene) {
     const std::filesystem::path file = Resolve(scene, scene.mesh.file);
     Result<ImportedMesh> imported = ImportMesh(file, scene.mesh.import);
     if (!imported) return fail(imported.error());
-    out.mesh = std::move(imported.value().mesh);
+    out.mesh = scene.mesh.subdivide > 0
+                   ? SubdivideMidpoint(imported.value().mesh, scene.mesh.subdivide)
+                   : std::move(imported.value().mesh);
     mesh_name = file.string();
   }
 

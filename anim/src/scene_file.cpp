@@ -53,8 +53,11 @@ const std::map<std::string, std::vector<std::string>>& ProceduralParameters() {
 }
 
 MeshSource ReadMeshSource(const JsonObject& o) {
-  o.RejectUnknownKeys({"file", "up_axis", "unit_scale", "procedural", "parameters"});
+  o.RejectUnknownKeys({"file", "up_axis", "unit_scale", "procedural", "parameters", "subdivide"});
   MeshSource mesh;
+  mesh.subdivide = o.Integer("subdivide", 0);
+  if (mesh.subdivide < 0 || mesh.subdivide > 4)
+    throw FieldError(o.PathOf("subdivide"), "must be a whole number of levels in [0, 4]");
   if (o.Has("file") == o.Has("procedural"))
     throw FieldError(o.path(), "needs exactly one of \"file\" and \"procedural\"");
   if (o.Has("file")) {
@@ -98,6 +101,7 @@ json MeshSourceToJson(const MeshSource& mesh) {
     return out;
   }
   json out = {{"file", mesh.file.generic_string()}};
+  if (mesh.subdivide > 0) out["subdivide"] = mesh.subdivide;
   if (mesh.import.up_axis) out["up_axis"] = std::string(ToString(*mesh.import.up_axis));
   if (mesh.import.unit_scale) out["unit_scale"] = *mesh.import.unit_scale;
   return out;

@@ -33,20 +33,6 @@ const Group kGroups[] = {{1.0, true, 0.0, 1.0, kWholeLoad},
                          {3.0, false, 0.0, 1.0, kWholeLoad},
                          {4.0, false, 0.25, 0.75, kPartLoad}};
 
-// Arc length of the stretch [from, to] of a closed profile (points at u = q / m), at rest.
-double StretchLength(const ProfileModel& profile, double from, double to) {
-  const std::size_t m = profile.local_points.size();
-  double length = 0.0;
-  for (std::size_t q = 0; q < m; ++q) {
-    const double u0 = double(q) / double(m), u1 = double(q + 1) / double(m);
-    const double overlap = std::min(u1, to) - std::max(u0, from);
-    if (overlap > 0.0)
-      length += (profile.local_points[(q + 1) % m] - profile.local_points[q]).norm() * overlap *
-                double(m);
-  }
-  return length;
-}
-
 TEST(LampPostSample, LoadedStretchesBendAsClampedWires) {
   std::unique_ptr<PlayedScene> played = PlaySample(kScene);
   ASSERT_NE(played, nullptr);

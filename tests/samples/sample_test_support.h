@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -104,6 +105,20 @@ inline std::string SceneError(const nlohmann::json& document) {
   if (!parsed) return parsed.error();
   Result<BuiltScene> built = BuildScene(parsed.value());
   return built ? "ok" : built.error();
+}
+
+// Arc length of the stretch [from, to] of a closed profile (points at u = q / m), at rest.
+inline double StretchLength(const ProfileModel& profile, double from, double to) {
+  const std::size_t m = profile.local_points.size();
+  double length = 0.0;
+  for (std::size_t q = 0; q < m; ++q) {
+    const double u0 = double(q) / double(m), u1 = double(q + 1) / double(m);
+    const double overlap = std::min(u1, to) - std::max(u0, from);
+    if (overlap > 0.0)
+      length += (profile.local_points[(q + 1) % m] - profile.local_points[q]).norm() * overlap *
+                double(m);
+  }
+  return length;
 }
 
 }  // namespace wirerig::samples

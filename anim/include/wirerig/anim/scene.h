@@ -35,6 +35,7 @@ struct MeshSource {
   // (metres, counts); those left out keep the generator's defaults.
   std::string procedural;
   std::map<std::string, double> parameters;
+  int subdivide = 0;  // midpoint subdivision levels applied after import, 0..4
 };
 
 enum class RigSourceKind : int {
