@@ -213,8 +213,10 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
   layout.normal_order.resize(vertex_count);
   for (std::size_t v = 0; v < vertex_count; ++v)
     layout.normal_order[v] = static_cast<std::uint32_t>(v);
-  std::stable_sort(layout.normal_order.begin(), layout.normal_order.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return first[a] < first[b]; });
+  std::sort(layout.normal_order.begin(), layout.normal_order.end(),
+            [&](std::uint32_t a, std::uint32_t b) {
+              return first[a] < first[b] || (first[a] == first[b] && a < b);
+            });
   layout.vertex_triangle_offsets.assign(vertex_count + 1, 0);
   std::vector<std::uint32_t> fill(vertex_count);
   for (std::size_t i = 0; i < vertex_count; ++i) {
