@@ -43,6 +43,8 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
   bake->add_option("--clip", options.clip, "Clip to bake (default: the scene's first clip)");
   bake->add_flag("--residual", options.residual,
                  "skin mode: add residual morph targets so the export matches the bake exactly");
+  bake->add_flag("--quantize", options.quantize,
+                 "Store morph position (and normal) deltas as shorts (KHR_mesh_quantization)");
   return bake;
 }
 
@@ -86,6 +88,7 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   export_options.mode =
       options.mode == "skin" ? GltfAnimationMode::kSkin : GltfAnimationMode::kMorph;
   export_options.residual_morph_targets = options.residual;
+  export_options.quantize = options.quantize;
   export_options.node_name = scene.description.name;
   if (!scene.description.mesh.file.empty()) {
     const std::filesystem::path mesh_file =

@@ -18,6 +18,7 @@ struct BakeCommandOptions {
   double fps = 30.0;
   std::string clip;  // empty: the scene's first clip
   bool residual = false;
+  bool quantize = false;
   bool progress = false;  // set by main when stderr is a terminal
 };
 
