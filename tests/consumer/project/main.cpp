@@ -1,8 +1,9 @@
 // A downstream program built against the installed wirerig package: solves a simply
-// supported wire with a centre load and checks F L^3 / (48 EI).
+// supported wire with a centre load and checks F L^3 / (48 EI), and samples a keyed track.
 #include <cmath>
 #include <cstdio>
 
+#include <wirerig/anim/track.h>
 #include <wirerig/rig/wire_problem.h>
 #include <wirerig/runtime/bending_job.h>
 #include <nlohmann/json.hpp>
@@ -24,5 +25,11 @@ int main() {
       R"({"length": 1, "material": "steel", "section": {"A": 1e-4, "I": 1e-8},
           "axial": {"point_loads": [{"at": 1, "force": 1}]}})"));
   if (!problem) return 3;
+  // wirerig::anim: a keyed track, halfway between two linear keys.
+  wirerig::RawScalarTrack raw;
+  raw.keys = {{0.0, 1.0, wirerig::Interpolation::kLinear},
+              {2.0, 3.0, wirerig::Interpolation::kLinear}};
+  const auto track = wirerig::BuildTrack(raw);
+  if (!track || std::abs(track.value().Sample(1.0) - 2.0) > 1e-15) return 4;
   return std::abs(x.y() - expected) < 1e-12 ? 0 : 2;
 }
