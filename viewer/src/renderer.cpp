@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -384,6 +385,7 @@ void Renderer::Render(const RenderFrame& frame, const Camera& camera, Size viewp
   const float ground_y = frame.ground_at_lowest_point ? bounds.min.y() : frame.ground_height;
 
   // Uploads.
+  const auto upload_start = std::chrono::steady_clock::now();
   if (m.mesh_slots.size() < frame.meshes.size()) m.mesh_slots.resize(frame.meshes.size());
   for (std::size_t i = 0; i < frame.meshes.size(); ++i) {
     const RenderMesh& mesh = frame.meshes[i];
@@ -410,6 +412,9 @@ void Renderer::Render(const RenderFrame& frame, const Camera& camera, Size viewp
   stats_.polylines = static_cast<int>(m.wire_first.size());
   stats_.polyline_points = static_cast<int>(m.wire_vertices.size() / 7);
   stats_.arrows = options.show_arrows ? static_cast<int>(frame.arrows.size()) : 0;
+  stats_.upload_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - upload_start)
+          .count();
 
   // Lights follow the camera: the key from above-left of the eye, the fill low from the right,
   // the rim from behind.

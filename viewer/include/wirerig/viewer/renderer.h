@@ -41,6 +41,8 @@ struct RenderStats {
   int polylines = 0;
   int polyline_points = 0;
   int arrows = 0;
+  // CPU time of the uploads (mesh buffers, wire ribbons, arrows) of the last Render(), ms.
+  double upload_ms = 0.0;
 };
 
 class Renderer {
