@@ -32,11 +32,9 @@ const BuiltScene& Scene(const std::string& name) {
   auto it = scenes.find(name);
   if (it != scenes.end()) return it->second;
   const std::string path = std::string(WIRERIG_SAMPLES_DIR) + "/" + name;
-  Result<SceneDescription> description = LoadScene(path);
-  Result<BuiltScene> built = description ? BuildScene(description.value())
-                                         : Result<BuiltScene>(Error{description.error()});
+  Result<BuiltScene> built = LoadAndBuildScene(path);
   if (!built) {
-    std::cerr << path << ": " << built.error() << "\n";
+    std::cerr << built.error() << "\n";
     std::exit(1);
   }
   return scenes.emplace(name, std::move(built).value()).first->second;

@@ -45,11 +45,9 @@ Viewer& Human() {
   static Viewer* viewer = [] {
     auto* v = new Viewer;
     const std::string path = std::string(WIRERIG_SAMPLES_DIR) + "/human/human_wave.scene.json";
-    Result<SceneDescription> description = LoadScene(path);
-    Result<BuiltScene> built = description ? BuildScene(description.value())
-                                           : Result<BuiltScene>(Error{description.error()});
+    Result<BuiltScene> built = LoadAndBuildScene(path);
     if (!built) {
-      std::cerr << path << ": " << built.error() << "\n";
+      std::cerr << built.error() << "\n";
       std::exit(1);
     }
     v->scene = std::move(built).value();

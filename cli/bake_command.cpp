@@ -55,10 +55,8 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
     return 1;
   };
   const auto start = std::chrono::steady_clock::now();
-  Result<SceneDescription> description = LoadScene(options.scene);
-  if (!description) return fail(description.error());
-  Result<BuiltScene> built = BuildScene(description.value());
-  if (!built) return fail(options.scene + ": " + built.error());
+  Result<BuiltScene> built = LoadAndBuildScene(options.scene);
+  if (!built) return fail(built.error());
   const BuiltScene& scene = built.value();
   const Clip* clip = scene.FindClip(options.clip);
   if (!clip) {

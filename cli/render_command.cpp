@@ -55,18 +55,13 @@ int RunRenderCommand(const RenderCommandOptions& options, std::ostream& out, std
   Size size;
   if (!ParseSize(options.size, &size))
     return fail("--size: must be WIDTHxHEIGHT, each in [16, 8192], e.g. 1280x720");
-  Result<SceneDescription> description = LoadScene(options.scene);
-  if (!description) return fail(description.error());
-  Result<BuiltScene> built = BuildScene(description.value());
-  if (!built) return fail(options.scene + ": " + built.error());
+  Result<BuiltScene> built = LoadAndBuildScene(options.scene);
+  if (!built) return fail(built.error());
   const BuiltScene& scene = built.value();
   const Clip* clip = scene.FindClip(options.clip);
   if (!options.clip.empty() && !clip)
     return fail(options.scene + ": no clip is named \"" + options.clip + "\"");
-  // A scene without clips is drawn at rest.
-  Clip rest;
-  rest.name = "rest";
-  rest.parts.resize(scene.model.parts.size());
+  const Clip rest = RestClip(scene.model);  // a scene without clips is drawn at rest
   if (!clip) clip = &rest;
   Result<Playback> made = Playback::Make(scene.model, *clip, scene.description.playback);
   if (!made) return fail(options.scene + ": " + made.error());

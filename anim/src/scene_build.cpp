@@ -310,4 +310,20 @@ Result<BuiltScene> BuildScene(const SceneDescription& scene) {
   return out;
 }
 
+Result<BuiltScene> LoadAndBuildScene(const std::filesystem::path& path) {
+  Result<SceneDescription> description = LoadScene(path);
+  if (!description) return Error{description.error()};
+  Result<BuiltScene> built = BuildScene(description.value());
+  if (!built) return Error{path.string() + ": " + built.error()};
+  return built;
+}
+
+Clip RestClip(const RigModel& model) {
+  Clip clip;
+  clip.name = "rest";
+  clip.parts.resize(model.parts.size());
+  clip.key_times = {0.0, clip.duration};
+  return clip;
+}
+
 }  // namespace wirerig

@@ -1,8 +1,10 @@
-// Small rigs for the anim tests: a procedural cylinder standing on +Y rigged as one part.
+// Small rigs and raw tracks for the anim tests: a procedural cylinder standing on +Y rigged as
+// one part or as two, and helpers that write keyed tracks briefly.
 #pragma once
 
 #include <gtest/gtest.h>
 
+#include "wirerig/anim/track.h"
 #include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_model_builder.h"
@@ -15,17 +17,10 @@ struct TestRig {
   RigModel model;
 };
 
-// A cylinder of radius 0.1 m and height 1 m along +Y, one part "beam" from its base up.
-inline TestRig MakeCylinderRig(SpineKind kind) {
+// Rigs `mesh` by `description` and builds its runtime model with spines of `kind`.
+inline TestRig RigMesh(Mesh mesh, const RigDescription& description, SpineKind kind) {
   TestRig out;
-  out.mesh = MakeCylinder(0.1, 1.0, 32, 24);
-  RigDescription description;
-  PartDescription part;
-  part.name = "beam";
-  part.central_curve = {Vec3(0, 0, 0), Vec3(0, 1, 0)};
-  part.profile_count = 10;
-  part.points_per_profile = 32;
-  description.parts.push_back(part);
+  out.mesh = std::move(mesh);
   Result<BuiltRig> built = BuildRig(out.mesh, description, "cylinder");
   EXPECT_TRUE(built.ok()) << built.error();
   out.rig = built.value().rig;
@@ -37,35 +32,44 @@ inline TestRig MakeCylinderRig(SpineKind kind) {
   return out;
 }
 
-}  // namespace wirerig::testing
+inline PartDescription AxisPart(const char* name, const Vec3& from, const Vec3& to, int profiles) {
+  PartDescription part;
+  part.name = name;
+  part.central_curve = {from, to};
+  part.profile_count = profiles;
+  part.points_per_profile = 32;
+  return part;
+}
 
-namespace wirerig::testing {
+// A cylinder of radius 0.1 m and height 1 m along +Y, one part "beam" from its base up.
+inline TestRig MakeCylinderRig(SpineKind kind) {
+  RigDescription description;
+  description.parts = {AxisPart("beam", Vec3(0, 0, 0), Vec3(0, 1, 0), 10)};
+  return RigMesh(MakeCylinder(0.1, 1.0, 32, 24), description, kind);
+}
 
 // The same cylinder as two parts: "base", the root, from the top (y = 1) down to the middle,
 // and "arm", its child, from the middle down to the bottom.
 inline TestRig MakeJointedCylinderRig(SpineKind kind) {
-  TestRig out;
-  out.mesh = MakeCylinder(0.1, 1.0, 32, 24);
   RigDescription description;
-  PartDescription base;
-  base.name = "base";
-  base.central_curve = {Vec3(0, 1, 0), Vec3(0, 0.5, 0)};
-  base.profile_count = 6;
-  base.points_per_profile = 32;
-  PartDescription arm = base;
-  arm.name = "arm";
+  PartDescription arm = AxisPart("arm", Vec3(0, 0.5, 0), Vec3(0, 0, 0), 6);
   arm.parent = "base";
-  arm.central_curve = {Vec3(0, 0.5, 0), Vec3(0, 0, 0)};
-  description.parts = {base, arm};
-  Result<BuiltRig> built = BuildRig(out.mesh, description, "cylinder");
-  EXPECT_TRUE(built.ok()) << built.error();
-  out.rig = built.value().rig;
-  RigModelOptions options;
-  options.spine_kind = kind;
-  Result<BuiltRigModel> model = BuildRigModel(out.mesh, out.rig, options);
-  EXPECT_TRUE(model.ok()) << model.error();
-  out.model = std::move(model).value().model;
-  return out;
+  description.parts = {AxisPart("base", Vec3(0, 1, 0), Vec3(0, 0.5, 0), 6), arm};
+  return RigMesh(MakeCylinder(0.1, 1.0, 32, 24), description, kind);
+}
+
+// Raw tracks: keys (time, value) with one interpolation, and a constant vector.
+inline RawScalarTrack Keys(std::initializer_list<std::pair<double, double>> keys,
+                           Interpolation interpolation = Interpolation::kLinear) {
+  RawScalarTrack raw;
+  for (auto [t, v] : keys) raw.keys.push_back({t, v, interpolation});
+  return raw;
+}
+
+inline RawVectorTrack Constant(const Vec3& v) {
+  RawVectorTrack raw;
+  raw.keys.push_back({0.0, v, Interpolation::kStep});
+  return raw;
 }
 
 }  // namespace wirerig::testing

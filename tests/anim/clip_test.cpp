@@ -10,18 +10,8 @@
 namespace wirerig {
 namespace {
 
-RawScalarTrack Keys(std::initializer_list<std::pair<double, double>> keys,
-                    Interpolation interpolation = Interpolation::kLinear) {
-  RawScalarTrack raw;
-  for (auto [t, v] : keys) raw.keys.push_back({t, v, interpolation});
-  return raw;
-}
-
-RawVectorTrack Constant(const Vec3& v) {
-  RawVectorTrack raw;
-  raw.keys.push_back({0.0, v, Interpolation::kStep});
-  return raw;
-}
+using testing::Constant;
+using testing::Keys;
 
 RawClip PointLoadClip() {
   RawClip raw;

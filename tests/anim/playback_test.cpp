@@ -12,17 +12,8 @@
 namespace wirerig {
 namespace {
 
-RawScalarTrack Keys(std::initializer_list<std::pair<double, double>> keys) {
-  RawScalarTrack raw;
-  for (auto [t, v] : keys) raw.keys.push_back({t, v, Interpolation::kLinear});
-  return raw;
-}
-
-RawVectorTrack Constant(const Vec3& v) {
-  RawVectorTrack raw;
-  raw.keys.push_back({0.0, v, Interpolation::kStep});
-  return raw;
-}
+using testing::Constant;
+using testing::Keys;
 
 const testing::TestRig& Beam() {
   static const testing::TestRig rig = testing::MakeCylinderRig(SpineKind::kDeformable);

@@ -27,9 +27,7 @@ Result<bool> SceneViewer::Open(const SceneDescription& description) {
   const Clip* clip = scene->FindClip(options_.clip);
   if (!clip && !options_.clip.empty() && !scene->clips.empty())
     return Error{"no clip is named \"" + options_.clip + "\""};
-  rest_clip_ = Clip{};
-  rest_clip_.name = "rest";
-  rest_clip_.parts.resize(scene->model.parts.size());
+  rest_clip_ = RestClip(scene->model);
   if (!clip) clip = &rest_clip_;
   Result<Playback> playback = Playback::Make(scene->model, *clip, description.playback);
   if (!playback) return Error{playback.error()};

@@ -108,5 +108,10 @@ struct BuiltScene {
 };
 
 Result<BuiltScene> BuildScene(const SceneDescription& scene);
+// LoadScene then BuildScene; every error starts with the file's path.
+Result<BuiltScene> LoadAndBuildScene(const std::filesystem::path& path);
+
+// A clip that holds every part of `model` at rest (for scenes without clips).
+Clip RestClip(const RigModel& model);
 
 }  // namespace wirerig
