@@ -44,6 +44,11 @@ CLI::App* AddRenderCommand(CLI::App& app, RenderCommandOptions& options) {
                    "Draw a contact sheet of this many times spread over the clip")
       ->check(CLI::Range(1, 64));
   render->add_flag("!--no-wires", options.wires, "Hide the profile and spine wires");
+  render
+      ->add_option("--color", options.color,
+                   "Skin colour: base, moment (bending moment) or strain (axial strain)")
+      ->check(CLI::IsMember({"base", "moment", "strain"}))
+      ->capture_default_str();
   return render;
 }
 
@@ -67,7 +72,11 @@ int RunRenderCommand(const RenderCommandOptions& options, std::ostream& out, std
   if (!made) return fail(options.scene + ": " + made.error());
   Playback& playback = made.value();
 
+  const SceneColoring coloring = options.color == "moment"   ? SceneColoring::kBendingMoment
+                                 : options.color == "strain" ? SceneColoring::kAxialStrain
+                                                             : SceneColoring::kBaseColor;
   SceneFrame picture(scene);
+  picture.set_coloring(coloring);
   std::vector<Vec3> positions(scene.model.vertices.size()), normals(positions.size());
   RenderOptions render_options;
   render_options.show_wires = options.wires;
@@ -99,6 +108,7 @@ int RunRenderCommand(const RenderCommandOptions& options, std::ostream& out, std
     const double t = n == 1 ? 0.0 : clip->duration * i / (n - 1);
     if (std::string e = evaluate(t); !e.empty()) return fail(options.scene + ": " + e);
     pictures.emplace_back(scene);
+    pictures.back().set_coloring(coloring);
     pictures.back().Update(playback, positions, normals);
     if (i == 0) camera = pictures.back().InitialCamera(size);
     tiles.push_back({pictures.back().frame(), camera, TimeLabel(t)});

@@ -18,6 +18,7 @@ struct RenderCommandOptions {
   std::string clip;
   int sheet = 0;  // 0: one picture; N > 0: a contact sheet of N times
   bool wires = true;
+  std::string color = "base";  // base, moment or strain
 };
 
 CLI::App* AddRenderCommand(CLI::App& app, RenderCommandOptions& options);

@@ -8,6 +8,16 @@ namespace {
 
 Vec3f ToFloat(const Vec3& v) { return v.cast<float>(); }
 
+// |kappa| at sample k of a polyline: the turn between the chords around it over their mean
+// length (0 at the ends).
+double TurnRate(const std::vector<Vec3>& points, std::size_t k) {
+  if (k == 0 || k + 1 >= points.size()) return 0.0;
+  const Vec3 d0 = points[k] - points[k - 1], d1 = points[k + 1] - points[k];
+  const double l0 = d0.norm(), l1 = d1.norm();
+  if (!(l0 > 0.0 && l1 > 0.0)) return 0.0;
+  return std::atan2(d0.cross(d1).norm(), d0.dot(d1)) / (0.5 * (l0 + l1));
+}
+
 // The deformed spine point and frame nearest v.
 std::size_t NearestSample(std::size_t samples, double v) {
   return static_cast<std::size_t>(std::lround(std::clamp(v, 0.0, 1.0) * double(samples - 1)));
@@ -52,6 +62,19 @@ SceneFrame::SceneFrame(const BuiltScene& scene) : scene_(&scene) {
     loads = std::max(loads, clip_loads);
   }
   arrows_.resize(loads);
+  // Each vertex reads its part's spine at the profile it is bound to (the nearer end for caps).
+  scalars_.assign(positions_.size(), 0.0f);
+  for (const PartModel& part : model.parts) sample_values_.emplace_back(part.spine_points.size());
+  vertex_sample_.resize(positions_.size());
+  for (std::size_t v = 0; v < positions_.size(); ++v) {
+    const VertexAttachment& a = model.vertices[v];
+    const PartModel& part = model.parts[a.part];
+    double spine_v = part.profiles[a.profile].spine_v;
+    if (!a.cap && a.profile + 1 < part.profiles.size())
+      spine_v = 0.5 * (spine_v + part.profiles[a.profile + 1].spine_v);
+    const auto last = static_cast<double>(part.spine_points.size() - 1);
+    vertex_sample_[v] = {a.part, static_cast<std::uint32_t>(std::lround(spine_v * last))};
+  }
   // The buffers never grow again: the spans stay valid for the frame's life.
   for (std::size_t i = 0; i < polylines_.size(); ++i) polylines_[i].points = wire_points_[i];
   mesh_.positions = positions_;
@@ -79,6 +102,7 @@ void SceneFrame::Update(const Playback& playback, std::span<const Vec3> position
     ComputeVertexNormals(positions_, scene_->model.triangles, normals_);
   const RigWorkspace& w = playback.workspace();
   const RigModel& model = scene_->model;
+  UpdateColors(w);
   arrow_count_ = 0;
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     for (std::size_t k = 0; k < model.parts[p].profiles.size(); ++k) {
@@ -101,6 +125,7 @@ void SceneFrame::Update(const Playback& playback, std::span<const Vec3> position
 
 RenderFrame SceneFrame::frame() const {
   RenderFrame frame;
+  frame.legend = legend_;
   frame.meshes = std::span<const RenderMesh>(&mesh_, 1);
   frame.polylines = polylines_;
   frame.arrows = std::span<const RenderArrow>(arrows_.data(), arrow_count_);
@@ -123,6 +148,42 @@ Camera SceneFrame::InitialCamera(Size size) const {
   }
   FrameCamera(camera, ComputeFrameBounds(frame()), size.Aspect());
   return camera;
+}
+
+void SceneFrame::UpdateColors(const RigWorkspace& w) {
+  const RigModel& model = scene_->model;
+  if (coloring_ == SceneColoring::kBaseColor) {
+    mesh_.scalars = {};
+    return;
+  }
+  float largest = 0.0f;
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const PartModel& part = model.parts[p];
+    std::vector<float>& values = sample_values_[p];
+    const std::vector<Vec3>& points = w.spine_points[p];
+    const std::size_t n = points.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      double value = 0.0;
+      if (coloring_ == SceneColoring::kAxialStrain) {
+        value = w.strain[p][k];
+      } else {
+        // The load's moment: EI times the change of the spine's curvature from rest.
+        value = part.spine_stiffness.bending *
+                std::abs(TurnRate(points, k) - TurnRate(part.spine_points, k));
+      }
+      values[k] = static_cast<float>(value);
+      largest = std::max(largest, std::abs(values[k]));
+    }
+  }
+  for (std::size_t v = 0; v < scalars_.size(); ++v)
+    scalars_[v] = sample_values_[vertex_sample_[v].first][vertex_sample_[v].second];
+  mesh_.scalars = scalars_;
+  const float range = largest > 0.0f ? largest : 1.0f;
+  if (coloring_ == SceneColoring::kBendingMoment) {
+    legend_ = {0.0f, range, ColorMap::kViridis, "bending moment |M| (N m)", true};
+  } else {
+    legend_ = {-range, range, ColorMap::kCoolWarm, "axial strain N / EA", true};
+  }
 }
 
 }  // namespace wirerig

@@ -243,6 +243,10 @@ void SceneViewer::DrawEditor() {
              : Result<GltfExportReport>(Error{bake.error()});
     status_ = exported ? "exported " + path.string() : exported.error();
   }
+  int coloring = int(picture_->coloring());
+  const char* colorings[] = {"base colour", "bending moment", "axial strain"};
+  if (ImGui::Combo("colour", &coloring, colorings, 3))
+    picture_->set_coloring(static_cast<SceneColoring>(coloring));
   if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
   ImGui::TextWrapped("Drag a wire to push it; drag elsewhere to orbit.");
   ImGui::End();

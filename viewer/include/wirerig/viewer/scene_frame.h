@@ -15,6 +15,11 @@
 
 namespace wirerig {
 
+// What colours the skin: its base colour, or a per-vertex quantity of the part's spine wire at
+// the vertex's place: the bending moment |M| = EI |kappa| (kappa from the deformed spine's turn
+// between samples) or the axial strain N / EA.
+enum class SceneColoring : int { kBaseColor = 0, kBendingMoment = 1, kAxialStrain = 2 };
+
 class SceneFrame {
  public:
   // The scene must outlive the frame.
@@ -28,6 +33,9 @@ class SceneFrame {
   // Spans into this object's buffers, valid until the next Update.
   RenderFrame frame() const;
   void set_caption(std::string caption) { caption_ = std::move(caption); }
+  // Takes effect at the next Update.
+  void set_coloring(SceneColoring coloring) { coloring_ = coloring; }
+  SceneColoring coloring() const { return coloring_; }
 
   // The scene's camera hint, or a camera framing the rest mesh, for an image of `size`.
   Camera InitialCamera(Size size) const;
@@ -37,6 +45,8 @@ class SceneFrame {
   std::uint32_t SpineId(std::size_t part) const;
 
  private:
+  void UpdateColors(const RigWorkspace& workspace);
+
   const BuiltScene* scene_;
   std::vector<Vec3f> positions_, normals_;
   std::vector<std::vector<Vec3f>> wire_points_;  // per polyline
@@ -46,6 +56,11 @@ class SceneFrame {
   std::vector<std::size_t> first_profile_id_;  // per part
   RenderMesh mesh_;
   std::string caption_;
+  SceneColoring coloring_ = SceneColoring::kBaseColor;
+  std::vector<float> scalars_;                     // per vertex, when coloured
+  std::vector<std::vector<float>> sample_values_;  // per part, per spine sample
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> vertex_sample_;  // (part, sample)
+  ScalarLegend legend_;
 };
 
 }  // namespace wirerig
