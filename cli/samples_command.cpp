@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "bake_command.h"
 #include "render_command.h"
 #include "wirerig/rig/atomic_file.h"
 #include "wirerig/rig/json_fields.h"
@@ -72,6 +73,7 @@ CLI::App* AddGalleryCommand(CLI::App& app, SamplesCommandOptions& options) {
       "gallery", "Draw every sample's picture and write the gallery page, headless");
   gallery->add_option("--dir", options.dir, "Samples folder (holding catalog.json)");
   gallery->add_option("--page", options.page, "Gallery page to write (Markdown)");
+  gallery->add_flag("--glb", options.glb, "Also bake every sample to <name>.glb in its folder");
   return gallery;
 }
 
@@ -129,6 +131,15 @@ int RunGalleryCommand(const SamplesCommandOptions& options, std::ostream& out, s
     if (int code = RunRenderCommand(render, out, err); code != 0) {
       err << "wirerig gallery: " << e.name << ": the picture failed\n";
       return code;
+    }
+    if (options.glb) {
+      BakeCommandOptions bake;
+      bake.scene = scene.string();
+      bake.output = (scene.parent_path() / (e.name + ".glb")).string();
+      if (int code = RunBakeCommand(bake, out, err); code != 0) {
+        err << "wirerig gallery: " << e.name << ": the bake failed\n";
+        return code;
+      }
     }
     const fs::path relative = fs::relative(picture, page.parent_path());
     md << "\n## " << e.title;

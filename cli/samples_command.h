@@ -30,6 +30,7 @@ Result<std::vector<CatalogEntry>> LoadCatalog(const std::string& path);
 struct SamplesCommandOptions {
   std::string dir;   // default: the source tree's samples/ folder
   std::string page;  // gallery page; default: <dir>/../docs/gallery.md
+  bool glb = false;  // gallery: also bake every scene sample to <dir>/<name>/<name>.glb
 };
 
 CLI::App* AddSamplesCommand(CLI::App& app, SamplesCommandOptions& options);
