@@ -1,6 +1,7 @@
 #include "wirerig/anim/bake.h"
 
 #include "wirerig/anim/spine_skin.h"
+#include "wirerig/runtime/spine_interpolation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,13 +10,7 @@ namespace wirerig {
 namespace {
 
 // The rotation whose columns are the frame's (normal, binormal, tangent).
-Quat FrameRotation(const Frame& f) {
-  Mat3 m;
-  m.col(0) = f.normal;
-  m.col(1) = f.binormal;
-  m.col(2) = f.tangent;
-  return Quat(m).normalized();
-}
+Quat FrameRotation(const Frame& f) { return Quat(FrameAxes(f)).normalized(); }
 
 void AddSpines(const RigModel& model, std::size_t keys, BakedAnimation& bake) {
   for (const PartModel& part : model.parts) {

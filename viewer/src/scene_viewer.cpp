@@ -178,16 +178,20 @@ void SceneViewer::DrawEditor() {
   const RigPart& rig_part = scene_->rig.parts[std::size_t(selected_part_)];
   ImGui::Text("spine: L = %.3f m, EI = %.3g N m^2, EA = %.3g N", part.spine_length,
               part.spine_stiffness.bending, part.spine_stiffness.axial);
-  static float youngs = 0.0f, poisson = 0.0f, radius = 0.0f, wall = 0.0f;
-  static int shown_part = -1;
-  if (shown_part != selected_part_) {
-    youngs = float(rig_part.spine_wire.material.youngs_modulus);
-    poisson = float(rig_part.spine_wire.material.poisson_ratio);
+  EditorFields& f = editor_;
+  if (f.part != selected_part_ || f.scene != scene_.get()) {
+    f.youngs = float(rig_part.spine_wire.material.youngs_modulus);
+    f.poisson = float(rig_part.spine_wire.material.poisson_ratio);
     // A tube's area is 2 pi r h (mean radius r, wall h); the wall is the scene's skin thickness.
-    wall = float(scene_->description.skin_thickness);
-    radius = float(rig_part.spine_wire.section.area / (2.0 * 3.14159265358979 * double(wall)));
-    shown_part = selected_part_;
+    f.wall = float(scene_->description.skin_thickness);
+    f.radius = float(rig_part.spine_wire.section.area / (2.0 * 3.14159265358979 * double(f.wall)));
+    f.part = selected_part_;
+    f.scene = scene_.get();
   }
+  float& youngs = f.youngs;
+  float& poisson = f.poisson;
+  float& radius = f.radius;
+  float& wall = f.wall;
   ImGui::InputFloat("E (Pa)", &youngs, 0.0f, 0.0f, "%.4g");
   ImGui::SliderFloat("nu", &poisson, 0.0f, 0.49f);
   ImGui::InputFloat("tube r (m)", &radius, 0.0f, 0.0f, "%.4g");

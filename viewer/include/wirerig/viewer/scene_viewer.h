@@ -77,6 +77,13 @@ class SceneViewer : public Application {
   Vec3 grab_point_ = Vec3::Zero();  // where the grabbed wire was when grabbed
   double max_wire_motion_ = 0.0;    // how far the grabbed point moved while dragged
   int selected_part_ = 0;
+  // The editor's fields for the selected part of the open scene, reloaded when either changes.
+  struct EditorFields {
+    int part = -1;
+    const BuiltScene* scene = nullptr;
+    float youngs = 0.0f, poisson = 0.0f, radius = 0.0f, wall = 0.0f;
+  };
+  EditorFields editor_;
 };
 
 }  // namespace wirerig
