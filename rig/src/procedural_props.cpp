@@ -78,6 +78,7 @@ PartDescription Part(const std::string& name, std::vector<Vec3> central_curve, i
   part.points_per_profile = points;
   part.parent = parent;
   part.mesh_parts = {name};
+  part.joint.blend_length = 0.0;  // props are separate solid pieces: no skin spans a joint
   return part;
 }
 

@@ -124,6 +124,7 @@ Result<BuiltRig> BuildRig(const Mesh& mesh, const RigDescription& description,
                    " profiles hit its surface; is its central curve inside the mesh? (" +
                    spine.error() + ")"};
     AssignWires(part, description.material, options.skin_thickness);
+    part.joint = d.joint;
     if (!d.parent.empty()) {
       for (std::size_t p = 0; p < i; ++p)
         if (description.parts[p].name == d.parent) part.parent = int(p);

@@ -1,5 +1,6 @@
 #include "wirerig/rig/rig_description.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -30,7 +31,8 @@ std::vector<std::string> ReadNames(const JsonObject& object, std::string_view ke
 
 PartDescription ReadPart(const JsonObject& p, const PartDescription& defaults) {
   p.RejectUnknownKeys(
-      {"name", "central_curve", "profile_count", "points_per_profile", "parent", "mesh_parts"});
+      {"name", "central_curve", "profile_count", "points_per_profile", "parent", "mesh_parts",
+       "joint"});
   PartDescription part = defaults;
   part.name = p.String("name");
   part.central_curve = ReadVector3Array(p.Required("central_curve"), p.PathOf("central_curve"));
@@ -38,7 +40,29 @@ PartDescription ReadPart(const JsonObject& p, const PartDescription& defaults) {
   part.points_per_profile = p.Integer("points_per_profile", defaults.points_per_profile);
   if (p.Has("parent") && !p.Required("parent").is_null()) part.parent = p.String("parent");
   part.mesh_parts = ReadNames(p, "mesh_parts");
+  part.joint = ReadJointDescription(p);
   return part;
+}
+
+// "a -> b -> a" when following parents from part `start` comes back to a part already
+// visited; empty otherwise (a missing parent ends the walk).
+std::string ParentCycle(const RigDescription& description, std::size_t start) {
+  std::map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < description.parts.size(); ++i)
+    index.emplace(description.parts[i].name, i);
+  std::vector<std::size_t> path{start};
+  for (;;) {
+    const auto parent = index.find(description.parts[path.back()].parent);
+    if (parent == index.end()) return {};
+    const auto seen = std::find(path.begin(), path.end(), parent->second);
+    path.push_back(parent->second);
+    if (seen != path.end() - 1) {
+      std::string text;
+      for (auto it = seen; it != path.end(); ++it)
+        text += (text.empty() ? "" : " -> ") + description.parts[*it].name;
+      return text;
+    }
+  }
 }
 
 }  // namespace
@@ -122,9 +146,14 @@ std::string ValidateRigDescription(const RigDescription& description) {
       return path + "/points_per_profile: must lie in [3, 1024]";
     if (i == 0 && !part.parent.empty()) return path + "/parent: the first part is the root";
     if (i > 0 && part.parent.empty()) return path + "/parent: only the first part may be a root";
-    if (i > 0 && !seen.contains(part.parent))
-      return path + "/parent: '" + part.parent + "' is not an earlier part";
     if (part.parent == part.name) return path + "/parent: a part cannot be its own parent";
+    if (i > 0 && !seen.contains(part.parent)) {
+      if (std::string cycle = ParentCycle(description, i); !cycle.empty())
+        return path + "/parent: the chain has a cycle: " + cycle;
+      return path + "/parent: '" + part.parent + "' is not an earlier part";
+    }
+    if (std::string error = ValidateJointDescription(part.joint); !error.empty())
+      return path + "/joint/" + error;
   }
   for (int p : description.vertex_part)
     if (p < -1 || p >= static_cast<int>(description.parts.size()))

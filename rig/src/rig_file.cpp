@@ -72,7 +72,7 @@ ProfileCurve ReadProfile(const JsonObject& p) {
 
 RigPart ReadPart(const JsonObject& p, const std::vector<RigPart>& earlier) {
   p.RejectUnknownKeys({"name", "parent", "attachment", "central_curve", "profile_count",
-                       "points_per_profile", "profiles", "spine_points", "spine_wire"});
+                       "points_per_profile", "profiles", "spine_points", "spine_wire", "joint"});
   RigPart part;
   part.name = p.String("name");
   if (part.name.empty()) throw FieldError(p.PathOf("name"), "must not be empty");
@@ -109,6 +109,7 @@ RigPart ReadPart(const JsonObject& p, const std::vector<RigPart>& earlier) {
   for (std::size_t i = 0; i < part.spine_points.size(); ++i)
     RequireFinite(part.spine_points[i], p.PathOf("spine_points") + "/" + std::to_string(i));
   part.spine_wire = ReadWire(p, "spine_wire");
+  part.joint = ReadJointDescription(p);
   return part;
 }
 
@@ -142,7 +143,8 @@ nlohmann::json RigToJson(const Rig& rig) {
                      {"points_per_profile", part.points_per_profile},
                      {"profiles", std::move(profiles)},
                      {"spine_points", ToJson(part.spine_points)},
-                     {"spine_wire", ToJson(part.spine_wire)}});
+                     {"spine_wire", ToJson(part.spine_wire)},
+                     {"joint", WriteJointDescription(part.joint)}});
   }
   return {{"format", "wirerig.rig"},
           {"version", Rig::kFormatVersion},

@@ -1,9 +1,11 @@
 #include "wirerig/rig/rig_model_builder.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "wirerig/rig/spine_curves.h"
+#include "wirerig/runtime/joint_bridge.h"
 #include "wirerig/runtime/spine_interpolation.h"
 
 namespace wirerig {
@@ -57,6 +59,71 @@ MassProperties ProfileSolid(const RigPart& part, double density) {
   return {};
 }
 
+// Mean distance from the spine to the points of the part's first two profiles, m.
+double RootRadius(const PartModel& part) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t p = 0; p < std::min<std::size_t>(2, part.profiles.size()); ++p)
+    for (const Vec3& q : part.profiles[p].local_points) {
+      sum += q.head<2>().norm();
+      ++count;
+    }
+  return count ? sum / double(count) : 0.0;
+}
+
+// The joint of a part with a parent: axes from the bone's rest direction and the described
+// axis, limits and type as described, the skin bridge's size from the limb.
+Result<JointModel> MakeJoint(const PartModel& part, const PartModel& parent,
+                             const JointDescription& description) {
+  JointModel joint;
+  joint.type = description.type;
+  joint.min_degrees = description.min_degrees;
+  joint.max_degrees = description.max_degrees;
+  const Vec3 z = part.spine_frames.front().tangent.normalized();
+  Vec3 x = description.axis ? description.axis->normalized() : part.spine_frames.front().normal;
+  x -= x.dot(z) * z;
+  if (x.norm() < 1e-6)
+    return Error{"joint/axis: lies along the bone; a hinge or bend axis must cross it"};
+  x.normalize();
+  joint.axes.col(0) = x;
+  joint.axes.col(1) = z.cross(x);
+  joint.axes.col(2) = z;
+  joint.radius = RootRadius(part);
+  joint.blend_length = description.blend_length.value_or(
+      std::min({kBlendRadii * joint.radius, 0.4 * part.spine_length, 0.4 * parent.spine_length}));
+  if (Status s = ValidateJoint(joint); !s)
+    return Error{"joint/" + std::string(s.field) + ": " + std::string(s.reason)};
+  return joint;
+}
+
+// Up to two joint bridges for the vertex at p owned by part `own`: the strongest, with the
+// weights scaled down to sum to at most 1.
+void BindJoints(const RigModel& model, std::uint32_t own, const Vec3& p, VertexAttachment* a) {
+  const PartModel& part = model.parts[own];
+  const double n = double(part.spine_points.size() - 1);
+  const auto sample = std::uint32_t(std::lround(ProjectOnSamples(part.spine_points, p) * n));
+  std::array<JointInfluence, 2> best{};
+  for (std::size_t c = 1; c < model.parts.size(); ++c) {
+    const PartModel& child = model.parts[c];
+    const bool child_side = c == own;
+    if (!child_side && child.parent != int(own)) continue;
+    const JointBinding b =
+        BindToJoint(child.joint, child.spine_points.front(), p, child_side);
+    if (!(b.weight > 0.0)) continue;
+    const JointInfluence influence{int(c), sample, b.u, b.weight};
+    if (b.weight > best[0].weight) {
+      best[1] = best[0];
+      best[0] = influence;
+    } else if (b.weight > best[1].weight) {
+      best[1] = influence;
+    }
+  }
+  const double total = best[0].weight + best[1].weight;
+  if (total > 1.0)
+    for (JointInfluence& j : best) j.weight /= total;
+  a->joints = best;
+}
+
 }  // namespace
 
 Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
@@ -103,6 +170,13 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
     }
     model.parts.push_back(std::move(out));
   }
+  for (std::size_t i = 1; i < model.parts.size(); ++i) {
+    PartModel& part = model.parts[i];
+    Result<JointModel> joint =
+        MakeJoint(part, model.parts[std::size_t(part.parent)], rig.parts[i].joint);
+    if (!joint) return Error{"part '" + part.name + "': " + joint.error()};
+    part.joint = joint.value();
+  }
 
   // Vertex bindings, against the model's own rest geometry (so rest is reproduced exactly).
   std::vector<std::vector<std::vector<Vec3>>> rest_profiles(model.parts.size());
@@ -125,6 +199,8 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
     VertexAttachment& a = model.vertices[v];
     a.part = std::uint32_t(rig.vertex_part[v]);
     const PartModel& part = model.parts[a.part];
+    BindJoints(model, a.part, p, &a);
+    built.report.bridged_vertices += a.joints[0].joint >= 0;
     const double s = ProjectOnSamples(part.spine_points, p);
     const std::size_t last = part.profiles.size() - 1;
     std::size_t pair = 0;

@@ -123,6 +123,60 @@ Frame RotateFrame(const Mat3& r, const Frame& f) {
   return {r * f.tangent, r * f.normal, r * f.binormal};
 }
 
+// The rotation a spine's frame at v has turned by (rest world axes -> world), and its point.
+Mat3 SpineTurn(const PartModel& part, const RigWorkspace& w, std::size_t i, double v,
+               Vec3* rest_point, Vec3* point, Vec3* rest_tangent, Vec3* tangent) {
+  const Frame rest = InterpolateSpine(part.spine_points, part.spine_frames, v, rest_point);
+  const Frame moved = InterpolateSpine(w.spine_points[i], w.spine_frames[i], v, point);
+  if (rest_tangent) *rest_tangent = rest.tangent;
+  if (tangent) *tangent = moved.tangent;
+  return FrameAxes(moved) * FrameAxes(rest).transpose();
+}
+
+// Step 7 of Run(): each bridged joint's bridge for this frame, then every vertex on a bridge
+// moved from where its own part put it towards the bridge's image of its rest-space point.
+void FollowJointBridges(const RigModel& model, RigWorkspace& w, std::span<Vec3> positions) {
+  const RigEvaluationLayout& layout = w.layout;
+  if (layout.joint_vertices.empty()) return;
+  for (std::uint32_t c : layout.bridged_parts) {
+    const PartModel& child = model.parts[c];
+    const PartModel& parent = model.parts[child.parent];
+    const double h = child.joint.blend_length;
+    const Vec3 axis = child.joint.axes.col(2);
+    Vec3 unused;
+    const Mat3 parent_turn =
+        SpineTurn(parent, w, child.parent, child.attachment, &unused, &unused, nullptr, nullptr);
+    BridgeEnds rest, posed;
+    const double end_v = std::min(h / std::max(child.spine_length, 1e-12), 1.0);
+    const Mat3 child_turn = SpineTurn(child, w, c, end_v, &rest.end, &posed.end,
+                                      &rest.end_tangent, &posed.end_tangent);
+    rest.start = child.spine_points.front() - h * axis;
+    rest.start_tangent = axis;
+    posed.start_tangent = parent_turn * axis;
+    posed.start = w.spine_points[c].front() - h * posed.start_tangent;
+    SampleJointBridge(child.joint, rest, posed, parent_turn, child_turn, &w.bridges[c]);
+  }
+  for (std::size_t i = 0; i < model.parts.size(); ++i) {
+    const PartModel& part = model.parts[i];
+    for (std::size_t k = 0; k < part.spine_frames.size(); ++k)
+      w.spine_undo[i][k] =
+          FrameAxes(part.spine_frames[k]) * FrameAxes(w.spine_frames[i][k]).transpose();
+  }
+  const std::size_t count = layout.joint_vertices.size();
+  for (std::size_t e = 0; e < count;) {
+    const std::uint32_t vertex = layout.joint_vertices[e].vertex;
+    const Vec3 own = positions[vertex];
+    Vec3 sum = Vec3::Zero();
+    for (; e < count && layout.joint_vertices[e].vertex == vertex; ++e) {
+      const RigEvaluationLayout::JointVertex& j = layout.joint_vertices[e];
+      const Vec3 rest = model.parts[j.part].spine_points[j.sample] +
+                        w.spine_undo[j.part][j.sample] * (own - w.spine_points[j.part][j.sample]);
+      sum += j.weight * (ApplyJointBridge(w.bridges[j.joint], j.u, rest) - own);
+    }
+    positions[vertex] = own + sum;
+  }
+}
+
 Status ValidateLoads(const SpineLoads& loads) {
   for (const PointLoad& p : loads.bending_point_loads)
     if (!(std::isfinite(p.at) && std::isfinite(p.force.x()) && std::isfinite(p.force.y())))
@@ -201,6 +255,20 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
     pair.gamma = a.pair.gamma;
     layout.pairs.push_back(pair);
   }
+  for (std::size_t v = 0; v < model.vertices.size(); ++v)
+    for (const JointInfluence& j : model.vertices[v].joints)
+      if (j.joint >= 0)
+        layout.joint_vertices.push_back({static_cast<std::uint32_t>(v),
+                                         static_cast<std::uint32_t>(j.joint),
+                                         model.vertices[v].part, j.sample, j.u, j.weight});
+  for (std::size_t i = 0; i < model.parts.size(); ++i) {
+    const PartModel& part = model.parts[i];
+    if (part.parent >= 0 && part.joint.blend_length > 0.0)
+      layout.bridged_parts.push_back(static_cast<std::uint32_t>(i));
+  }
+  w.bridges.resize(model.parts.size());
+  for (const PartModel& part : model.parts)
+    w.spine_undo.emplace_back(part.spine_points.size(), Mat3::Identity());
   // Normals: vertices in the order of their first triangle, so the pass reads the triangle
   // normals almost sequentially; each vertex's triangles in increasing order.
   const std::size_t vertex_count = model.vertices.size();
@@ -479,7 +547,10 @@ Status EvaluateRigJob::Run() const {
            VertexPass::Tasks(w.layout.pairs.size()) + VertexPass::Tasks(w.layout.caps.size()),
            &VertexPass::Vertices, &pass);
 
-  // 7. Area-weighted vertex normals.
+  // 7. Vertices near joints follow the skin bridges.
+  FollowJointBridges(*model, w, positions);
+
+  // 8. Area-weighted vertex normals.
   if (normals.empty()) return Status::Ok();
   // One thread: accumulate every triangle's normal into its vertices in one pass (the fewest
   // memory passes). Threads: every triangle's normal, then per vertex the sum of its triangles'

@@ -319,7 +319,7 @@ TEST(SpineSkin, MeasuredSkinningErrorOfEachSpread) {
 TEST(SpineSkin, SkinsARiggedCapsuleBentByTheRuntime) {
   Mesh mesh = MakeCapsule(0.1, 1.0, 32, 16, 6);
   RigDescription description;
-  description.parts.push_back({"body", {Vec3(0, 0, 0), Vec3(0, 1, 0)}, 10, 24, "", {}});
+  description.parts.push_back({"body", {Vec3(0, 0, 0), Vec3(0, 1, 0)}, 10, 24, "", {}, {}});
   Result<BuiltRig> rig = BuildRig(mesh, description, "capsule");
   ASSERT_TRUE(rig.ok()) << rig.error();
   Result<BuiltRigModel> built = BuildRigModel(mesh, rig.value().rig);

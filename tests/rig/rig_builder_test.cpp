@@ -167,9 +167,9 @@ TEST(RigBuilder, APartNeverTakesVerticesAcrossAGap) {
   for (Vec3& p : arm.welded_positions) p.x() += 0.3;
   const Mesh mesh = Combine(torso, arm, "torso_mesh", "arm_mesh");
   RigDescription description;
-  description.parts.push_back({"torso", {Vec3(0, 0.01, 0), Vec3(0, 0.99, 0)}, 6, 16, "", {}});
+  description.parts.push_back({"torso", {Vec3(0, 0.01, 0), Vec3(0, 0.99, 0)}, 6, 16, "", {}, {}});
   description.parts.push_back(
-      {"arm", {Vec3(0.3, 0.99, 0), Vec3(0.3, 0.01, 0)}, 6, 16, "torso", {}});
+      {"arm", {Vec3(0.3, 0.99, 0), Vec3(0.3, 0.01, 0)}, 6, 16, "torso", {}, {}});
   const Result<BuiltRig> built = BuildRig(mesh, description, "procedural");
   ASSERT_TRUE(built.ok()) << built.error();
   const std::size_t torso_vertices = torso.welded_positions.size();
@@ -184,7 +184,7 @@ TEST(RigBuilder, APartNeverTakesVerticesAcrossAGap) {
 TEST(RigBuilder, ACentralCurveOutsideTheMeshIsAClearError) {
   const Mesh mesh = MakeCylinder(0.2, 1.0, 64, 8);
   RigDescription description;
-  description.parts.push_back({"body", {Vec3(2, 0, 0), Vec3(2, 1, 0)}, 6, 16, "", {}});
+  description.parts.push_back({"body", {Vec3(2, 0, 0), Vec3(2, 1, 0)}, 6, 16, "", {}, {}});
   const Result<BuiltRig> built = BuildRig(mesh, description, "procedural");
   ASSERT_FALSE(built.ok());
   EXPECT_NE(built.error().find("part 'body'"), std::string::npos) << built.error();

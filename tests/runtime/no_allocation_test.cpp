@@ -111,7 +111,7 @@ TEST(NoAllocation, CurveQueries) {
 TEST(NoAllocation, RigEvaluationWithLoadsAndNormals) {
   // A deformable one-part rig on a procedural capsule, with a pose, spine loads and normals.
   RigDescription description;
-  description.parts.push_back({"body", {Vec3(0, 0.05, 0), Vec3(0, 0.95, 0)}, 8, 16, "", {}});
+  description.parts.push_back({"body", {Vec3(0, 0.05, 0), Vec3(0, 0.95, 0)}, 8, 16, "", {}, {}});
   const Mesh mesh = MakeCapsule(0.2, 1.0, 32, 16, 6);
   const Result<BuiltRig> rig = BuildRig(mesh, description, "capsule");
   ASSERT_TRUE(rig.ok()) << rig.error();
@@ -141,7 +141,7 @@ TEST(NoAllocation, RigEvaluationWithLoadsAndNormals) {
 TEST(NoAllocation, RigEvaluationOnAThreadPool) {
   // As above, with the vertex and normal passes shared out over a pool made beforehand.
   RigDescription description;
-  description.parts.push_back({"body", {Vec3(0, 0.05, 0), Vec3(0, 0.95, 0)}, 8, 16, "", {}});
+  description.parts.push_back({"body", {Vec3(0, 0.05, 0), Vec3(0, 0.95, 0)}, 8, 16, "", {}, {}});
   const Mesh mesh = MakeCapsule(0.2, 1.0, 96, 48, 6);
   const Result<BuiltRig> rig = BuildRig(mesh, description, "capsule");
   ASSERT_TRUE(rig.ok()) << rig.error();

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "wirerig/rig/joint_description.h"
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/profile_curves.h"
 #include "wirerig/runtime/material.h"
@@ -31,6 +32,7 @@ struct RigPart {
   std::vector<WireProperties> profile_wires;  // one per profile
   std::vector<Vec3> spine_points;  // profile centroids; the spine interpolates them (C2 cubic)
   WireProperties spine_wire;
+  JointDescription joint;  // how it turns on its parent
 };
 
 struct Rig {

@@ -5,7 +5,7 @@
 // Rules (checked by ValidateRigDescription): part names are unique and not empty; every
 // central curve has at least 2 finite points, consecutive points distinct; profile_count >= 2;
 // 3 <= points_per_profile <= 1024; a parent names an earlier part; exactly the first part has
-// no parent; vertex weights, when present, are one per welded vertex.
+// no parent; parents never form a cycle; joints follow ValidateJointDescription; vertex weights, when present, are one per welded vertex.
 #pragma once
 
 #include <filesystem>
@@ -15,6 +15,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "wirerig/rig/joint_description.h"
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/result.h"
 #include "wirerig/runtime/material.h"
@@ -31,6 +32,7 @@ struct PartDescription {
   std::string parent;           // empty for the root part
   // Optional: only these mesh parts (by MeshPart::name) belong to this part.
   std::vector<std::string> mesh_parts;
+  JointDescription joint;  // how it turns on its parent (joint_description.h)
 };
 
 struct RigDescription {

@@ -2,7 +2,10 @@
 // once): spines sampled at equal arc length with rotation-minimizing frames, profiles in their
 // spine frames, mass properties from the closed surface the profiles span, and a binding for
 // every welded vertex (between the two profiles around its projection on the spine, or
-// rigidly to the end profile for the end caps).
+// rigidly to the end profile for the end caps). Each joint gets its rest frame, type and limits
+// from the rig's joint description and a skin bridge (joint_bridge.h) of half-length
+// min(kBlendRadii x the limb's radius at the joint, 0.4 x either part's spine length) unless
+// the description sets one; vertices of the two parts near it are bound to it.
 #pragma once
 
 #include "wirerig/rig/mesh.h"
@@ -11,6 +14,8 @@
 #include "wirerig/runtime/rig_model.h"
 
 namespace wirerig {
+
+inline constexpr double kBlendRadii = 2.5;
 
 struct RigModelOptions {
   int min_spine_samples = 16;  // samples per spine: max(this, 4 x profiles)
@@ -21,6 +26,7 @@ struct RigModelReport {
   std::size_t cap_vertices = 0;       // beyond the first or last profile
   std::size_t fallback_vertices = 0;  // the pair binding refused: bound rigidly instead
   std::size_t flagged_vertices = 0;   // the pair binding used a documented fallback
+  std::size_t bridged_vertices = 0;   // follow a joint's skin bridge
 };
 
 struct BuiltRigModel {

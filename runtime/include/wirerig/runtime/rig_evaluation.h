@@ -8,7 +8,8 @@
 // along the rest normal and binormal, axial along the tangent), then moves rigidly by its pose
 // (rotation about its spine's root point, then translation), then follows its parent: the
 // parent's deformed frame at the attachment replaces its rest frame there. A child never moves
-// its parent. Profiles ride on their spine frames; vertices follow the profiles.
+// its parent. Profiles ride on their spine frames; vertices follow the profiles; vertices near a
+// joint then follow its skin bridge by their weight (joint_bridge.h).
 #pragma once
 
 #include <cstdint>
@@ -17,6 +18,7 @@
 
 #include "wirerig/runtime/axial_job.h"
 #include "wirerig/runtime/bending_job.h"
+#include "wirerig/runtime/joint_bridge.h"
 #include "wirerig/runtime/parallel.h"
 #include "wirerig/runtime/rig_model.h"
 
@@ -101,6 +103,17 @@ struct RigEvaluationLayout {
   std::vector<std::uint32_t> point_base;    // per global profile: its first point in wire_points
   std::vector<Pair> pairs;                  // in vertex order
   std::vector<Cap> caps;                    // in vertex order
+  // A vertex on a joint's skin bridge: its own part's spine sample (to undo the own part's
+  // motion into rest space) and where it lies on the bridge. A vertex's entries are adjacent.
+  struct JointVertex {
+    std::uint32_t vertex = 0;
+    std::uint32_t joint = 0;  // the joint's child part
+    std::uint32_t part = 0;   // the vertex's own part
+    std::uint32_t sample = 0;
+    double u = 0.0, weight = 0.0;
+  };
+  std::vector<JointVertex> joint_vertices;  // in vertex order
+  std::vector<std::uint32_t> bridged_parts;  // parts whose joint has a skin bridge
   // Normals: the vertices in the order of their first triangle (so the triangle normals are
   // read almost in order), and for the i-th of them its triangles in increasing order,
   // vertex_triangles[vertex_triangle_offsets[i] .. vertex_triangle_offsets[i + 1]).
@@ -134,6 +147,9 @@ struct RigWorkspace {
   std::vector<Vec3> cap_origins;
   std::vector<Mat3> cap_axes;
   std::vector<Vec3> triangle_normals;  // per triangle: (p1 - p0) x (p2 - p0); threaded normals
+  std::vector<BridgeSamples> bridges;  // per part: its joint's skin bridge this frame
+  // Per part, per spine sample: rest axes times the transposed deformed axes (world -> rest).
+  std::vector<std::vector<Mat3>> spine_undo;
 };
 RigWorkspace MakeRigWorkspace(const RigModel& model);
 

@@ -3,14 +3,17 @@
 // rotation-minimizing frames), its stiffness and mass, and its profile wires expressed in the
 // spine's frame; per welded mesh vertex: how it follows the wires (the precomputed binding of
 // PHYSICS.md section 6 between two adjacent profiles, or rigidly an end profile's frame for
-// vertices beyond the first or last profile: the end caps).
+// vertices beyond the first or last profile: the end caps) and, near a joint, how it follows the
+// joint's skin bridge.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "wirerig/runtime/curve.h"
+#include "wirerig/runtime/joint.h"
 #include "wirerig/runtime/rigid_body.h"
 #include "wirerig/runtime/section.h"
 #include "wirerig/runtime/skin_binding.h"
@@ -39,6 +42,16 @@ struct PartModel {
   MassProperties mass;                 // of the part's enclosed volume (rigid parts), from its skin
   std::vector<ProfileModel> profiles;  // in order along the spine, at least 2
   double max_radius = 0.0;  // largest distance from the spine to a profile point at rest, m
+  JointModel joint;         // how the part turns on its parent (parts with a parent)
+};
+
+// A vertex near a joint follows the joint's skin bridge (joint_bridge.h) by `weight`, on top of
+// where its own part puts it.
+struct JointInfluence {
+  std::int32_t joint = -1;   // the joint's child part; -1: none
+  std::uint32_t sample = 0;  // the own part's spine sample nearest the vertex at rest
+  double u = 0.0;            // bridge coordinate
+  double weight = 0.0;       // in (0, 1]; a vertex's weights sum to at most 1
 };
 
 struct VertexAttachment {
@@ -47,6 +60,7 @@ struct VertexAttachment {
   bool cap = false;
   PairBinding pair;               // between profiles
   Vec3 cap_local = Vec3::Zero();  // cap: rest position in the end profile's spine frame
+  std::array<JointInfluence, 2> joints;  // the (at most two) bridges the vertex lies on
 };
 
 struct RigModel {

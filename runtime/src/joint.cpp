@@ -1,0 +1,60 @@
+#include "wirerig/runtime/joint.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace wirerig {
+
+Status ValidateJoint(const JointModel& joint) {
+  if (!joint.axes.allFinite() ||
+      !(joint.axes.transpose() * joint.axes).isApprox(Mat3::Identity(), 1e-9) ||
+      !(joint.axes.determinant() > 0.0))
+    return Status::Invalid("axes", "must be finite, orthonormal and right-handed");
+  for (int k = 0; k < 3; ++k)
+    if (!(std::isfinite(joint.min_degrees[k]) && std::isfinite(joint.max_degrees[k]) &&
+          joint.min_degrees[k] <= joint.max_degrees[k]))
+      return Status::Invalid("limits", "must be finite with the lower limit <= the upper");
+  if (!(std::isfinite(joint.blend_length) && joint.blend_length >= 0.0))
+    return Status::Invalid("blend_length", "must be finite and >= 0");
+  if (!(std::isfinite(joint.radius) && joint.radius >= 0.0))
+    return Status::Invalid("radius", "must be finite and >= 0");
+  return Status::Ok();
+}
+
+Vec3 ClampJointAngles(const JointModel& joint, const Vec3& degrees) {
+  Vec3 out = degrees.cwiseMax(joint.min_degrees).cwiseMin(joint.max_degrees);
+  if (joint.type == JointType::kHinge) out.tail<2>().setZero();
+  if (joint.type == JointType::kFixed) out.setZero();
+  return out;
+}
+
+Quat JointRotation(const JointModel& joint, const Vec3& degrees) {
+  const Vec3 a = ClampJointAngles(joint, degrees) * (std::numbers::pi / 180.0);
+  const Quat local = Quat(Eigen::AngleAxisd(a.x(), Vec3::UnitX())) *
+                     Quat(Eigen::AngleAxisd(a.y(), Vec3::UnitY())) *
+                     Quat(Eigen::AngleAxisd(a.z(), Vec3::UnitZ()));
+  const Quat frame(joint.axes);
+  return (frame * local * frame.conjugate()).normalized();
+}
+
+void SwingTwist(const Quat& rotation, const Vec3& axis, Quat* swing, Quat* twist) {
+  const double along = rotation.vec().dot(axis);
+  Quat t(rotation.w(), along * axis.x(), along * axis.y(), along * axis.z());
+  const double norm = t.norm();
+  t = norm > 1e-12 ? Quat(t.coeffs() / norm) : Quat::Identity();
+  *twist = t;
+  *swing = (rotation * t.conjugate()).normalized();
+}
+
+Quat ScaleRotation(const Quat& rotation, double t) {
+  Quat q = rotation.w() < 0.0 ? Quat(-rotation.coeffs()) : rotation;
+  const double s = q.vec().norm();
+  if (s < 1e-15) return Quat::Identity();
+  const double half = std::atan2(s, q.w()) * t;
+  const Vec3 axis = q.vec() / s;
+  return Quat(std::cos(half), std::sin(half) * axis.x(), std::sin(half) * axis.y(),
+              std::sin(half) * axis.z());
+}
+
+}  // namespace wirerig

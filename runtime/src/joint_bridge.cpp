@@ -1,0 +1,103 @@
+#include "wirerig/runtime/joint_bridge.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace wirerig {
+namespace {
+
+double SmoothStep(double edge0, double edge1, double x) {
+  const double t = std::clamp((x - edge0) / (edge1 - edge0), 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+// Length of the Hermite tangents that make a cubic follow the circular arc turning by the
+// angle between unit tangents a and b over a chord of length `chord`: the arc's Bezier handle
+// (4/3) R tan(theta/4), times 3, with R = chord / (2 sin(theta/2)). Tends to the chord as the
+// turn vanishes; a straight line then has constant speed.
+double ArcHandle(double chord, const Vec3& a, const Vec3& b) {
+  const double theta = std::atan2(a.cross(b).norm(), a.dot(b));
+  if (theta < 1e-6) return chord;
+  return chord * 2.0 * std::tan(0.25 * theta) / std::sin(0.5 * theta);
+}
+
+struct Hermite {
+  Vec3 p0, m0, p1, m1;
+  Vec3 At(double t) const {
+    const double t2 = t * t, t3 = t2 * t;
+    return (2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + t) * m0 + (-2 * t3 + 3 * t2) * p1 +
+           (t3 - t2) * m1;
+  }
+  Vec3 Derivative(double t) const {
+    const double t2 = t * t;
+    return (6 * t2 - 6 * t) * p0 + (3 * t2 - 4 * t + 1) * m0 + (-6 * t2 + 6 * t) * p1 +
+           (3 * t2 - 2 * t) * m1;
+  }
+};
+
+Hermite CurveOf(const BridgeEnds& ends) {
+  const double handle = ArcHandle((ends.end - ends.start).norm(), ends.start_tangent,
+                                  ends.end_tangent);
+  return {ends.start, handle * ends.start_tangent, ends.end, handle * ends.end_tangent};
+}
+
+}  // namespace
+
+JointBinding BindToJoint(const JointModel& joint, const Vec3& root, const Vec3& p,
+                         bool child_side) {
+  JointBinding out;
+  const double h = joint.blend_length;
+  if (!(h > 0.0) || !(joint.radius > 0.0)) return out;
+  const Vec3 axis = joint.axes.col(2);
+  const Vec3 d = p - root;
+  const double s = d.dot(axis);
+  // A point of one side lying beyond the bridge's far end (a vertex its part claimed across
+  // the joint) follows the other side: the bridge's end there.
+  if (child_side ? (s <= -2.0 * h || s >= h) : (s <= -h || s >= 2.0 * h)) return out;
+  const double rho = (d - s * axis).norm();
+  out.u = std::clamp((s + h) / (2.0 * h), 0.0, 1.0);
+  double weight =
+      1.0 - SmoothStep(kBridgeInner * joint.radius, kBridgeOuter * joint.radius, rho);
+  weight *= child_side ? SmoothStep(0.0, kBridgeEndFade, 1.0 - out.u)
+                       : SmoothStep(0.0, kBridgeEndFade, out.u);
+  out.weight = weight;
+  return out;
+}
+
+void SampleJointBridge(const JointModel& joint, const BridgeEnds& rest, const BridgeEnds& posed,
+                       const Mat3& parent_rotation, const Mat3& child_rotation,
+                       BridgeSamples* out) {
+  const Hermite rest_curve = CurveOf(rest), curve = CurveOf(posed);
+  const Quat parent(parent_rotation);
+  const Quat relative = (parent.conjugate() * Quat(child_rotation)).normalized();
+  Quat swing, twist;
+  SwingTwist(relative, joint.axes.col(2), &swing, &twist);
+  for (int k = 0; k <= kBridgeSegments; ++k) {
+    const double u = double(k) / kBridgeSegments;
+    out->rest_centre[k] = rest_curve.At(u);
+    out->centre[k] = curve.At(u);
+    const Mat3 rotation =
+        (parent * ScaleRotation(swing, u) * ScaleRotation(twist, u)).toRotationMatrix();
+    const Vec3 velocity = curve.Derivative(u);
+    const double rest_speed = rest_curve.Derivative(u).norm(), speed = velocity.norm();
+    Mat3 scale = Mat3::Identity();
+    if (rest_speed > 0.0 && speed > 0.0) {
+      const double sigma = std::clamp(std::sqrt(rest_speed / speed), 0.5, 2.0);
+      const Vec3 t = velocity / speed;
+      scale = sigma * Mat3::Identity() + (1.0 - sigma) * t * t.transpose();
+    }
+    out->map[k] = scale * rotation;
+  }
+}
+
+Vec3 ApplyJointBridge(const BridgeSamples& bridge, double u, const Vec3& q) {
+  const double x = std::clamp(u, 0.0, 1.0) * kBridgeSegments;
+  const int k = std::min(static_cast<int>(x), kBridgeSegments - 1);
+  const double f = x - k;
+  const Vec3 rest_centre = (1.0 - f) * bridge.rest_centre[k] + f * bridge.rest_centre[k + 1];
+  const Vec3 centre = (1.0 - f) * bridge.centre[k] + f * bridge.centre[k + 1];
+  const Mat3 map = (1.0 - f) * bridge.map[k] + f * bridge.map[k + 1];
+  return centre + map * (q - rest_centre);
+}
+
+}  // namespace wirerig
