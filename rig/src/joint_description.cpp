@@ -15,9 +15,12 @@ constexpr const char* kAxisNames[3] = {"x", "y", "z"};
 
 const char* ToString(JointType type) {
   switch (type) {
-    case JointType::kHinge: return "hinge";
-    case JointType::kFixed: return "fixed";
-    case JointType::kBall: break;
+    case JointType::kHinge:
+      return "hinge";
+    case JointType::kFixed:
+      return "fixed";
+    case JointType::kBall:
+      break;
   }
   return "ball";
 }
@@ -29,10 +32,14 @@ JointDescription ReadJointDescription(const JsonObject& part) {
   j.RejectUnknownKeys({"type", "axis", "limits", "blend"});
   if (j.Has("type")) {
     const std::string type = j.String("type");
-    if (type == "ball") joint.type = JointType::kBall;
-    else if (type == "hinge") joint.type = JointType::kHinge;
-    else if (type == "fixed") joint.type = JointType::kFixed;
-    else throw FieldError(j.PathOf("type"), "must be \"ball\", \"hinge\" or \"fixed\"");
+    if (type == "ball")
+      joint.type = JointType::kBall;
+    else if (type == "hinge")
+      joint.type = JointType::kHinge;
+    else if (type == "fixed")
+      joint.type = JointType::kFixed;
+    else
+      throw FieldError(j.PathOf("type"), "must be \"ball\", \"hinge\" or \"fixed\"");
   }
   if (j.Has("axis")) joint.axis = ReadVector3(j.Required("axis"), j.PathOf("axis"));
   if (j.Has("limits")) {
@@ -60,8 +67,7 @@ nlohmann::json WriteJointDescription(const JointDescription& joint) {
   nlohmann::json out = {{"type", ToString(joint.type)}};
   if (joint.axis) out["axis"] = {joint.axis->x(), joint.axis->y(), joint.axis->z()};
   nlohmann::json limits = nlohmann::json::object();
-  for (int k = 0; k < 3; ++k)
-    limits[kAxisNames[k]] = {joint.min_degrees[k], joint.max_degrees[k]};
+  for (int k = 0; k < 3; ++k) limits[kAxisNames[k]] = {joint.min_degrees[k], joint.max_degrees[k]};
   out["limits"] = limits;
   if (joint.blend_length) out["blend"] = *joint.blend_length;
   return out;

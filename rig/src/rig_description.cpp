@@ -30,9 +30,8 @@ std::vector<std::string> ReadNames(const JsonObject& object, std::string_view ke
 }
 
 PartDescription ReadPart(const JsonObject& p, const PartDescription& defaults) {
-  p.RejectUnknownKeys(
-      {"name", "central_curve", "profile_count", "points_per_profile", "parent", "mesh_parts",
-       "joint"});
+  p.RejectUnknownKeys({"name", "central_curve", "profile_count", "points_per_profile", "parent",
+                       "mesh_parts", "joint"});
   PartDescription part = defaults;
   part.name = p.String("name");
   part.central_curve = ReadVector3Array(p.Required("central_curve"), p.PathOf("central_curve"));

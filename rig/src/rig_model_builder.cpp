@@ -90,7 +90,8 @@ Result<JointModel> MakeJoint(const PartModel& part, const PartModel& parent,
   joint.axes.col(2) = z;
   joint.radius = RootRadius(part);
   joint.blend_length = description.blend_length.value_or(
-      std::min({kBlendRadii * joint.radius, 0.4 * part.spine_length, 0.4 * parent.spine_length}));
+      std::min({kBlendRadii * joint.radius, kBlendMaxFraction * part.spine_length,
+                kBlendMaxFraction * parent.spine_length}));
   if (Status s = ValidateJoint(joint); !s)
     return Error{"joint/" + std::string(s.field) + ": " + std::string(s.reason)};
   return joint;
@@ -107,8 +108,7 @@ void BindJoints(const RigModel& model, std::uint32_t own, const Vec3& p, VertexA
     const PartModel& child = model.parts[c];
     const bool child_side = c == own;
     if (!child_side && child.parent != int(own)) continue;
-    const JointBinding b =
-        BindToJoint(child.joint, child.spine_points.front(), p, child_side);
+    const JointBinding b = BindToJoint(child.joint, child.spine_points.front(), p, child_side);
     if (!(b.weight > 0.0)) continue;
     const JointInfluence influence{int(c), sample, b.u, b.weight};
     if (b.weight > best[0].weight) {

@@ -28,6 +28,9 @@ struct Hermite {
     return (2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + t) * m0 + (-2 * t3 + 3 * t2) * p1 +
            (t3 - t2) * m1;
   }
+  Vec3 SecondDerivative(double t) const {
+    return (12 * t - 6) * p0 + (6 * t - 4) * m0 + (6 - 12 * t) * p1 + (6 * t - 2) * m1;
+  }
   Vec3 Derivative(double t) const {
     const double t2 = t * t;
     return (6 * t2 - 6 * t) * p0 + (3 * t2 - 4 * t + 1) * m0 + (-6 * t2 + 6 * t) * p1 +
@@ -36,9 +39,36 @@ struct Hermite {
 };
 
 Hermite CurveOf(const BridgeEnds& ends) {
-  const double handle = ArcHandle((ends.end - ends.start).norm(), ends.start_tangent,
-                                  ends.end_tangent);
+  const double handle =
+      ArcHandle((ends.end - ends.start).norm(), ends.start_tangent, ends.end_tangent);
   return {ends.start, handle * ends.start_tangent, ends.end, handle * ends.end_tangent};
+}
+
+// The in-plane scale of the cross-section where the bent curve has velocity v and acceleration
+// a, growing its area by `area`. Evenly where the bend allows; but the section must not reach
+// the bend's centre of curvature (sections would cross there), so towards it the scale is held
+// to what fits within kFit of the radius of curvature beyond the limb's radius, and the rest of
+// the growth goes across the bend, along the binormal (flesh squeezed on the inside of an elbow
+// bulges sideways).
+Mat3 CrossSectionScale(const Vec3& v, const Vec3& a, double area, double limb_radius) {
+  constexpr double kFit = 0.9;
+  const double speed = v.norm();
+  if (!(speed > 0.0)) return Mat3::Identity();
+  const Vec3 t = v / speed;
+  const Vec3 bend = a - a.dot(t) * t;  // |bend| = curvature * speed^2
+  const double curvature = bend.norm() / (speed * speed);
+  double towards = std::sqrt(area);
+  if (curvature * limb_radius > 1e-9)
+    towards = std::min(towards, std::max(1.0, kFit / (curvature * limb_radius)));
+  const double across = area / towards;
+  Mat3 scale = t * t.transpose();
+  if (curvature * limb_radius > 1e-9) {
+    const Vec3 n = bend.normalized(), b = t.cross(n);
+    scale += towards * n * n.transpose() + across * b * b.transpose();
+  } else {
+    scale += towards * (Mat3::Identity() - t * t.transpose());
+  }
+  return scale;
 }
 
 }  // namespace
@@ -56,10 +86,8 @@ JointBinding BindToJoint(const JointModel& joint, const Vec3& root, const Vec3& 
   if (child_side ? (s <= -2.0 * h || s >= h) : (s <= -h || s >= 2.0 * h)) return out;
   const double rho = (d - s * axis).norm();
   out.u = std::clamp((s + h) / (2.0 * h), 0.0, 1.0);
-  double weight =
+  const double weight =
       1.0 - SmoothStep(kBridgeInner * joint.radius, kBridgeOuter * joint.radius, rho);
-  weight *= child_side ? SmoothStep(0.0, kBridgeEndFade, 1.0 - out.u)
-                       : SmoothStep(0.0, kBridgeEndFade, out.u);
   out.weight = weight;
   return out;
 }
@@ -72,21 +100,29 @@ void SampleJointBridge(const JointModel& joint, const BridgeEnds& rest, const Br
   const Quat relative = (parent.conjugate() * Quat(child_rotation)).normalized();
   Quat swing, twist;
   SwingTwist(relative, joint.axes.col(2), &swing, &twist);
+  // Area growth 1 + c bump(u), bump = 4u(1 - u): 1 at both ends (the sections meet the rigid
+  // sides unscaled) and c chosen so the bridge keeps its rest volume, integral of area x speed
+  // (Simpson's rule over the samples; the rest curve is straight, of constant speed).
+  double bent = 0.0, bumped = 0.0, rest_length = 0.0;
+  for (int k = 0; k <= kBridgeSegments; ++k) {
+    const double u = double(k) / kBridgeSegments;
+    const double simpson = (k == 0 || k == kBridgeSegments) ? 1.0 : (k % 2 ? 4.0 : 2.0);
+    const double speed = curve.Derivative(u).norm();
+    bent += simpson * speed;
+    bumped += simpson * 4.0 * u * (1.0 - u) * speed;
+    rest_length += simpson * rest_curve.Derivative(u).norm();
+  }
+  const double growth = bumped > 0.0 ? (rest_length - bent) / bumped : 0.0;
   for (int k = 0; k <= kBridgeSegments; ++k) {
     const double u = double(k) / kBridgeSegments;
     out->rest_centre[k] = rest_curve.At(u);
     out->centre[k] = curve.At(u);
     const Mat3 rotation =
         (parent * ScaleRotation(swing, u) * ScaleRotation(twist, u)).toRotationMatrix();
-    const Vec3 velocity = curve.Derivative(u);
-    const double rest_speed = rest_curve.Derivative(u).norm(), speed = velocity.norm();
-    Mat3 scale = Mat3::Identity();
-    if (rest_speed > 0.0 && speed > 0.0) {
-      const double sigma = std::clamp(std::sqrt(rest_speed / speed), 0.5, 2.0);
-      const Vec3 t = velocity / speed;
-      scale = sigma * Mat3::Identity() + (1.0 - sigma) * t * t.transpose();
-    }
-    out->map[k] = scale * rotation;
+    const double area = std::clamp(1.0 + growth * 4.0 * u * (1.0 - u), 0.25, 4.0);
+    out->map[k] =
+        CrossSectionScale(curve.Derivative(u), curve.SecondDerivative(u), area, joint.radius) *
+        rotation;
   }
 }
 

@@ -148,8 +148,8 @@ void FollowJointBridges(const RigModel& model, RigWorkspace& w, std::span<Vec3> 
         SpineTurn(parent, w, child.parent, child.attachment, &unused, &unused, nullptr, nullptr);
     BridgeEnds rest, posed;
     const double end_v = std::min(h / std::max(child.spine_length, 1e-12), 1.0);
-    const Mat3 child_turn = SpineTurn(child, w, c, end_v, &rest.end, &posed.end,
-                                      &rest.end_tangent, &posed.end_tangent);
+    const Mat3 child_turn =
+        SpineTurn(child, w, c, end_v, &rest.end, &posed.end, &rest.end_tangent, &posed.end_tangent);
     rest.start = child.spine_points.front() - h * axis;
     rest.start_tangent = axis;
     posed.start_tangent = parent_turn * axis;

@@ -545,7 +545,8 @@ TEST(RigEvaluation, FlatVertexPassAgreesWithApplyPairBindingAndTriangleOrderNorm
                         FrameAxes(w.spine_frames[a.part][j.sample]).transpose();
       const Vec3 rest =
           part.spine_points[j.sample] + undo * (expected - w.spine_points[a.part][j.sample]);
-      bridged += j.weight * (ApplyJointBridge(w.bridges[std::size_t(j.joint)], j.u, rest) - expected);
+      bridged +=
+          j.weight * (ApplyJointBridge(w.bridges[std::size_t(j.joint)], j.u, rest) - expected);
       ++on_bridges;
     }
     expected += bridged;

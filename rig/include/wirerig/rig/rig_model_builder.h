@@ -4,7 +4,8 @@
 // every welded vertex (between the two profiles around its projection on the spine, or
 // rigidly to the end profile for the end caps). Each joint gets its rest frame, type and limits
 // from the rig's joint description and a skin bridge (joint_bridge.h) of half-length
-// min(kBlendRadii x the limb's radius at the joint, 0.4 x either part's spine length) unless
+// min(kBlendRadii x the limb's radius at the joint, kBlendMaxFraction x either part's spine
+// length) unless
 // the description sets one; vertices of the two parts near it are bound to it.
 #pragma once
 
@@ -16,6 +17,7 @@
 namespace wirerig {
 
 inline constexpr double kBlendRadii = 2.5;
+inline constexpr double kBlendMaxFraction = 0.45;
 
 struct RigModelOptions {
   int min_spine_samples = 16;  // samples per spine: max(this, 4 x profiles)

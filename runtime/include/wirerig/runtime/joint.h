@@ -13,8 +13,10 @@
 // through the two clamped ends; the tangent handles are those of the circular arc that turns
 // between the two end tangents, so a rigid bend gives (to within 0.03%) a circle. The skin's
 // cross-sections ride rigidly on the bridge (their perimeter is kept), turn with a rotation that
-// spreads the joint's swing and twist evenly along it (no candy-wrapper), and scale in their
-// plane by sqrt(rest length / bent length) so the volume between them is kept (paper section 7).
+// spreads the joint's swing and twist evenly along it (no candy-wrapper), and grow in area by
+// rest length / bent length so the volume between them is kept (paper section 7): evenly where
+// the bend leaves room, across the bend where growing towards its inside would make the
+// sections cross.
 #pragma once
 
 #include <cstdint>

@@ -1,0 +1,218 @@
+// Skin across joints on a procedural limb (a capsule rigged as an upper and a lower segment):
+// every bend of the joint sweep and a 90-degree twist keep the skin whole (no folded edge, no
+// edge stretched beyond 2x), the cross-sections' perimeters (no candy-wrapper) and the limb's
+// volume; the joint's angles, limits, swing-twist split and the bridge's shape against their
+// definitions.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "wirerig/rig/joint_sweep.h"
+#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/rig/rig_builder.h"
+#include "wirerig/rig/rig_model_builder.h"
+#include "wirerig/rig/skin_quality.h"
+#include "wirerig/runtime/joint_bridge.h"
+#include "wirerig/runtime/rig_evaluation.h"
+
+namespace wirerig {
+namespace {
+
+constexpr double kRadius = 0.08;
+
+struct Limb {
+  Mesh mesh;
+  RigModel model;
+};
+
+// A capsule of radius 8 cm, 1 m along +Y, as "upper" (root, from the top down to the middle)
+// and "lower" (its child, from the middle down).
+const Limb& MakeLimb() {
+  static const Limb limb = [] {
+    Limb out;
+    out.mesh = MakeCapsule(kRadius, 1.0, 48, 80, 8);
+    RigDescription description;
+    PartDescription upper, lower;
+    upper.name = "upper";
+    upper.central_curve = {Vec3(0, 0.95, 0), Vec3(0, 0.5, 0)};
+    upper.profile_count = 10;
+    lower = upper;
+    lower.name = "lower";
+    lower.parent = "upper";
+    lower.central_curve = {Vec3(0, 0.5, 0), Vec3(0, 0.05, 0)};
+    lower.joint.axis = Vec3::UnitX();
+    description.parts = {upper, lower};
+    Result<BuiltRig> rig = BuildRig(out.mesh, description, "capsule");
+    EXPECT_TRUE(rig.ok()) << rig.error();
+    RigModelOptions options;
+    options.spine_kind = SpineKind::kRigid;
+    Result<BuiltRigModel> model = BuildRigModel(out.mesh, rig.value().rig, options);
+    EXPECT_TRUE(model.ok()) << model.error();
+    out.model = std::move(model).value().model;
+    return out;
+  }();
+  return limb;
+}
+
+std::vector<Vec3> Pose(const Limb& limb, const Vec3& degrees) {
+  std::vector<PartPose> poses(limb.model.parts.size());
+  poses[1].rotation = JointRotation(limb.model.parts[1].joint, degrees);
+  RigWorkspace workspace = MakeRigWorkspace(limb.model);
+  std::vector<Vec3> positions(limb.model.vertices.size());
+  EvaluateRigJob job;
+  job.model = &limb.model;
+  job.poses = poses;
+  job.workspace = &workspace;
+  job.positions = positions;
+  EXPECT_TRUE(job.Run().ok());
+  return positions;
+}
+
+TEST(JointSkin, LimbBuildsABridgeOfTheLimbsSize) {
+  const Limb& limb = MakeLimb();
+  const JointModel& joint = limb.model.parts[1].joint;
+  EXPECT_NEAR(joint.radius, kRadius, 0.01 * kRadius);
+  const double shorter =
+      std::min(limb.model.parts[0].spine_length, limb.model.parts[1].spine_length);
+  EXPECT_NEAR(joint.blend_length, std::min(kBlendRadii * joint.radius, kBlendMaxFraction * shorter),
+              1e-12);
+  EXPECT_NEAR(joint.axes.col(2).dot(-Vec3::UnitY()), 1.0, 1e-6);  // along the lower bone
+  EXPECT_NEAR(joint.axes.col(0).dot(Vec3::UnitX()), 1.0, 1e-9);
+}
+
+TEST(JointSkin, EveryBendAndTwistKeepsTheSkinWholeThePerimetersAndTheVolume) {
+  const Limb& limb = MakeLimb();
+  const std::span<const Vec3> rest = limb.mesh.welded_positions;
+  const SkinQualityReference reference = MakeSkinQualityReference(rest, limb.model.triangles);
+  const JointModel& joint = limb.model.parts[1].joint;
+  const Vec3 centre = limb.model.parts[1].spine_points.front();
+  const Vec3 axis = joint.axes.col(2);
+  const double h = joint.blend_length;
+  std::vector<CrossSection> sections;
+  for (int k = -4; k <= 4; ++k)
+    sections.push_back(
+        MakeCrossSection(rest, reference, centre + (k * h / 4.5) * axis, axis, 3 * kRadius));
+  std::vector<std::uint8_t> limb_side(rest.size());
+  for (std::size_t v = 0; v < rest.size(); ++v) limb_side[v] = (rest[v] - centre).dot(axis) > -h;
+  // Closed by a cone from the middle of the region's border (the parent's side, unmoved): a
+  // nearly flat cap the bent limb never passes through.
+  const Vec3 apex = centre - h * axis;
+  const double rest_volume = RegionVolume(rest, limb.model.triangles, limb_side, apex);
+  ASSERT_GT(rest_volume, 0.0);
+
+  const std::vector<JointSweepPose> sweep = JointSweep(joint);
+  ASSERT_EQ(sweep.size(), 18u);  // a ball: 2 bend axes x 2 directions x 4 angles, 2 twists
+  for (const JointSweepPose& pose : sweep) {
+    SCOPED_TRACE(pose.label);
+    const std::vector<Vec3> posed = Pose(limb, pose.degrees);
+    const SkinQuality quality = MeasureSkin(reference, posed);
+    EXPECT_EQ(quality.folded_edges, 0u);
+    EXPECT_LT(quality.worst_stretch, 2.0);
+    double smallest = 1e9;
+    for (const CrossSection& section : sections)
+      smallest = std::min(
+          smallest, CrossSectionPerimeter(section, posed) / CrossSectionPerimeter(section, rest));
+    EXPECT_GT(smallest, 0.9);
+    const double volume = RegionVolume(posed, limb.model.triangles, limb_side, apex);
+    EXPECT_NEAR(volume / rest_volume, 1.0, 0.03);
+    std::printf("%-9s folds %zu stretch %.3f perimeter %.3f volume %.4f\n", pose.label.c_str(),
+                quality.folded_edges, quality.worst_stretch, smallest, volume / rest_volume);
+  }
+}
+
+TEST(JointSkin, HingeLimitsAndTypeShapeTheRotation) {
+  JointModel hinge;
+  hinge.type = JointType::kHinge;
+  hinge.min_degrees = Vec3(0, -180, -180);
+  hinge.max_degrees = Vec3(150, 180, 180);
+  // Only the X angle, clamped: 200 degrees is 150 about the hinge axis.
+  const Quat q = JointRotation(hinge, Vec3(200, 40, 70));
+  const Eigen::AngleAxisd aa(q);
+  EXPECT_NEAR(aa.angle(), 150.0 * std::numbers::pi / 180.0, 1e-12);
+  EXPECT_NEAR(std::abs(aa.axis().x()), 1.0, 1e-12);
+  EXPECT_EQ(ClampJointAngles(hinge, Vec3(-20, 5, 5)), Vec3(0, 0, 0));
+  JointModel fixed;
+  fixed.type = JointType::kFixed;
+  EXPECT_TRUE(JointRotation(fixed, Vec3(10, 20, 30)).isApprox(Quat::Identity(), 1e-15));
+}
+
+TEST(JointSkin, AnglesTurnAboutTheJointsOwnAxesInOrder) {
+  JointModel joint;  // axes: X = world Z, Y = world X, Z = world Y
+  joint.axes << 0, 1, 0, 0, 0, 1, 1, 0, 0;
+  const Quat q = JointRotation(joint, Vec3(90, 0, 0));
+  EXPECT_TRUE((q * Vec3::UnitX()).isApprox(Vec3::UnitY(), 1e-12));  // 90 degrees about world Z
+  const Quat xy = JointRotation(joint, Vec3(30, 40, 0));
+  const Quat expected = Quat(Eigen::AngleAxisd(30 * std::numbers::pi / 180, Vec3::UnitZ())) *
+                        Quat(Eigen::AngleAxisd(40 * std::numbers::pi / 180, Vec3::UnitX()));
+  EXPECT_TRUE(xy.isApprox(expected, 1e-12) || xy.coeffs().isApprox(-expected.coeffs(), 1e-12));
+}
+
+TEST(JointSkin, SwingTwistRecomposesAndScalesByAngle) {
+  const Vec3 axis = Vec3(0.2, -1.0, 0.3).normalized();
+  const Quat r = Quat(Eigen::AngleAxisd(1.1, Vec3(1, 0.4, -0.2).normalized()));
+  Quat swing, twist;
+  SwingTwist(r, axis, &swing, &twist);
+  EXPECT_TRUE((swing * twist).isApprox(r, 1e-12));
+  EXPECT_NEAR(twist.vec().normalized().cross(axis).norm(), 0.0, 1e-12);  // about the axis
+  EXPECT_NEAR(swing.vec().dot(axis), 0.0, 1e-12);                        // across it
+  const Quat half = ScaleRotation(r, 0.5);
+  EXPECT_TRUE((half * half).isApprox(r, 1e-12));
+  EXPECT_TRUE(ScaleRotation(r, 0.0).isApprox(Quat::Identity(), 1e-15));
+}
+
+TEST(JointSkin, ValidateJointNamesTheField) {
+  JointModel joint;
+  joint.min_degrees.x() = 10;
+  joint.max_degrees.x() = 5;
+  EXPECT_EQ(ValidateJoint(joint).field, "limits");
+  joint = {};
+  joint.axes.col(0) *= 2.0;
+  EXPECT_EQ(ValidateJoint(joint).field, "axes");
+  joint = {};
+  joint.blend_length = -1;
+  EXPECT_EQ(ValidateJoint(joint).field, "blend_length");
+  EXPECT_TRUE(ValidateJoint(JointModel{}).ok());
+}
+
+// The bridge at rest maps every point to itself; bent rigidly by theta its centre line is the
+// circular arc tangent to both bones (radius h / tan(theta / 2) about the corner's bisector) to
+// within 0.2% of that radius for turns up to 120 degrees.
+TEST(JointSkin, BridgeIsTheIdentityAtRestAndACircularArcWhenBent) {
+  JointModel joint;
+  joint.blend_length = 0.2;
+  joint.radius = 0.05;
+  const Vec3 root(0, 1, 0), axis = -Vec3::UnitY();
+  joint.axes.col(0) = Vec3::UnitX();
+  joint.axes.col(2) = axis;
+  joint.axes.col(1) = axis.cross(Vec3::UnitX());
+  BridgeEnds rest{root - 0.2 * axis, axis, root + 0.2 * axis, axis};
+  BridgeSamples samples;
+  SampleJointBridge(joint, rest, rest, Mat3::Identity(), Mat3::Identity(), &samples);
+  for (double u : {0.0, 0.13, 0.5, 0.77, 1.0}) {
+    const Vec3 q = root + (2 * u - 1) * 0.2 * axis + Vec3(0.03, 0, -0.02);
+    EXPECT_LT((ApplyJointBridge(samples, u, q) - q).norm(), 1e-15);
+  }
+  for (double degrees : {30.0, 60.0, 90.0, 120.0}) {
+    SCOPED_TRACE(degrees);
+    const double theta = degrees * std::numbers::pi / 180.0;
+    const Mat3 turn = Eigen::AngleAxisd(theta, Vec3::UnitX()).toRotationMatrix();
+    BridgeEnds posed{root - 0.2 * axis, axis, root + 0.2 * (turn * axis), turn * axis};
+    SampleJointBridge(joint, rest, posed, Mat3::Identity(), turn, &samples);
+    // The arc's centre: from the start, R along the normal towards the turn.
+    const double radius = 0.2 / std::tan(0.5 * theta);
+    const Vec3 inward = (turn * axis - std::cos(theta) * axis).normalized();
+    const Vec3 arc_centre = posed.start + radius * inward;
+    for (const Vec3& c : samples.centre)
+      EXPECT_NEAR((c - arc_centre).norm(), radius, 2e-3 * radius);
+    // The cross-section at the middle turned by half the bend.
+    const Mat3 middle = samples.map[kBridgeSegments / 2];
+    const Vec3 expected_tangent =
+        Eigen::AngleAxisd(0.5 * theta, Vec3::UnitX()).toRotationMatrix() * axis;
+    EXPECT_NEAR((middle * axis).normalized().dot(expected_tangent), 1.0, 1e-9);
+  }
+}
+
+}  // namespace
+}  // namespace wirerig
