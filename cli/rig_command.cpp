@@ -6,10 +6,12 @@
 #include <CLI/CLI.hpp>
 
 #include "wirerig/rig/automatic_description.h"
+#include "wirerig/rig/joint_skin_report.h"
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/mesh_statistics.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_file.h"
+#include "wirerig/rig/rig_model_builder.h"
 
 namespace wirerig::cli {
 namespace {
@@ -60,6 +62,32 @@ void PrintRigSummary(std::ostream& out, const BuiltRig& built, const std::string
   for (const std::string& w : built.report.warnings) out << "  " << w << "\n";
 }
 
+// Per joint, the worst case over its sweep for each method, and the worst over all joints.
+void PrintJointReport(std::ostream& out, const std::vector<JointSkinRow>& rows) {
+  out << "joint skin (worst over each joint's sweep: folded edges / worst stretch / limb volume "
+         "ratio / smallest perimeter ratio):\n";
+  out << Format("  %-14s", "joint");
+  for (int m = 0; m < kSkinMethods; ++m) out << Format(" | %-27s", SkinMethodName(m));
+  out << "\n";
+  std::array<SkinMeasures, kSkinMethods> all;
+  auto print = [&](const std::string& name, const std::array<SkinMeasures, kSkinMethods>& w) {
+    out << Format("  %-14s", name.c_str());
+    for (const SkinMeasures& m : w)
+      out << Format(" | %4zu %6.2f %6.3f %6.3f   ", m.folded_edges, m.worst_stretch, m.volume_ratio,
+                    m.smallest_perimeter);
+    out << "\n";
+  };
+  for (std::size_t i = 0; i < rows.size();) {
+    std::array<SkinMeasures, kSkinMethods> worst;
+    const std::string& joint = rows[i].joint;
+    for (; i < rows.size() && rows[i].joint == joint; ++i)
+      for (int m = 0; m < kSkinMethods; ++m) worst[m].Worst(rows[i].methods[m]);
+    for (int m = 0; m < kSkinMethods; ++m) all[m].Worst(worst[m]);
+    print(joint, worst);
+  }
+  print("all joints", all);
+}
+
 }  // namespace
 
 CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options) {
@@ -76,6 +104,9 @@ CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options) {
                   "Skin thickness for wire sections (m)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  rig->add_flag("--joint-report", options.joint_report,
+                "Bend every joint through 30-120 degrees and a 90-degree twist; print folded "
+                "edges, stretch, limb volume and cross-section perimeters per skinning method");
   return rig;
 }
 
@@ -116,6 +147,13 @@ int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostr
   Result<BuiltRig> built = BuildRig(mesh, description, options.mesh, build_options);
   if (!built) return fail(options.mesh + ": " + built.error());
   PrintRigSummary(out, built.value(), source);
+  if (options.joint_report) {
+    RigModelOptions model_options;
+    model_options.spine_kind = SpineKind::kRigid;
+    Result<BuiltRigModel> model = BuildRigModel(mesh, built.value().rig, model_options);
+    if (!model) return fail(options.mesh + ": " + model.error());
+    PrintJointReport(out, MeasureJointSweep(model.value().model, mesh.welded_positions));
+  }
   const auto saved = SaveRig(built.value().rig, options.output);
   if (!saved) return fail(saved.error());
   out << "written: " << options.output << "\n";

@@ -1,6 +1,8 @@
 // `wirerig rig MESH [--description DESC.json] -o RIG.json`: the whole rig-building pipeline.
 // Central curves come from the description when given, else from the asset's skeleton, else
 // from the mesh's curve skeleton. Prints a diagnostic summary; writes the rig atomically.
+// --joint-report: every joint bent through its sweep (joint_skin_report.h), the skin measured
+// for the wire rig and for linear blend, dual-quaternion and centre-of-rotation skinning.
 #pragma once
 
 #include <iosfwd>
@@ -17,6 +19,7 @@ struct RigCommandOptions {
   std::string up_axis;      // optional override: x, y or z
   double unit_scale = 0.0;  // optional override (metres per unit), 0 = unset
   double skin_thickness = 0.005;
+  bool joint_report = false;  // sweep every joint; print the skin measures per method
 };
 
 CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options);

@@ -106,11 +106,18 @@ void BindJoints(const RigModel& model, std::uint32_t own, const Vec3& p, VertexA
   std::array<JointInfluence, 2> best{};
   for (std::size_t c = 1; c < model.parts.size(); ++c) {
     const PartModel& child = model.parts[c];
-    const bool child_side = c == own;
-    if (!child_side && child.parent != int(own)) continue;
-    const JointBinding b = BindToJoint(child.joint, child.spine_points.front(), p, child_side);
+    JointSide side;
+    if (c == own)
+      side = JointSide::kChild;
+    else if (child.parent == int(own))
+      side = JointSide::kParent;
+    else
+      continue;  // another part: its own motion
+    // Skin a side claimed up to one bridge half-length across the joint follows the other side.
+    const double reach = child.joint.blend_length;
+    const JointBinding b = BindToJoint(child.joint, child.spine_points.front(), p, side, reach);
     if (!(b.weight > 0.0)) continue;
-    const JointInfluence influence{int(c), sample, b.u, b.weight};
+    const JointInfluence influence{int(c), sample, b.u, b.weight, b.bridge};
     if (b.weight > best[0].weight) {
       best[1] = best[0];
       best[0] = influence;

@@ -73,28 +73,35 @@ Mat3 CrossSectionScale(const Vec3& v, const Vec3& a, double area, double limb_ra
 
 }  // namespace
 
-JointBinding BindToJoint(const JointModel& joint, const Vec3& root, const Vec3& p,
-                         bool child_side) {
+JointBinding BindToJoint(const JointModel& joint, const Vec3& root, const Vec3& p, JointSide side,
+                         double reach) {
   JointBinding out;
   const double h = joint.blend_length;
   if (!(h > 0.0) || !(joint.radius > 0.0)) return out;
   const Vec3 axis = joint.axes.col(2);
   const Vec3 d = p - root;
   const double s = d.dot(axis);
+  const bool child_side = side == JointSide::kChild || side == JointSide::kDescendant;
   // A point of one side lying beyond the bridge's far end (a vertex its part claimed across
-  // the joint) follows the other side: the bridge's end there.
-  if (child_side ? (s <= -2.0 * h || s >= h) : (s <= -h || s >= 2.0 * h)) return out;
-  const double rho = (d - s * axis).norm();
+  // the joint) follows the other side near the bone line: the bridge's end there.
+  if (child_side ? (s <= -h - reach || s >= h) : (s <= -h || s >= h + reach)) return out;
   out.u = std::clamp((s + h) / (2.0 * h), 0.0, 1.0);
-  const double weight =
-      1.0 - SmoothStep(kBridgeInner * joint.radius, kBridgeOuter * joint.radius, rho);
-  out.weight = weight;
+  const double rho = (d - s * axis).norm();
+  out.bridge = 1.0 - SmoothStep(kBridgeInner * joint.radius, kBridgeOuter * joint.radius, rho);
+  out.weight = 1.0;
+  // A part beyond the two the joint connects meets the bridge's end with its own motion.
+  if (side == JointSide::kAncestor) out.weight *= SmoothStep(0.0, kBridgeEndFade, out.u);
+  if (side == JointSide::kDescendant) out.weight *= SmoothStep(0.0, kBridgeEndFade, 1.0 - out.u);
   return out;
 }
 
 void SampleJointBridge(const JointModel& joint, const BridgeEnds& rest, const BridgeEnds& posed,
                        const Mat3& parent_rotation, const Mat3& child_rotation,
                        BridgeSamples* out) {
+  out->parent_turn = parent_rotation;
+  out->parent_offset = posed.start - parent_rotation * rest.start;
+  out->child_turn = child_rotation;
+  out->child_offset = posed.end - child_rotation * rest.end;
   const Hermite rest_curve = CurveOf(rest), curve = CurveOf(posed);
   const Quat parent(parent_rotation);
   const Quat relative = (parent.conjugate() * Quat(child_rotation)).normalized();
@@ -126,14 +133,19 @@ void SampleJointBridge(const JointModel& joint, const BridgeEnds& rest, const Br
   }
 }
 
-Vec3 ApplyJointBridge(const BridgeSamples& bridge, double u, const Vec3& q) {
+Vec3 ApplyJointBridge(const BridgeSamples& bridge, double u, double fraction, const Vec3& q) {
   const double x = std::clamp(u, 0.0, 1.0) * kBridgeSegments;
   const int k = std::min(static_cast<int>(x), kBridgeSegments - 1);
   const double f = x - k;
   const Vec3 rest_centre = (1.0 - f) * bridge.rest_centre[k] + f * bridge.rest_centre[k + 1];
   const Vec3 centre = (1.0 - f) * bridge.centre[k] + f * bridge.centre[k + 1];
   const Mat3 map = (1.0 - f) * bridge.map[k] + f * bridge.map[k + 1];
-  return centre + map * (q - rest_centre);
+  const Vec3 swept = centre + map * (q - rest_centre);
+  if (fraction >= 1.0) return swept;
+  const double child = SmoothStep(0.0, 1.0, u);
+  const Vec3 blended = (1.0 - child) * (bridge.parent_turn * q + bridge.parent_offset) +
+                       child * (bridge.child_turn * q + bridge.child_offset);
+  return fraction * swept + (1.0 - fraction) * blended;
 }
 
 }  // namespace wirerig

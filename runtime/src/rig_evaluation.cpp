@@ -171,7 +171,7 @@ void FollowJointBridges(const RigModel& model, RigWorkspace& w, std::span<Vec3> 
       const RigEvaluationLayout::JointVertex& j = layout.joint_vertices[e];
       const Vec3 rest = model.parts[j.part].spine_points[j.sample] +
                         w.spine_undo[j.part][j.sample] * (own - w.spine_points[j.part][j.sample]);
-      sum += j.weight * (ApplyJointBridge(w.bridges[j.joint], j.u, rest) - own);
+      sum += j.weight * (ApplyJointBridge(w.bridges[j.joint], j.u, j.bridge, rest) - own);
     }
     positions[vertex] = own + sum;
   }
@@ -258,9 +258,9 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
   for (std::size_t v = 0; v < model.vertices.size(); ++v)
     for (const JointInfluence& j : model.vertices[v].joints)
       if (j.joint >= 0)
-        layout.joint_vertices.push_back({static_cast<std::uint32_t>(v),
-                                         static_cast<std::uint32_t>(j.joint),
-                                         model.vertices[v].part, j.sample, j.u, j.weight});
+        layout.joint_vertices.push_back(
+            {static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(j.joint),
+             model.vertices[v].part, j.sample, j.u, j.weight, j.bridge});
   for (std::size_t i = 0; i < model.parts.size(); ++i) {
     const PartModel& part = model.parts[i];
     if (part.parent >= 0 && part.joint.blend_length > 0.0)

@@ -546,7 +546,8 @@ TEST(RigEvaluation, FlatVertexPassAgreesWithApplyPairBindingAndTriangleOrderNorm
       const Vec3 rest =
           part.spine_points[j.sample] + undo * (expected - w.spine_points[a.part][j.sample]);
       bridged +=
-          j.weight * (ApplyJointBridge(w.bridges[std::size_t(j.joint)], j.u, rest) - expected);
+          j.weight *
+          (ApplyJointBridge(w.bridges[std::size_t(j.joint)], j.u, j.bridge, rest) - expected);
       ++on_bridges;
     }
     expected += bridged;

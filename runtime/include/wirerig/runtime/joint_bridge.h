@@ -10,21 +10,30 @@ namespace wirerig {
 
 // Where a rest skin point lies on a joint's bridge. u in [0, 1] runs from the parent's end
 // (blend_length before the child's root point, along the child's rest bone axis) to the
-// child's end; weight in [0, 1] is how fully the point follows the bridge rather than its own
-// part: 1 within joint.radius * kBridgeInner of the bone line, fading smoothly to 0 at
-// joint.radius * kBridgeOuter. At its ends the bridge moves exactly as the side it meets, so
-// points there join their own part's skin continuously.
-// A point of one side up to one more blend_length beyond the bridge's far end (a vertex its part
-// claimed across the joint) binds to that end (u = 0 or 1): it follows the other side.
+// child's end. weight in [0, 1] is how fully the joint, rather than the point's own part, moves
+// it: 1 for points of the parent or child, fading in over kBridgeEndFade of u from the far end
+// for points of the parent's ancestors or the child's descendants (parts claiming skin across
+// the joint), so they meet their own part's skin where the bridge meets their side. bridge in
+// [0, 1] is how much of that follows the swept cross-sections rather than the two sides'
+// rigid motions blended by smoothstep(u): 1 within joint.radius * kBridgeInner of the bone
+// line, fading smoothly to 0 at joint.radius * kBridgeOuter (skin far from the limb, like a
+// thumb by the wrist, is no cross-section of it). At its ends the bridge moves exactly as the
+// side it meets, so points there join their own part's skin continuously. A point of one side
+// up to `reach` beyond the bridge's far end (a vertex its part claimed across the joint) binds
+// to that end (u = 0 or 1): it follows the other side.
+enum class JointSide : int { kParent, kAncestor, kChild, kDescendant };
 struct JointBinding {
   double u = 0.0;
   double weight = 0.0;  // 0: not on the bridge
+  double bridge = 0.0;
 };
 inline constexpr double kBridgeInner = 1.25;
 inline constexpr double kBridgeOuter = 2.0;
+inline constexpr double kBridgeEndFade = 0.3;
 
-// `root` is the child's rest root point; `child_side` says which part owns the point.
-JointBinding BindToJoint(const JointModel& joint, const Vec3& root, const Vec3& p, bool child_side);
+// `root` is the child's rest root point; `side` says how the point's own part relates to it.
+JointBinding BindToJoint(const JointModel& joint, const Vec3& root, const Vec3& p, JointSide side,
+                         double reach);
 
 // The bridge's two clamped ends for one configuration (rest or posed), world axes.
 struct BridgeEnds {
@@ -36,8 +45,11 @@ struct BridgeEnds {
 
 // The bridge sampled at u_k = k / kBridgeSegments: each sample maps a rest point q at
 // bridge coordinate u_k to q' = centre + map * (q - rest_centre).
-inline constexpr int kBridgeSegments = 16;
+inline constexpr int kBridgeSegments = 32;
 struct BridgeSamples {
+  // The two sides' rigid motions: x -> turn * x + offset.
+  Mat3 parent_turn = Mat3::Identity(), child_turn = Mat3::Identity();
+  Vec3 parent_offset = Vec3::Zero(), child_offset = Vec3::Zero();
   std::array<Vec3, kBridgeSegments + 1> rest_centre;
   std::array<Vec3, kBridgeSegments + 1> centre;
   std::array<Mat3, kBridgeSegments + 1> map;
@@ -53,7 +65,8 @@ struct BridgeSamples {
 void SampleJointBridge(const JointModel& joint, const BridgeEnds& rest, const BridgeEnds& posed,
                        const Mat3& parent_rotation, const Mat3& child_rotation, BridgeSamples* out);
 
-// The bridge's image of the rest-space point q at coordinate u (clamped to [0, 1]).
-Vec3 ApplyJointBridge(const BridgeSamples& bridge, double u, const Vec3& q);
+// The image of the rest-space point q at coordinate u (clamped to [0, 1]): `fraction` of the
+// swept cross-section's motion, the rest the two sides' motions blended by smoothstep(u).
+Vec3 ApplyJointBridge(const BridgeSamples& bridge, double u, double fraction, const Vec3& q);
 
 }  // namespace wirerig

@@ -110,9 +110,9 @@ struct RigEvaluationLayout {
     std::uint32_t joint = 0;  // the joint's child part
     std::uint32_t part = 0;   // the vertex's own part
     std::uint32_t sample = 0;
-    double u = 0.0, weight = 0.0;
+    double u = 0.0, weight = 0.0, bridge = 0.0;
   };
-  std::vector<JointVertex> joint_vertices;  // in vertex order
+  std::vector<JointVertex> joint_vertices;   // in vertex order
   std::vector<std::uint32_t> bridged_parts;  // parts whose joint has a skin bridge
   // Normals: the vertices in the order of their first triangle (so the triangle normals are
   // read almost in order), and for the i-th of them its triangles in increasing order,

@@ -52,14 +52,15 @@ struct JointInfluence {
   std::uint32_t sample = 0;  // the own part's spine sample nearest the vertex at rest
   double u = 0.0;            // bridge coordinate
   double weight = 0.0;       // in (0, 1]; a vertex's weights sum to at most 1
+  double bridge = 0.0;       // JointBinding::bridge
 };
 
 struct VertexAttachment {
   std::uint32_t part = 0;
   std::uint32_t profile = 0;  // between profiles: the pair (profile, profile + 1); cap: the end
   bool cap = false;
-  PairBinding pair;               // between profiles
-  Vec3 cap_local = Vec3::Zero();  // cap: rest position in the end profile's spine frame
+  PairBinding pair;                      // between profiles
+  Vec3 cap_local = Vec3::Zero();         // cap: rest position in the end profile's spine frame
   std::array<JointInfluence, 2> joints;  // the (at most two) bridges the vertex lies on
 };
 

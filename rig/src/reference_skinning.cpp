@@ -1,0 +1,243 @@
+#include "wirerig/rig/reference_skinning.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <map>
+
+#include "wirerig/runtime/spine_interpolation.h"
+
+namespace wirerig {
+namespace {
+
+constexpr std::size_t kMaxBones = 256;
+constexpr double kSimilaritySigma = 0.1;
+
+double SmoothStep(double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+// Le and Hodgins 2016, Eq. 4: how alike two weight vectors are (dense over the bones).
+double Similarity(const std::vector<double>& a, const std::vector<double>& b) {
+  double s = 0.0;
+  for (std::size_t j = 0; j < a.size(); ++j) {
+    if (a[j] == 0.0 || b[j] == 0.0) continue;
+    for (std::size_t k = j + 1; k < a.size(); ++k) {
+      if (a[k] == 0.0 || b[k] == 0.0) continue;
+      const double d = a[j] * b[k] - a[k] * b[j];
+      s += 2.0 * a[j] * a[k] * b[j] * b[k] *
+           std::exp(-d * d / (kSimilaritySigma * kSimilaritySigma));
+    }
+  }
+  return s;
+}
+
+struct Quatf {
+  float w, x, y, z;
+};
+
+Quatf ToQuat(const BoneMatrix& m) {
+  Mat3 r;
+  r << m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10];
+  const Quat q(r);
+  return {float(q.w()), float(q.x()), float(q.y()), float(q.z())};
+}
+
+// v + 2 q.vec x (q.vec x v + w v)
+inline void Rotate(const Quatf& q, float x, float y, float z, float* ox, float* oy, float* oz) {
+  const float tx = 2.0f * (q.y * z - q.z * y), ty = 2.0f * (q.z * x - q.x * z),
+              tz = 2.0f * (q.x * y - q.y * x);
+  *ox = x + q.w * tx + (q.y * tz - q.z * ty);
+  *oy = y + q.w * ty + (q.z * tx - q.x * tz);
+  *oz = z + q.w * tz + (q.x * ty - q.y * tx);
+}
+
+}  // namespace
+
+const char* ToString(ReferenceSkinning method) {
+  switch (method) {
+    case ReferenceSkinning::kDualQuaternion:
+      return "dual quaternion";
+    case ReferenceSkinning::kCentreOfRotation:
+      return "centres of rotation";
+    case ReferenceSkinning::kLinearBlend:
+      break;
+  }
+  return "linear blend";
+}
+
+ReferenceSkin MakeReferenceSkin(const RigModel& model, std::span<const Vec3> rest) {
+  const std::size_t n = rest.size(), bones = model.parts.size();
+  assert(bones <= kMaxBones);
+  ReferenceSkin skin;
+  std::vector<Vec3> normals(n, Vec3::Zero());
+  for (const Triangle& t : model.triangles) {
+    const Vec3 f = (rest[t[1]] - rest[t[0]]).cross(rest[t[2]] - rest[t[0]]);
+    for (std::uint32_t i : t) normals[i] += f;
+  }
+  std::vector<std::vector<double>> dense(n, std::vector<double>(bones, 0.0));
+  for (std::size_t v = 0; v < n; ++v) {
+    skin.x.push_back(float(rest[v].x()));
+    skin.y.push_back(float(rest[v].y()));
+    skin.z.push_back(float(rest[v].z()));
+    const Vec3 normal = normals[v].norm() > 0.0 ? normals[v].normalized() : Vec3::UnitY();
+    skin.nx.push_back(float(normal.x()));
+    skin.ny.push_back(float(normal.y()));
+    skin.nz.push_back(float(normal.z()));
+    const VertexAttachment& a = model.vertices[v];
+    double own = 1.0;
+    for (const JointInfluence& j : a.joints) {
+      if (j.joint < 0) continue;
+      const double child = SmoothStep(j.u);
+      dense[v][std::size_t(j.joint)] += j.weight * child;
+      dense[v][std::size_t(model.parts[std::size_t(j.joint)].parent)] += j.weight * (1 - child);
+      own -= j.weight;
+    }
+    dense[v][a.part] += own;
+    std::vector<std::pair<double, std::size_t>> order;
+    for (std::size_t b = 0; b < bones; ++b)
+      if (dense[v][b] > 0.0) order.push_back({dense[v][b], b});
+    std::sort(order.rbegin(), order.rend());
+    order.resize(std::min<std::size_t>(order.size(), ReferenceSkin::kInfluences));
+    double sum = 0.0;
+    for (const auto& o : order) sum += o.first;
+    std::array<std::uint16_t, ReferenceSkin::kInfluences> ids{};
+    std::array<float, ReferenceSkin::kInfluences> ws{};
+    std::fill(dense[v].begin(), dense[v].end(), 0.0);
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      ids[k] = std::uint16_t(order[k].second);
+      ws[k] = float(order[k].first / sum);
+      dense[v][order[k].second] = order[k].first / sum;
+    }
+    skin.bones.push_back(ids);
+    skin.weights.push_back(ws);
+  }
+  // Centres of rotation: over the triangles blending two or more bones (the others add 0).
+  struct Blended {
+    std::vector<double> weights;
+    Vec3 centroid;
+    double area;
+  };
+  std::vector<Blended> triangles;
+  for (const Triangle& t : model.triangles) {
+    std::vector<double> w(bones, 0.0);
+    for (std::uint32_t i : t)
+      for (std::size_t b = 0; b < bones; ++b) w[b] += dense[i][b] / 3.0;
+    if (std::count_if(w.begin(), w.end(), [](double x) { return x > 0.0; }) < 2) continue;
+    const Vec3 f = (rest[t[1]] - rest[t[0]]).cross(rest[t[2]] - rest[t[0]]);
+    triangles.push_back(
+        {std::move(w), (rest[t[0]] + rest[t[1]] + rest[t[2]]) / 3.0, 0.5 * f.norm()});
+  }
+  for (std::size_t v = 0; v < n; ++v) {
+    Vec3 centre = rest[v];
+    if (skin.weights[v][1] > 0.0f) {
+      Vec3 sum = Vec3::Zero();
+      double total = 0.0;
+      for (const Blended& t : triangles) {
+        const double s = Similarity(dense[v], t.weights) * t.area;
+        sum += s * t.centroid;
+        total += s;
+      }
+      if (total > 0.0) centre = sum / total;
+    }
+    skin.cx.push_back(float(centre.x()));
+    skin.cy.push_back(float(centre.y()));
+    skin.cz.push_back(float(centre.z()));
+  }
+  return skin;
+}
+
+void BoneMatricesFromWorkspace(const RigModel& model, const RigWorkspace& workspace,
+                               std::span<BoneMatrix> out) {
+  for (std::size_t i = 0; i < model.parts.size(); ++i) {
+    const PartModel& part = model.parts[i];
+    const Mat3 r = FrameAxes(workspace.spine_frames[i].front()) *
+                   FrameAxes(part.spine_frames.front()).transpose();
+    const Vec3 t = workspace.spine_points[i].front() - r * part.spine_points.front();
+    for (int row = 0; row < 3; ++row) {
+      for (int col = 0; col < 3; ++col) out[i][std::size_t(4 * row + col)] = float(r(row, col));
+      out[i][std::size_t(4 * row + 3)] = float(t[row]);
+    }
+  }
+}
+
+void ReferenceSkinningJob::Run() const {
+  const ReferenceSkin& s = *skin;
+  const std::size_t n = s.x.size();
+  constexpr int K = ReferenceSkin::kInfluences;
+  if (method == ReferenceSkinning::kLinearBlend) {
+    for (std::size_t v = 0; v < n; ++v) {
+      float m[12] = {};
+      for (int k = 0; k < K; ++k) {
+        const float w = s.weights[v][k];
+        const BoneMatrix& b = bones[s.bones[v][k]];
+        for (int e = 0; e < 12; ++e) m[e] += w * b[e];
+      }
+      const float px = s.x[v], py = s.y[v], pz = s.z[v];
+      x[v] = m[0] * px + m[1] * py + m[2] * pz + m[3];
+      y[v] = m[4] * px + m[5] * py + m[6] * pz + m[7];
+      z[v] = m[8] * px + m[9] * py + m[10] * pz + m[11];
+      const float qx = s.nx[v], qy = s.ny[v], qz = s.nz[v];
+      const float ox = m[0] * qx + m[1] * qy + m[2] * qz, oy = m[4] * qx + m[5] * qy + m[6] * qz,
+                  oz = m[8] * qx + m[9] * qy + m[10] * qz;
+      const float inv = 1.0f / std::sqrt(ox * ox + oy * oy + oz * oz);
+      nx[v] = ox * inv;
+      ny[v] = oy * inv;
+      nz[v] = oz * inv;
+    }
+    return;
+  }
+  // Per bone: rotation quaternion and translation (dual part from them).
+  std::array<Quatf, kMaxBones> real;
+  std::array<Quatf, kMaxBones> dual;
+  for (std::size_t b = 0; b < bones.size(); ++b) {
+    real[b] = ToQuat(bones[b]);
+    const float tx = bones[b][3], ty = bones[b][7], tz = bones[b][11];
+    const Quatf& q = real[b];
+    // dual = 0.5 (0, t) q
+    dual[b] = {-0.5f * (tx * q.x + ty * q.y + tz * q.z), 0.5f * (tx * q.w + ty * q.z - tz * q.y),
+               0.5f * (-tx * q.z + ty * q.w + tz * q.x), 0.5f * (tx * q.y - ty * q.x + tz * q.w)};
+  }
+  for (std::size_t v = 0; v < n; ++v) {
+    const Quatf& pivot = real[s.bones[v][0]];
+    Quatf r{0, 0, 0, 0}, d{0, 0, 0, 0};
+    for (int k = 0; k < K; ++k) {
+      const std::uint16_t b = s.bones[v][k];
+      const Quatf& q = real[b];
+      float w = s.weights[v][k];
+      if (q.w * pivot.w + q.x * pivot.x + q.y * pivot.y + q.z * pivot.z < 0.0f) w = -w;
+      r.w += w * q.w, r.x += w * q.x, r.y += w * q.y, r.z += w * q.z;
+      const Quatf& e = dual[b];
+      d.w += w * e.w, d.x += w * e.x, d.y += w * e.y, d.z += w * e.z;
+    }
+    const float inv = 1.0f / std::sqrt(r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z);
+    r = {r.w * inv, r.x * inv, r.y * inv, r.z * inv};
+    float px, py, pz;
+    if (method == ReferenceSkinning::kDualQuaternion) {
+      d = {d.w * inv, d.x * inv, d.y * inv, d.z * inv};
+      Rotate(r, s.x[v], s.y[v], s.z[v], &px, &py, &pz);
+      // translation 2 (r.w d.vec - d.w r.vec + r.vec x d.vec)
+      px += 2.0f * (r.w * d.x - d.w * r.x + r.y * d.z - r.z * d.y);
+      py += 2.0f * (r.w * d.y - d.w * r.y + r.z * d.x - r.x * d.z);
+      pz += 2.0f * (r.w * d.z - d.w * r.z + r.x * d.y - r.y * d.x);
+    } else {
+      // Centre of rotation c moved by linear blending; the rest turns about it by r.
+      const float cx = s.cx[v], cy = s.cy[v], cz = s.cz[v];
+      float lx = 0, ly = 0, lz = 0;
+      for (int k = 0; k < K; ++k) {
+        const float w = s.weights[v][k];
+        const BoneMatrix& b = bones[s.bones[v][k]];
+        lx += w * (b[0] * cx + b[1] * cy + b[2] * cz + b[3]);
+        ly += w * (b[4] * cx + b[5] * cy + b[6] * cz + b[7]);
+        lz += w * (b[8] * cx + b[9] * cy + b[10] * cz + b[11]);
+      }
+      Rotate(r, s.x[v] - cx, s.y[v] - cy, s.z[v] - cz, &px, &py, &pz);
+      px += lx, py += ly, pz += lz;
+    }
+    x[v] = px, y[v] = py, z[v] = pz;
+    Rotate(r, s.nx[v], s.ny[v], s.nz[v], &nx[v], &ny[v], &nz[v]);
+  }
+}
+
+}  // namespace wirerig
