@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "wirerig/rig/spine_curves.h"
 #include "wirerig/runtime/joint_bridge.h"
@@ -95,6 +96,43 @@ Result<JointModel> MakeJoint(const PartModel& part, const PartModel& parent,
   if (Status s = ValidateJoint(joint); !s)
     return Error{"joint/" + std::string(s.field) + ": " + std::string(s.reason)};
   return joint;
+}
+
+// Where p projects on a part's spine (v) and how far from it (m).
+struct SpineProjection {
+  double v = 0.0, distance = 0.0;
+};
+SpineProjection ProjectOnSpine(const PartModel& part, const Vec3& p) {
+  SpineProjection out;
+  out.v = ProjectOnSamples(part.spine_points, p);
+  Vec3 point;
+  InterpolateSpine(part.spine_points, part.spine_frames, out.v, &point);
+  out.distance = (p - point).norm();
+  return out;
+}
+
+// The part a vertex at p should follow: its assigned part, unless p lies beyond that part's
+// end profiles (a cap) but around another part's spine (within kAroundRadii of its largest
+// radius) and nearer to it than kNearer times its distance to its own spine: part assignment by the nearest visible central curve can hand
+// skin to a curve that sees it from inside the body (an ear to the chest, the throat to the
+// chest when the chin hides it from the neck's curve), and a chain's skin must follow its bone.
+int NeighbourAround(const RigModel& model, int own, const Vec3& p) {
+  constexpr double kAroundRadii = 1.5;
+  constexpr double kNearer = 0.8;
+  const PartModel& part = model.parts[std::size_t(own)];
+  const SpineProjection mine = ProjectOnSpine(part, p);
+  int best = own;
+  double best_distance = kNearer * mine.distance;
+  for (std::size_t i = 0; i < model.parts.size(); ++i) {
+    const PartModel& other = model.parts[i];
+    if (int(i) == own) continue;
+    const SpineProjection there = ProjectOnSpine(other, p);
+    if (there.distance < kAroundRadii * other.max_radius && there.distance < best_distance) {
+      best = int(i);
+      best_distance = there.distance;
+    }
+  }
+  return best;
 }
 
 // Up to two joint bridges for the vertex at p owned by part `own`: the strongest, with the
@@ -204,7 +242,8 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
   for (std::size_t v = 0; v < mesh.welded_positions.size(); ++v) {
     const Vec3& p = mesh.welded_positions[v];
     VertexAttachment& a = model.vertices[v];
-    a.part = std::uint32_t(rig.vertex_part[v]);
+    a.part = std::uint32_t(NeighbourAround(model, rig.vertex_part[v], p));
+    built.report.reowned_vertices += int(a.part) != rig.vertex_part[v];
     const PartModel& part = model.parts[a.part];
     BindJoints(model, a.part, p, &a);
     built.report.bridged_vertices += a.joints[0].joint >= 0;

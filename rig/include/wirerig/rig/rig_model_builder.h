@@ -6,7 +6,8 @@
 // from the rig's joint description and a skin bridge (joint_bridge.h) of half-length
 // min(kBlendRadii x the limb's radius at the joint, kBlendMaxFraction x either part's spine
 // length) unless
-// the description sets one; vertices of the two parts near it are bound to it.
+// the description sets one; vertices of the two parts near it are bound to it. A vertex beyond
+// its part's end profiles that lies around its parent's or child's bone follows that part.
 #pragma once
 
 #include "wirerig/rig/mesh.h"
@@ -29,6 +30,7 @@ struct RigModelReport {
   std::size_t fallback_vertices = 0;  // the pair binding refused: bound rigidly instead
   std::size_t flagged_vertices = 0;   // the pair binding used a documented fallback
   std::size_t bridged_vertices = 0;   // follow a joint's skin bridge
+  std::size_t reowned_vertices = 0;   // beyond their part's end, around a neighbour's bone
 };
 
 struct BuiltRigModel {
