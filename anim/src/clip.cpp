@@ -77,6 +77,7 @@ void VisitTracks(const PartChannels<RawTrack>& c, const std::string& where, Visi
   VisitList(c.axial_line_loads, where, "axial_line_loads", visit);
   visit(c.rotation, At(where, "rotation"));
   visit(c.translation, At(where, "translation"));
+  visit(c.joint_angles, At(where, "joint_angles"));
   VisitList(c.rigid_forces, where, "rigid_forces", visit);
   visit(c.rigid_torque, At(where, "rigid_torque"));
 }
@@ -126,6 +127,7 @@ PartChannels<Track> Built(const PartChannels<RawTrack>& c) {
   out.axial_line_loads = BuiltList(c.axial_line_loads);
   out.rotation = Built(c.rotation);
   out.translation = Built(c.translation);
+  out.joint_angles = Built(c.joint_angles);
   out.rigid_forces = BuiltList(c.rigid_forces);
   out.rigid_torque = Built(c.rigid_torque);
   return out;
@@ -271,6 +273,9 @@ Result<Clip> BuildClip(const RawClip& raw, const RigModel& model) {
     if (p < 0) return unknown_part(where, tracks.part);
     if (HasRigidInput(tracks.channels) && model.parts[p].kind != SpineKind::kRigid)
       return Error{At(where, "rigid_forces: rigid-body forces and torques need a rigid part")};
+    if (!tracks.channels.joint_angles.keys.empty() && model.parts[p].parent < 0)
+      return Error{At(where, "joint_angles: part \"" + tracks.part +
+                                 "\" is the root: it has no joint to turn")};
     VisitTracks(tracks.channels, where, collect);
     for (const BoundaryKey& key : tracks.channels.boundary) times.push_back(key.time);
     clip.parts[p] = Built(tracks.channels);

@@ -225,7 +225,7 @@ RawPartTracks ReadPartTracks(const JsonObject& o) {
   o.RejectUnknownKeys({"part", "boundary", "point_loads", "line_loads", "tip_force",
                        "start_displacement", "end_displacement", "axial_fixed_at",
                        "axial_point_loads", "axial_line_loads", "rotation", "translation",
-                       "rigid_forces", "rigid_torque"});
+                       "joint_angles", "rigid_forces", "rigid_torque"});
   RawPartTracks tracks;
   tracks.part = o.String("part");
   PartChannels<RawTrack>& c = tracks.channels;
@@ -240,6 +240,7 @@ RawPartTracks ReadPartTracks(const JsonObject& o) {
   c.axial_line_loads = ReadList(o, "axial_line_loads", ReadAxialLineLoad);
   ReadOptionalTrack(o, "rotation", &c.rotation);
   ReadOptionalTrack(o, "translation", &c.translation);
+  ReadOptionalTrack(o, "joint_angles", &c.joint_angles);
   c.rigid_forces = ReadList(o, "rigid_forces", ReadRigidForce);
   ReadOptionalTrack(o, "rigid_torque", &c.rigid_torque);
   return tracks;
@@ -264,6 +265,7 @@ json ToJson(const RawPartTracks& tracks) {
   WriteList(out, "axial_line_loads", c.axial_line_loads);
   WriteOptionalTrack(out, "rotation", c.rotation);
   WriteOptionalTrack(out, "translation", c.translation);
+  WriteOptionalTrack(out, "joint_angles", c.joint_angles);
   WriteList(out, "rigid_forces", c.rigid_forces);
   WriteOptionalTrack(out, "rigid_torque", c.rigid_torque);
   return out;

@@ -105,6 +105,10 @@ void SampleClip(const Clip& clip, double t, ClipSample* sample) {
     const PartChannels<Track>& c = clip.parts[p];
     PartPose& pose = s.poses[p];
     pose.rotation = FromAxisAngle(c.rotation.Sample(t));
+    if (!c.joint_angles.IsEmpty())
+      pose.rotation =
+          (pose.rotation * JointRotation(s.model->parts[p].joint, c.joint_angles.Sample(t)))
+              .normalized();
     pose.translation = c.translation.Sample(t);
     SpineLoads& loads = pose.loads;
     loads.boundary = BoundaryAt(c.boundary, t);

@@ -60,16 +60,19 @@ MassProperties ProfileSolid(const RigPart& part, double density) {
   return {};
 }
 
-// Mean distance from the spine to the points of the part's first two profiles, m.
+// The limb's radius at its root: the smallest mean distance from the spine to a profile's
+// points among the profiles of the part's first half (the first profiles of a thigh or an upper
+// arm also take in the buttock or the shoulder), m.
 double RootRadius(const PartModel& part) {
-  double sum = 0.0;
-  std::size_t count = 0;
-  for (std::size_t p = 0; p < std::min<std::size_t>(2, part.profiles.size()); ++p)
-    for (const Vec3& q : part.profiles[p].local_points) {
-      sum += q.head<2>().norm();
-      ++count;
-    }
-  return count ? sum / double(count) : 0.0;
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const ProfileModel& profile : part.profiles) {
+    if (profile.spine_v > 0.5 && std::isfinite(smallest)) break;
+    double sum = 0.0;
+    for (const Vec3& q : profile.local_points) sum += q.head<2>().norm();
+    if (!profile.local_points.empty())
+      smallest = std::min(smallest, sum / double(profile.local_points.size()));
+  }
+  return std::isfinite(smallest) ? smallest : 0.0;
 }
 
 // The joint of a part with a parent: axes from the bone's rest direction and the described
@@ -92,7 +95,10 @@ Result<JointModel> MakeJoint(const PartModel& part, const PartModel& parent,
   joint.radius = RootRadius(part);
   joint.blend_length = description.blend_length.value_or(
       std::min({kBlendRadii * joint.radius, kBlendMaxFraction * part.spine_length,
-                kBlendMaxFraction * parent.spine_length}));
+                parent.parent >= 0 ? kBlendMaxFraction * (part.spine_points.front() -
+                                                          parent.spine_points.front())
+                                                             .norm()
+                                   : std::numeric_limits<double>::infinity()}));
   if (Status s = ValidateJoint(joint); !s)
     return Error{"joint/" + std::string(s.field) + ": " + std::string(s.reason)};
   return joint;

@@ -142,7 +142,6 @@ void FollowJointBridges(const RigModel& model, RigWorkspace& w, std::span<Vec3> 
     const PartModel& child = model.parts[c];
     const PartModel& parent = model.parts[child.parent];
     const double h = child.joint.blend_length;
-    const Vec3 axis = child.joint.axes.col(2);
     Vec3 unused;
     const Mat3 parent_turn =
         SpineTurn(parent, w, child.parent, child.attachment, &unused, &unused, nullptr, nullptr);
@@ -150,6 +149,7 @@ void FollowJointBridges(const RigModel& model, RigWorkspace& w, std::span<Vec3> 
     const double end_v = std::min(h / std::max(child.spine_length, 1e-12), 1.0);
     const Mat3 child_turn =
         SpineTurn(child, w, c, end_v, &rest.end, &posed.end, &rest.end_tangent, &posed.end_tangent);
+    const Vec3 axis = child.joint.axes.col(2);
     rest.start = child.spine_points.front() - h * axis;
     rest.start_tangent = axis;
     posed.start_tangent = parent_turn * axis;

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 #include "anim_test_rigs.h"
 #include "wirerig/anim/clip_sampling.h"
 
@@ -207,6 +209,61 @@ TEST(ClipSampling, PoseIsTheAxisAngleRotationAndTranslation) {
   SampleClip(clip, 1.0, &sample);
   EXPECT_TRUE(sample.poses[0].rotation.isApprox(Quat(Eigen::AngleAxisd(0.5, Vec3::UnitZ()))));
   EXPECT_EQ(sample.poses[0].translation, Vec3(1, 2, 3));
+}
+
+}  // namespace
+}  // namespace wirerig
+
+namespace wirerig {
+namespace {
+
+// The jointed cylinder's "arm" hangs from "base"; a clip keying its joint angles in degrees.
+RawClip JointClip(const Vec3& first, const Vec3& last) {
+  RawClip raw;
+  raw.name = "bend";
+  raw.duration = 1.0;
+  RawPartTracks arm;
+  arm.part = "arm";
+  arm.channels.joint_angles.keys = {{0.0, first, Interpolation::kLinear},
+                                     {1.0, last, Interpolation::kLinear}};
+  raw.parts.push_back(arm);
+  return raw;
+}
+
+TEST(ClipSampling, JointAnglesTurnThePartAboutItsJointAxesInDegreesWithinLimits) {
+  testing::TestRig rig = testing::MakeJointedCylinderRig(SpineKind::kRigid);
+  JointModel& joint = rig.model.parts[1].joint;
+  const Result<Clip> clip = BuildClip(JointClip(Vec3::Zero(), Vec3(90, 0, 0)), rig.model);
+  ASSERT_TRUE(clip.ok()) << clip.error();
+  ClipSample sample = MakeClipSample(clip.value(), rig.model);
+  SampleClip(clip.value(), 0.5, &sample);
+  // Halfway: 45 degrees about the joint's X axis.
+  const Eigen::AngleAxisd turned(sample.poses[1].rotation);
+  EXPECT_NEAR(turned.angle(), std::numbers::pi / 4, 1e-12);
+  EXPECT_NEAR(std::abs(turned.axis().dot(joint.axes.col(0))), 1.0, 1e-12);
+  EXPECT_TRUE(sample.poses[0].rotation.isApprox(Quat::Identity(), 1e-15));
+  // A hinge limited to [0, 60]: 90 is held at 60; Y and Z keys do nothing.
+  joint.type = JointType::kHinge;
+  joint.min_degrees.x() = 0.0;
+  joint.max_degrees.x() = 60.0;
+  const Result<Clip> limited = BuildClip(JointClip(Vec3::Zero(), Vec3(90, 30, 30)), rig.model);
+  ASSERT_TRUE(limited.ok()) << limited.error();
+  ClipSample at_end = MakeClipSample(limited.value(), rig.model);
+  SampleClip(limited.value(), 1.0, &at_end);
+  const Eigen::AngleAxisd held(at_end.poses[1].rotation);
+  EXPECT_NEAR(held.angle(), std::numbers::pi / 3, 1e-12);
+  EXPECT_NEAR(std::abs(held.axis().dot(joint.axes.col(0))), 1.0, 1e-12);
+}
+
+TEST(Clip, RefusesJointAnglesOnTheRootAndOnJointsThatDoNotExist) {
+  const testing::TestRig rig = testing::MakeJointedCylinderRig(SpineKind::kRigid);
+  RawClip raw = JointClip(Vec3::Zero(), Vec3(10, 0, 0));
+  raw.parts[0].part = "base";
+  EXPECT_EQ(BuildClip(raw, rig.model).error(),
+            "parts[0].joint_angles: part \"base\" is the root: it has no joint to turn");
+  raw.parts[0].part = "elbow";
+  EXPECT_EQ(BuildClip(raw, rig.model).error(),
+            "parts[0].part: no part of the rig is named \"elbow\"");
 }
 
 }  // namespace

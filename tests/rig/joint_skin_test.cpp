@@ -75,10 +75,10 @@ TEST(JointSkin, LimbBuildsABridgeOfTheLimbsSize) {
   const Limb& limb = MakeLimb();
   const JointModel& joint = limb.model.parts[1].joint;
   EXPECT_NEAR(joint.radius, kRadius, 0.01 * kRadius);
-  const double shorter =
-      std::min(limb.model.parts[0].spine_length, limb.model.parts[1].spine_length);
-  EXPECT_NEAR(joint.blend_length, std::min(kBlendRadii * joint.radius, kBlendMaxFraction * shorter),
-              1e-12);
+  // The upper segment is the root: only the lower one's length bounds the bridge.
+  EXPECT_NEAR(joint.blend_length,
+              std::min(kBlendRadii * joint.radius,
+                       kBlendMaxFraction * limb.model.parts[1].spine_length), 1e-12);
   EXPECT_NEAR(joint.axes.col(2).dot(-Vec3::UnitY()), 1.0, 1e-6);  // along the lower bone
   EXPECT_NEAR(joint.axes.col(0).dot(Vec3::UnitX()), 1.0, 1e-9);
 }

@@ -9,6 +9,8 @@
 //   spine axial: point and line loads along the spine, and where it is held (axial_fixed_at);
 //   rigid pose: rotation (axis-angle vector, rad, world axes, about the spine's root point) and
 //     translation (m);
+//   joint angles: degrees about the part's joint axes X, Y, Z (joint.h), clamped to the joint's
+//     type and limits when sampled; they turn the part about its root point (after `rotation`);
 //   rigid-body dynamics (rigid parts only): forces applied at points of the body and a torque,
 //     world axes, integrated by Playback.
 // and per profile wire (paper Fig. 8): the stretch [from, to] of the loop that deforms, its
@@ -17,7 +19,8 @@
 // RawClip rules (ValidateRawClip; BuildClip adds the rig's): a name; duration finite and > 0;
 // every track follows ValidateRawTrack's rules with key times within [0, duration]; boundary
 // keys strictly increasing within [0, duration]; part names known to the rig and each part
-// listed at most once; profile indices within the part; rigid-body forces only on rigid parts.
+// listed at most once; profile indices within the part; rigid-body forces only on rigid parts;
+// joint angles only on parts with a parent (the root has no joint).
 #pragma once
 
 #include <optional>
@@ -102,6 +105,7 @@ struct PartChannels {
   std::vector<AxialLineLoadChannels<TrackT>> axial_line_loads;
   TrackT<Vec3> rotation;     // axis-angle vector, rad, world axes
   TrackT<Vec3> translation;  // m, world axes
+  TrackT<Vec3> joint_angles;  // degrees about the joint's X, Y, Z axes
   std::vector<RigidForceChannels<TrackT>> rigid_forces;
   TrackT<Vec3> rigid_torque;  // N m, world axes
 };

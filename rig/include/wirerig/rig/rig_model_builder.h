@@ -4,10 +4,11 @@
 // every welded vertex (between the two profiles around its projection on the spine, or
 // rigidly to the end profile for the end caps). Each joint gets its rest frame, type and limits
 // from the rig's joint description and a skin bridge (joint_bridge.h) of half-length
-// min(kBlendRadii x the limb's radius at the joint, kBlendMaxFraction x either part's spine
-// length) unless
-// the description sets one; vertices of the two parts near it are bound to it. A vertex beyond
-// its part's end profiles that lies around its parent's or child's bone follows that part.
+// min(kBlendRadii x the limb's radius at the joint, kBlendMaxFraction x the child's spine
+// length, kBlendMaxFraction x the distance from the joint to the parent's own joint, if the
+// parent has one) unless the description sets one, so the bridges of a chain never overlap;
+// vertices near it are bound to it. A vertex lying around another part's spine (at most
+// kNearer times as far from it as from its own, within kAroundRadii of its radius) follows it.
 #pragma once
 
 #include "wirerig/rig/mesh.h"
