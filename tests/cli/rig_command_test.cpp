@@ -42,10 +42,10 @@ TEST(RigCommand, HumanWithItsDescriptionWritesARigThatLoads) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("14444 vertices (welded from 15593), 28796 triangles"), std::string::npos)
       << run.out;
-  EXPECT_NE(run.out.find("rig: 6 parts from"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("rig: 18 parts from"), std::string::npos) << run.out;
   const Result<Rig> rig = LoadRig(options.output);
   ASSERT_TRUE(rig.ok()) << rig.error();
-  EXPECT_EQ(rig.value().parts.size(), 6u);
+  EXPECT_EQ(rig.value().parts.size(), 18u);
   EXPECT_EQ(rig.value().mesh_vertices, 14444u);
 }
 

@@ -78,16 +78,26 @@ TEST(RigBuilder, HumanFromItsDescription) {
   ASSERT_TRUE(description.ok()) << description.error();
   const Result<BuiltRig> built = BuildRig(mesh, description.value(), "human.zae");
   ASSERT_TRUE(built.ok()) << built.error();
-  for (const char* name : {"torso", "head", "arm_left", "arm_right", "leg_left", "leg_right"})
+  // A bone chain like a game skeleton's.
+  for (const char* name : {"pelvis", "spine_1", "spine_2", "chest", "neck", "head", "upper_arm_l",
+                           "forearm_l", "hand_l", "upper_arm_r", "forearm_r", "hand_r", "thigh_l",
+                           "shin_l", "foot_l", "thigh_r", "shin_r", "foot_r"})
     EXPECT_TRUE(HasPart(built.value().rig, name)) << name;
   ExpectRigFitsMesh(mesh, built.value());
-  // Children attach to the torso's spine: arms high up, legs at the bottom.
+  // Upper arms hang from the chest beside its middle (the shoulder joints lie below the top of
+  // the chest's loops), thighs from the bottom of the pelvis, and each segment of a chain from
+  // the end of the one before.
   for (const RigPart& part : built.value().rig.parts) {
-    if (part.name.starts_with("arm")) {
-      EXPECT_GT(part.attachment, 0.7) << part.name;
+    if (part.name.starts_with("upper_arm")) {
+      EXPECT_GT(part.attachment, 0.2) << part.name;
+      EXPECT_EQ(built.value().rig.parts[part.parent].name, "chest");
     }
-    if (part.name.starts_with("leg")) {
-      EXPECT_LT(part.attachment, 0.15) << part.name;
+    if (part.name.starts_with("thigh")) {
+      EXPECT_LT(part.attachment, 0.3) << part.name;
+    }
+    if (part.name.starts_with("forearm") || part.name.starts_with("shin") ||
+        part.name == "neck" || part.name == "head") {
+      EXPECT_GT(part.attachment, 0.9) << part.name;
     }
   }
 }
