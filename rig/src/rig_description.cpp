@@ -53,12 +53,13 @@ std::string ParentCycle(const RigDescription& description, std::size_t start) {
   for (;;) {
     const auto parent = index.find(description.parts[path.back()].parent);
     if (parent == index.end()) return {};
-    const auto seen = std::find(path.begin(), path.end(), parent->second);
+    const std::size_t seen =
+        std::size_t(std::find(path.begin(), path.end(), parent->second) - path.begin());
     path.push_back(parent->second);
-    if (seen != path.end() - 1) {
+    if (seen + 1 < path.size()) {
       std::string text;
-      for (auto it = seen; it != path.end(); ++it)
-        text += (text.empty() ? "" : " -> ") + description.parts[*it].name;
+      for (std::size_t k = seen; k < path.size(); ++k)
+        text += (text.empty() ? "" : " -> ") + description.parts[path[k]].name;
       return text;
     }
   }

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <nlohmann/json.hpp>
 
 #ifndef WIRERIG_SAMPLES_DIR
@@ -90,6 +92,78 @@ TEST(RigDescription, CheckedInDescriptionsLoad) {
   ASSERT_TRUE(human.ok()) << human.error();
   EXPECT_GE(human.value().parts.size(), 6u);
   EXPECT_EQ(human.value().mesh.filename(), "human.zae");
+}
+
+}  // namespace
+}  // namespace wirerig
+
+namespace wirerig {
+namespace {
+
+TEST(RigDescription, JointsParseWithTypeAxisLimitsAndBlend) {
+  nlohmann::json d = Good();
+  d["parts"][1]["joint"] = nlohmann::json::parse(
+      R"({"type": "hinge", "axis": [0, 0, 2], "limits": {"x": [-5, 150]}, "blend": 0.04})");
+  const Result<RigDescription> parsed = ParseRigDescription(d);
+  ASSERT_TRUE(parsed.ok()) << parsed.error();
+  const JointDescription& joint = parsed.value().parts[1].joint;
+  EXPECT_EQ(joint.type, JointType::kHinge);
+  EXPECT_EQ(*joint.axis, Vec3(0, 0, 2));
+  EXPECT_EQ(joint.min_degrees, Vec3(-5, -180, -180));
+  EXPECT_EQ(joint.max_degrees, Vec3(150, 180, 180));
+  EXPECT_EQ(*joint.blend_length, 0.04);
+  EXPECT_EQ(parsed.value().parts[0].joint.type, JointType::kBall);       // the default
+  EXPECT_FALSE(parsed.value().parts[0].joint.blend_length.has_value());  // automatic
+}
+
+TEST(RigDescription, BrokenJointsAndCyclesAreNamed) {
+  nlohmann::json d = Good();
+  d["parts"][1]["joint"] = {{"limits", {{"y", {30, -30}}}}};
+  ExpectRefused(d,
+                "/parts/1/joint/limits/y: the lower limit 30.000000 is above the upper "
+                "limit -30.000000");
+  d = Good();
+  d["parts"][1]["joint"] = {{"type", "hinge"}, {"axis", {0, 0, 0}}};
+  ExpectRefused(d, "/parts/1/joint/axis: must be finite and of non-zero length");
+  d = Good();
+  d["parts"][1]["joint"] = {{"type", "hinge"}};
+  ExpectRefused(d, "/parts/1/joint/axis: a hinge needs its axis");
+  d = Good();
+  d["parts"][1]["joint"] = {{"type", "saddle"}};
+  ExpectRefused(d, "/parts/1/joint/type: must be \"ball\", \"hinge\" or \"fixed\"");
+  d = Good();
+  d["parts"][1]["joint"] = {{"blend", -0.1}};
+  ExpectRefused(d, "/parts/1/joint/blend: must be finite and >= 0 (m)");
+  d = Good();
+  d["parts"][1]["joint"] = {{"limits", {{"x", {10}}}}};
+  ExpectRefused(d, "/parts/1/joint/limits/x: must be [min, max] in degrees");
+  // A chain that loops: body -> arm -> hand -> arm.
+  d = Good();
+  d["parts"].push_back(
+      {{"name", "hand"}, {"parent", "arm"}, {"central_curve", {{0.5, 0.8, 0}, {0.7, 0.8, 0}}}});
+  d["parts"][1]["parent"] = "hand";
+  ExpectRefused(d, "/parts/1/parent: the chain has a cycle: arm -> hand -> arm");
+}
+
+TEST(RigDescription, TheHumanIsABoneChainWithHingedElbowsAndKnees) {
+  const Result<RigDescription> human =
+      LoadRigDescription(std::string(WIRERIG_SAMPLES_DIR) + "/rigs/human.description.json");
+  ASSERT_TRUE(human.ok()) << human.error();
+  std::map<std::string, const PartDescription*> parts;
+  for (const PartDescription& p : human.value().parts) parts[p.name] = &p;
+  ASSERT_EQ(parts.size(), 18u);
+  for (const char* hinge : {"forearm_l", "forearm_r", "shin_l", "shin_r"}) {
+    ASSERT_TRUE(parts.contains(hinge)) << hinge;
+    EXPECT_EQ(parts[hinge]->joint.type, JointType::kHinge) << hinge;
+  }
+  EXPECT_EQ(parts["hand_l"]->parent, "forearm_l");
+  EXPECT_EQ(parts["forearm_l"]->parent, "upper_arm_l");
+  EXPECT_EQ(parts["upper_arm_l"]->parent, "chest");
+  EXPECT_EQ(parts["foot_r"]->parent, "shin_r");
+  EXPECT_EQ(parts["shin_r"]->parent, "thigh_r");
+  EXPECT_EQ(parts["thigh_r"]->parent, "pelvis");
+  EXPECT_EQ(parts["head"]->parent, "neck");
+  EXPECT_EQ(parts["neck"]->parent, "chest");
 }
 
 }  // namespace

@@ -50,6 +50,13 @@ Rig SampleRig() {
       part.profile_wires.push_back({Material{0.1e6, 0.45, 1060.0}, StripSection(0.25, 0.005)});
     }
     part.spine_wire = {Material{1.0e6 / 3.0, 0.3, 1000.0}, TubeSection(0.11, 0.005)};
+    if (i == 1) {
+      part.joint.type = JointType::kHinge;
+      part.joint.axis = Vec3(1.0 / 3.0, 0, 1);
+      part.joint.min_degrees.x() = -5.25;
+      part.joint.max_degrees.x() = 150;
+      part.joint.blend_length = 0.0625;
+    }
     rig.parts.push_back(part);
   }
   rig.vertex_part = {0, 0, 1, 1, 0};
@@ -70,6 +77,12 @@ void ExpectEqual(const Rig& a, const Rig& b) {
   EXPECT_EQ(a.vertex_part, b.vertex_part);
   EXPECT_EQ(a.import.unit_scale, b.import.unit_scale);
   EXPECT_EQ(a.import.up_axis, b.import.up_axis);
+  EXPECT_EQ(b.parts[1].joint.type, JointType::kHinge);
+  EXPECT_EQ(a.parts[1].joint.axis, b.parts[1].joint.axis);
+  EXPECT_EQ(a.parts[1].joint.min_degrees, b.parts[1].joint.min_degrees);
+  EXPECT_EQ(a.parts[1].joint.max_degrees, b.parts[1].joint.max_degrees);
+  EXPECT_EQ(a.parts[1].joint.blend_length, b.parts[1].joint.blend_length);
+  EXPECT_FALSE(b.parts[0].joint.blend_length.has_value());
 }
 
 TEST(RigFile, SaveThenLoadIsExact) {
