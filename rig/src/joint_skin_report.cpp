@@ -25,10 +25,35 @@ std::vector<std::uint8_t> LimbSide(const RigModel& model, std::size_t c) {
   return out;
 }
 
+// The region's border: its vertices on a triangle that leaves it.
+std::vector<std::uint32_t> Border(const std::vector<std::uint8_t>& region,
+                                  const std::vector<Triangle>& triangles) {
+  std::vector<std::uint8_t> border(region.size(), 0);
+  for (const Triangle& t : triangles) {
+    const int inside = region[t[0]] + region[t[1]] + region[t[2]];
+    if (inside == 0 || inside == 3) continue;
+    for (std::uint32_t v : t) border[v] |= region[v];
+  }
+  std::vector<std::uint32_t> out;
+  for (std::size_t v = 0; v < border.size(); ++v)
+    if (border[v]) out.push_back(std::uint32_t(v));
+  return out;
+}
+
+Vec3 MeanOf(std::span<const Vec3> positions, const std::vector<std::uint32_t>& vertices) {
+  Vec3 sum = Vec3::Zero();
+  for (std::uint32_t v : vertices) sum += positions[v];
+  return vertices.empty() ? sum : Vec3(sum / double(vertices.size()));
+}
+
+// The region's volume is closed by the cone to the middle of its border (a nearly flat cap
+// across the limb where it meets the body), in each configuration.
 SkinMeasures Measure(const SkinQualityReference& reference, std::span<const Vec3> rest,
                      std::span<const Vec3> posed, const std::vector<CrossSection>& sections,
-                     const std::vector<std::uint8_t>& limb, const Vec3& rest_apex, const Vec3& apex,
+                     const std::vector<std::uint8_t>& limb,
+                     const std::vector<std::uint32_t>& border,
                      const std::vector<Triangle>& triangles) {
+  const Vec3 rest_apex = MeanOf(rest, border), apex = MeanOf(posed, border);
   SkinMeasures m;
   const SkinQuality q = MeasureSkin(reference, posed);
   m.folded_edges = q.folded_edges;
@@ -81,7 +106,7 @@ std::vector<JointSkinRow> MeasureJointSweep(const RigModel& model, std::span<con
       sections.push_back(MakeCrossSection(rest, reference, centre + s * h * axis, axis,
                                           kSectionRadius * joint.radius));
     const std::vector<std::uint8_t> limb = LimbSide(model, c);
-    const Vec3 rest_apex = centre - h * axis;
+    const std::vector<std::uint32_t> border = Border(limb, model.triangles);
     for (const JointSweepPose& pose : JointSweep(joint)) {
       std::vector<PartPose> poses(model.parts.size());
       poses[c].rotation = JointRotation(joint, pose.degrees);
@@ -91,10 +116,9 @@ std::vector<JointSkinRow> MeasureJointSweep(const RigModel& model, std::span<con
       job.workspace = &workspace;
       job.positions = posed;
       if (!job.Run()) continue;
-      // The apex rides with the parent (at rest here: only this joint turns).
       JointSkinRow row{part.name, pose.label, {}};
       row.methods[0] =
-          Measure(reference, rest, posed, sections, limb, rest_apex, rest_apex, model.triangles);
+          Measure(reference, rest, posed, sections, limb, border, model.triangles);
       BoneMatricesFromWorkspace(model, workspace, bones);
       std::vector<Vec3> other(n);
       for (int m = 1; m < kSkinMethods; ++m) {
@@ -102,7 +126,7 @@ std::vector<JointSkinRow> MeasureJointSweep(const RigModel& model, std::span<con
         skinning.Run();
         for (std::size_t v = 0; v < n; ++v) other[v] = Vec3(x[v], y[v], z[v]);
         row.methods[std::size_t(m)] =
-            Measure(reference, rest, other, sections, limb, rest_apex, rest_apex, model.triangles);
+            Measure(reference, rest, other, sections, limb, border, model.triangles);
       }
       rows.push_back(std::move(row));
     }

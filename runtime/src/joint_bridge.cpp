@@ -128,8 +128,7 @@ void SampleJointBridge(const JointModel& joint, const BridgeEnds& rest, const Br
         (parent * ScaleRotation(swing, u) * ScaleRotation(twist, u)).toRotationMatrix();
     const double area = std::clamp(1.0 + growth * 4.0 * u * (1.0 - u), 0.25, 4.0);
     out->map[k] =
-        CrossSectionScale(curve.Derivative(u), curve.SecondDerivative(u), area,
-                          kBridgeInner * joint.radius) *
+        CrossSectionScale(curve.Derivative(u), curve.SecondDerivative(u), area, joint.radius) *
         rotation;
   }
 }

@@ -4,7 +4,7 @@
 //
 // Per joint and pose: folded edges and the worst stretch over the whole mesh; the volume of the
 // limb (the child's side: its vertices, its descendants' and the bridge's, closed by the cone to
-// the bridge's start on the parent's side) against rest; the smallest ratio of a cross-section's
+// the middle of the region's border) against rest; the smallest ratio of a cross-section's
 // perimeter to rest over six planes across the joint (at -h/2 ... 3h/4 along the bone, h the
 // bridge's half-length; the surface within 1.6 limb radii of the bone line).
 #pragma once
