@@ -117,8 +117,7 @@ std::vector<JointSkinRow> MeasureJointSweep(const RigModel& model, std::span<con
       job.positions = posed;
       if (!job.Run()) continue;
       JointSkinRow row{part.name, pose.label, {}};
-      row.methods[0] =
-          Measure(reference, rest, posed, sections, limb, border, model.triangles);
+      row.methods[0] = Measure(reference, rest, posed, sections, limb, border, model.triangles);
       BoneMatricesFromWorkspace(model, workspace, bones);
       std::vector<Vec3> other(n);
       for (int m = 1; m < kSkinMethods; ++m) {

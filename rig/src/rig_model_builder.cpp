@@ -93,12 +93,22 @@ Result<JointModel> MakeJoint(const PartModel& part, const PartModel& parent,
   joint.axes.col(1) = z.cross(x);
   joint.axes.col(2) = z;
   joint.radius = RootRadius(part);
-  joint.blend_length = description.blend_length.value_or(
-      std::min({kBlendRadii * joint.radius, kBlendMaxFraction * part.spine_length,
-                parent.parent >= 0 ? kBlendMaxFraction * (part.spine_points.front() -
-                                                          parent.spine_points.front())
-                                                             .norm()
-                                   : std::numeric_limits<double>::infinity()}));
+  // A child continuing its parent's chain (its root at the parent's spine end) meets the
+  // parent's own flesh there: the parent's radius at its last profile, within 1-1.6 of the
+  // child's. A branch off a parent's side (a shoulder on a chest) meets only its own.
+  joint.parent_radius = joint.radius;
+  if ((part.spine_points.front() - parent.spine_points.back()).norm() < 2.0 * joint.radius) {
+    double sum = 0.0;
+    for (const Vec3& q : parent.profiles.back().local_points) sum += q.head<2>().norm();
+    const double last =
+        sum / double(std::max<std::size_t>(1, parent.profiles.back().local_points.size()));
+    joint.parent_radius = std::clamp(last, joint.radius, 1.6 * joint.radius);
+  }
+  joint.blend_length = description.blend_length.value_or(std::min(
+      {kBlendRadii * joint.radius, kBlendMaxFraction * part.spine_length,
+       parent.parent >= 0
+           ? kBlendMaxFraction * (part.spine_points.front() - parent.spine_points.front()).norm()
+           : std::numeric_limits<double>::infinity()}));
   if (Status s = ValidateJoint(joint); !s)
     return Error{"joint/" + std::string(s.field) + ": " + std::string(s.reason)};
   return joint;
@@ -119,9 +129,10 @@ SpineProjection ProjectOnSpine(const PartModel& part, const Vec3& p) {
 
 // The part a vertex at p should follow: its assigned part, unless p lies beyond that part's
 // end profiles (a cap) but around another part's spine (within kAroundRadii of its largest
-// radius) and nearer to it than kNearer times its distance to its own spine: part assignment by the nearest visible central curve can hand
-// skin to a curve that sees it from inside the body (an ear to the chest, the throat to the
-// chest when the chin hides it from the neck's curve), and a chain's skin must follow its bone.
+// radius) and nearer to it than kNearer times its distance to its own spine: part assignment by the
+// nearest visible central curve can hand skin to a curve that sees it from inside the body (an ear
+// to the chest, the throat to the chest when the chin hides it from the neck's curve), and a
+// chain's skin must follow its bone.
 int NeighbourAround(const RigModel& model, int own, const Vec3& p) {
   constexpr double kAroundRadii = 1.5;
   constexpr double kNearer = 0.8;

@@ -19,6 +19,8 @@ Status ValidateJoint(const JointModel& joint) {
     return Status::Invalid("blend_length", "must be finite and >= 0");
   if (!(std::isfinite(joint.radius) && joint.radius >= 0.0))
     return Status::Invalid("radius", "must be finite and >= 0");
+  if (!(std::isfinite(joint.parent_radius) && joint.parent_radius >= 0.0))
+    return Status::Invalid("parent_radius", "must be finite and >= 0");
   return Status::Ok();
 }
 

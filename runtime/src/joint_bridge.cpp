@@ -87,7 +87,11 @@ JointBinding BindToJoint(const JointModel& joint, const Vec3& root, const Vec3& 
   if (child_side ? (s <= -h - reach || s >= h) : (s <= -h || s >= h + reach)) return out;
   out.u = std::clamp((s + h) / (2.0 * h), 0.0, 1.0);
   const double rho = (d - s * axis).norm();
-  out.bridge = 1.0 - SmoothStep(kBridgeInner * joint.radius, kBridgeOuter * joint.radius, rho);
+  // The limb's radius: the parent's over the parent's half, the child's from the middle on.
+  const double parent_radius = joint.parent_radius > 0.0 ? joint.parent_radius : joint.radius;
+  const double mix = SmoothStep(0.25, 0.5, out.u);
+  const double radius = (1.0 - mix) * parent_radius + mix * joint.radius;
+  out.bridge = 1.0 - SmoothStep(kBridgeInner * radius, kBridgeOuter * radius, rho);
   out.weight = 1.0;
   // A part beyond the two the joint connects meets the bridge's end with its own motion.
   if (side == JointSide::kAncestor) out.weight *= SmoothStep(0.0, kBridgeEndFade, out.u);

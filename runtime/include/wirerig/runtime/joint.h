@@ -44,6 +44,8 @@ struct JointModel {
   // Radius of the limb at the joint, m: the skin within it of the bone line follows the bridge
   // fully, fading out to 2 radii (set when the rig is built, used only to bind).
   double radius = 0.0;
+  // The same on the parent's side (a thicker upper arm above an elbow), m; 0: radius.
+  double parent_radius = 0.0;
 };
 
 // Empty reason when the joint is valid: finite orthonormal right-handed axes, limits finite with

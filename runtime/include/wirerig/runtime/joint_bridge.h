@@ -15,8 +15,9 @@ namespace wirerig {
 // for points of the parent's ancestors or the child's descendants (parts claiming skin across
 // the joint), so they meet their own part's skin where the bridge meets their side. bridge in
 // [0, 1] is how much of that follows the swept cross-sections rather than the two sides'
-// rigid motions blended by smoothstep(u): 1 within joint.radius * kBridgeInner of the bone
-// line, fading smoothly to 0 at joint.radius * kBridgeOuter (skin far from the limb, like a
+// rigid motions blended by smoothstep(u): 1 within radius * kBridgeInner of the bone line,
+// fading smoothly to 0 at radius * kBridgeOuter, where radius runs from joint.parent_radius
+// over the parent's half (u <= 1/4) to joint.radius (u >= 1/2) (skin far from the limb, like a
 // thumb by the wrist, is no cross-section of it). At its ends the bridge moves exactly as the
 // side it meets, so points there join their own part's skin continuously. A point of one side
 // up to `reach` beyond the bridge's far end (a vertex its part claimed across the joint) binds
