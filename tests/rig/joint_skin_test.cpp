@@ -11,12 +11,17 @@
 
 #include "wirerig/rig/joint_skin_report.h"
 #include "wirerig/rig/joint_sweep.h"
+#include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_model_builder.h"
 #include "wirerig/rig/skin_quality.h"
 #include "wirerig/runtime/joint_bridge.h"
 #include "wirerig/runtime/rig_evaluation.h"
+
+#ifndef WIRERIG_SAMPLES_DIR
+#error "the tests need WIRERIG_SAMPLES_DIR"
+#endif
 
 namespace wirerig {
 namespace {
@@ -76,9 +81,10 @@ TEST(JointSkin, LimbBuildsABridgeOfTheLimbsSize) {
   const JointModel& joint = limb.model.parts[1].joint;
   EXPECT_NEAR(joint.radius, kRadius, 0.01 * kRadius);
   // The upper segment is the root: only the lower one's length bounds the bridge.
-  EXPECT_NEAR(joint.blend_length,
-              std::min(kBlendRadii * joint.radius,
-                       kBlendMaxFraction * limb.model.parts[1].spine_length), 1e-12);
+  EXPECT_NEAR(
+      joint.blend_length,
+      std::min(kBlendRadii * joint.radius, kBlendMaxFraction * limb.model.parts[1].spine_length),
+      1e-12);
   EXPECT_NEAR(joint.axes.col(2).dot(-Vec3::UnitY()), 1.0, 1e-6);  // along the lower bone
   EXPECT_NEAR(joint.axes.col(0).dot(Vec3::UnitX()), 1.0, 1e-9);
 }
@@ -252,6 +258,49 @@ TEST(JointSkin, WireRigMeetsTheTargetsWhereLinearBlendAndCentresOfRotationFail) 
   EXPECT_LT(linear.smallest_perimeter, 0.9);
   EXPECT_GT(std::abs(linear.volume_ratio - 1.0), 0.03);
   EXPECT_GT(worst[3].folded_edges, 0u);
+}
+
+}  // namespace
+}  // namespace wirerig
+
+namespace wirerig {
+namespace {
+
+// human.zae as its checked-in bone chain: the joints whose skin holds through their whole sweep
+// (the shoulders, hips and the elbows' deepest bends do not yet: docs/benchmarks.md).
+TEST(JointSkin, HumanSpineNeckHeadWristsKneesAndAnklesHoldThroughTheirSweeps) {
+  const Result<RigDescription> description =
+      LoadRigDescription(std::string(WIRERIG_SAMPLES_DIR) + "/rigs/human.description.json");
+  ASSERT_TRUE(description.ok()) << description.error();
+  Result<ImportedMesh> imported = ImportMesh(description.value().mesh.string());
+  ASSERT_TRUE(imported.ok()) << imported.error();
+  const Mesh& mesh = imported.value().mesh;
+  Result<BuiltRig> rig = BuildRig(mesh, description.value(), "human.zae");
+  ASSERT_TRUE(rig.ok()) << rig.error();
+  RigModelOptions options;
+  options.spine_kind = SpineKind::kRigid;
+  Result<BuiltRigModel> model = BuildRigModel(mesh, rig.value().rig, options);
+  ASSERT_TRUE(model.ok()) << model.error();
+  std::vector<std::size_t> joints;
+  for (std::size_t i = 0; i < model.value().model.parts.size(); ++i)
+    for (const char* name : {"spine_1", "spine_2", "neck", "head", "hand_l", "hand_r", "shin_l",
+                             "shin_r", "foot_l", "foot_r"})
+      if (model.value().model.parts[i].name == name) joints.push_back(i);
+  ASSERT_EQ(joints.size(), 10u);
+  const std::vector<JointSkinRow> rows =
+      MeasureJointSweep(model.value().model, mesh.welded_positions, joints);
+  EXPECT_GE(rows.size(), 20u);  // every pose the limits allow
+  for (const JointSkinRow& row : rows) {
+    SCOPED_TRACE(row.joint + " " + row.pose);
+    const SkinMeasures& wire = row.methods[0];
+    EXPECT_LE(wire.folded_edges, row.joint.starts_with("shin") ? 1u : 0u);
+    EXPECT_LT(wire.worst_stretch, 2.0);
+    EXPECT_GT(wire.smallest_perimeter, 0.95);
+    // Linear blend of the same bones and region collapses the knee's cross-section.
+    if (row.joint.starts_with("shin") && row.pose == "x+120") {
+      EXPECT_LT(row.methods[1].smallest_perimeter, 0.8);
+    }
+  }
 }
 
 }  // namespace
