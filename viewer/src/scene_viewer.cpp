@@ -43,6 +43,7 @@ Result<bool> SceneViewer::Open(const SceneDescription& description) {
   timeline().keys = clip_->key_times;
   timeline().loop = clip_->loop != LoopMode::kOnce;
   timeline().Seek(timeline().time);
+  timeline().playing = timeline().duration > 0.0;  // a scene's clip plays when it opens
   selected_part_ = std::min(selected_part_, int(scene_->model.parts.size()) - 1);
   dragging_ = false;
   return true;
