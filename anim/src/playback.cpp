@@ -110,6 +110,19 @@ Status Playback::AdvanceBodies(double t) {
   return Status::Ok();
 }
 
+Status Playback::SetInteractiveJointAngles(std::uint32_t part, const Vec3& degrees) {
+  if (part >= model_->parts.size()) return Status::Invalid("part", "is out of range");
+  if (model_->parts[part].parent < 0) return Status::Invalid("part", "is the root: no joint");
+  if (!degrees.allFinite()) return Status::Invalid("degrees", "must be finite");
+  interactive_joints_.resize(model_->parts.size(), Vec3::Zero());
+  interactive_joints_[part] = degrees;
+  return Status::Ok();
+}
+
+Vec3 Playback::InteractiveJointAngles(std::uint32_t part) const {
+  return part < interactive_joints_.size() ? interactive_joints_[part] : Vec3::Zero();
+}
+
 Status Playback::SetInteractiveLoad(const std::optional<InteractiveLoad>& load) {
   if (load) {
     if (load->part >= model_->parts.size()) return Status::Invalid("part", "is out of range");
@@ -175,6 +188,11 @@ Status Playback::Evaluate(double t, std::span<Vec3> positions, std::span<Vec3> n
       sample_.poses[p].loads = loads;
     }
   }
+  for (std::size_t p = 0; p < interactive_joints_.size(); ++p)
+    if (!interactive_joints_[p].isZero())
+      sample_.poses[p].rotation = (sample_.poses[p].rotation *
+                                   JointRotation(model_->parts[p].joint, interactive_joints_[p]))
+                                      .normalized();
   std::span<const ProfileLoads> profile_loads = sample_.profile_loads;
   if (interactive_) {
     ApplyInteractiveLoad();

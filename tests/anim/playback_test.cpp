@@ -221,3 +221,46 @@ TEST(Playback, RefusesBadOptionsByName) {
 
 }  // namespace
 }  // namespace wirerig
+
+namespace wirerig {
+namespace {
+
+// The viewer's joint sliders: angles set on a part turn it about its joint, exactly as its
+// joint's rotation, on top of the clip, until set back to zero; the root and bad angles are
+// refused by name.
+TEST(Playback, InteractiveJointAnglesTurnAPartAboutItsJointAndClear) {
+  const testing::TestRig rig = testing::MakeJointedCylinderRig(SpineKind::kRigid);
+  RawClip raw;
+  raw.name = "still";
+  raw.duration = 1.0;
+  const Clip clip = BuildClip(raw, rig.model).value();
+  Result<Playback> made = Playback::Make(rig.model, clip);
+  ASSERT_TRUE(made.ok()) << made.error();
+  Playback& playback = made.value();
+  std::vector<Vec3> positions(rig.model.vertices.size());
+  const Vec3 angles(50, 0, 0);
+  ASSERT_TRUE(playback.SetInteractiveJointAngles(1, angles).ok());
+  EXPECT_EQ(playback.InteractiveJointAngles(1), angles);
+  ASSERT_TRUE(playback.Evaluate(0.5, positions, {}).ok());
+  const Quat expected = JointRotation(rig.model.parts[1].joint, angles);
+  EXPECT_TRUE(playback.sample().poses[1].rotation.isApprox(expected, 1e-12));
+  // The arm's far end (the bottom cap, beyond its skin bridge) turned about the joint.
+  const Vec3 root = rig.model.parts[1].spine_points.front();
+  std::size_t checked = 0;
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    if (rig.mesh.welded_positions[v].y() > 0.05) continue;
+    const Vec3 turned = root + expected * (rig.mesh.welded_positions[v] - root);
+    EXPECT_LT((positions[v] - turned).norm(), 1e-9);
+    ++checked;
+  }
+  EXPECT_GT(checked, 10u);
+  ASSERT_TRUE(playback.SetInteractiveJointAngles(1, Vec3::Zero()).ok());
+  ASSERT_TRUE(playback.Evaluate(0.5, positions, {}).ok());
+  EXPECT_TRUE(playback.sample().poses[1].rotation.isApprox(Quat::Identity(), 1e-15));
+  EXPECT_EQ(playback.SetInteractiveJointAngles(0, angles).field, "part");  // the root
+  EXPECT_EQ(playback.SetInteractiveJointAngles(7, angles).field, "part");
+  EXPECT_EQ(playback.SetInteractiveJointAngles(1, Vec3(NAN, 0, 0)).field, "degrees");
+}
+
+}  // namespace
+}  // namespace wirerig

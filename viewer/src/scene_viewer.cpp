@@ -99,6 +99,7 @@ void SceneViewer::OnWireGrab(const WirePick& pick) {
     if (pick.id < picture_->ProfileId(p, 0) || pick.id > picture_->SpineId(p)) continue;
     drag_ = InteractiveLoad{};
     drag_.part = static_cast<std::uint32_t>(p);
+    selected_part_ = int(p);  // the editor (and its joint sliders) follow the picked part
     drag_.at = std::clamp(double(pick.parameter), 0.0, 1.0);
     const bool spine = pick.id == picture_->SpineId(p);
     drag_.profile = spine ? -1 : int(pick.id - picture_->ProfileId(p, 0));
@@ -177,6 +178,7 @@ void SceneViewer::DrawEditor() {
   ImGui::Combo("part", &selected_part_, names.data(), int(names.size()));
   const PartModel& part = model.parts[std::size_t(selected_part_)];
   const RigPart& rig_part = scene_->rig.parts[std::size_t(selected_part_)];
+  DrawJointSliders(part);
   ImGui::Text("spine: L = %.3f m, EI = %.3g N m^2, EA = %.3g N", part.spine_length,
               part.spine_stiffness.bending, part.spine_stiffness.axial);
   EditorFields& f = editor_;
@@ -255,6 +257,30 @@ void SceneViewer::DrawEditor() {
   if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
   ImGui::TextWrapped("Drag a wire to push it; drag elsewhere to orbit.");
   ImGui::End();
+}
+
+// The selected part's joint: one slider per angle its type allows (degrees, within its limits),
+// turning the part live on top of the clip; the skin follows through the joint's bridge.
+void SceneViewer::DrawJointSliders(const PartModel& part) {
+  if (part.parent < 0 || part.joint.type == JointType::kFixed) return;
+  const auto index = static_cast<std::uint32_t>(selected_part_);
+  const Vec3 current = playback_->InteractiveJointAngles(index);
+  float angles[3] = {float(current.x()), float(current.y()), float(current.z())};
+  const char* labels[3] = {"joint x (deg)", "joint y (deg)", "twist z (deg)"};
+  const int count = part.joint.type == JointType::kHinge ? 1 : 3;
+  bool changed = false;
+  for (int k = 0; k < count; ++k)
+    changed |= ImGui::SliderFloat(labels[k], &angles[k], float(part.joint.min_degrees[k]),
+                                  float(part.joint.max_degrees[k]), "%.0f");
+  if (ImGui::Button("reset joint")) {
+    angles[0] = angles[1] = angles[2] = 0.0f;
+    changed = true;
+  }
+  if (changed) {
+    const Status s = playback_->SetInteractiveJointAngles(
+        index, Vec3(double(angles[0]), double(angles[1]), double(angles[2])));
+    status_ = s ? std::string() : ToString(s);
+  }
 }
 
 void SceneViewer::OnGui() { DrawEditor(); }

@@ -55,6 +55,12 @@ class Playback {
   // Adds `load` to every following Evaluate until cleared with nullopt. Errors name the field
   // (part or profile out of range, `at` outside [0, 1], a force that is not finite).
   Status SetInteractiveLoad(const std::optional<InteractiveLoad>& load);
+  // Turns a part's joint by these angles (degrees about its joint axes, clamped to the joint's
+  // type and limits) on top of the clip in every following Evaluate; zero angles clear it.
+  // Errors name the field (part out of range or the root, angles not finite).
+  Status SetInteractiveJointAngles(std::uint32_t part, const Vec3& degrees);
+  // The angles set for a part (zero when none).
+  Vec3 InteractiveJointAngles(std::uint32_t part) const;
 
   // After Evaluate: the deformed spines and profiles, and the inputs sampled at that time.
   const RigWorkspace& workspace() const { return workspace_; }
@@ -82,6 +88,7 @@ class Playback {
   std::vector<RigidBodyState> checkpoints_;    // #checkpoints x #dynamic parts
   std::size_t checkpoints_done_ = 0;
   std::optional<InteractiveLoad> interactive_;
+  std::vector<Vec3> interactive_joints_;            // per part, degrees
   std::vector<PointLoad> interactive_points_;       // clip's loads of a part, plus one
   std::vector<ProfileLoads> interactive_profiles_;  // clip's profile loads, plus one
   PointLoad interactive_profile_point_;

@@ -54,6 +54,7 @@ class SceneViewer : public Application {
   // the file and field.
   Result<bool> Open(const SceneDescription& description);
   void DrawEditor();
+  void DrawJointSliders(const PartModel& part);
   void Apply(SceneDescription edited);
 
   SceneViewerOptions options_;
