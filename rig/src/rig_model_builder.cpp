@@ -93,11 +93,12 @@ Result<JointModel> MakeJoint(const PartModel& part, const PartModel& parent,
   joint.axes.col(1) = z.cross(x);
   joint.axes.col(2) = z;
   joint.radius = RootRadius(part);
-  // A child continuing its parent's chain (its root at the parent's spine end) meets the
+  // A child continuing its parent's chain (hung from the parent's spine end) meets the
   // parent's own flesh there: the parent's radius at its last profile, within 1-1.6 of the
   // child's. A branch off a parent's side (a shoulder on a chest) meets only its own.
   joint.parent_radius = joint.radius;
-  if ((part.spine_points.front() - parent.spine_points.back()).norm() < 2.0 * joint.radius) {
+  if (part.attachment > 0.85 &&
+      (part.spine_points.front() - parent.spine_points.back()).norm() < 2.0 * joint.radius) {
     double sum = 0.0;
     for (const Vec3& q : parent.profiles.back().local_points) sum += q.head<2>().norm();
     const double last =
