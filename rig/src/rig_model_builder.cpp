@@ -97,8 +97,10 @@ Result<JointModel> MakeJoint(const PartModel& part, const PartModel& parent,
   // parent's own flesh there: the parent's radius at its last profile, within 1-1.6 of the
   // child's. A branch off a parent's side (a shoulder on a chest) meets only its own.
   joint.parent_radius = joint.radius;
-  if (part.attachment > 0.85 &&
-      (part.spine_points.front() - parent.spine_points.back()).norm() < 2.0 * joint.radius) {
+  const bool continues =
+      part.attachment > 0.85 &&
+      (part.spine_points.front() - parent.spine_points.back()).norm() < 2.0 * joint.radius;
+  if (continues) {
     double sum = 0.0;
     for (const Vec3& q : parent.profiles.back().local_points) sum += q.head<2>().norm();
     const double last =
@@ -106,7 +108,8 @@ Result<JointModel> MakeJoint(const PartModel& part, const PartModel& parent,
     joint.parent_radius = std::clamp(last, joint.radius, 1.6 * joint.radius);
   }
   joint.blend_length = description.blend_length.value_or(std::min(
-      {kBlendRadii * joint.radius, kBlendMaxFraction * part.spine_length,
+      {(continues ? kBlendRadii : kBranchBlendRadii) * joint.radius,
+       kBlendMaxFraction * part.spine_length,
        parent.parent >= 0
            ? kBlendMaxFraction * (part.spine_points.front() - parent.spine_points.front()).norm()
            : std::numeric_limits<double>::infinity()}));

@@ -4,7 +4,8 @@
 // every welded vertex (between the two profiles around its projection on the spine, or
 // rigidly to the end profile for the end caps). Each joint gets its rest frame, type and limits
 // from the rig's joint description and a skin bridge (joint_bridge.h) of half-length
-// min(kBlendRadii x the limb's radius at the joint, kBlendMaxFraction x the child's spine
+// min(kBlendRadii (kBranchBlendRadii for a limb off its parent's side) x the limb's radius at
+// the joint, kBlendMaxFraction x the child's spine
 // length, kBlendMaxFraction x the distance from the joint to the parent's own joint, if the
 // parent has one) unless the description sets one, so the bridges of a chain never overlap;
 // vertices near it are bound to it. A vertex lying around another part's spine (at most
@@ -19,6 +20,9 @@
 namespace wirerig {
 
 inline constexpr double kBlendRadii = 2.5;
+// A limb branching off its parent's side (a shoulder, a hip): a shorter bridge, so it sweeps
+// less of the torso.
+inline constexpr double kBranchBlendRadii = 1.5;
 inline constexpr double kBlendMaxFraction = 0.45;
 
 struct RigModelOptions {
