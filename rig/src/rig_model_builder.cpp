@@ -7,6 +7,7 @@
 
 #include "wirerig/rig/spine_curves.h"
 #include "wirerig/runtime/joint_bridge.h"
+#include "wirerig/runtime/rig_evaluation.h"
 #include "wirerig/runtime/spine_interpolation.h"
 
 namespace wirerig {
@@ -75,6 +76,9 @@ double RootRadius(const PartModel& part) {
   return std::isfinite(smallest) ? smallest : 0.0;
 }
 
+// A hinge whose bones meet at more than this at rest (radians) bends its bridge with them.
+constexpr double kBentAtRest = 0.35;
+
 // The joint of a part with a parent: axes from the bone's rest direction and the described
 // axis, limits and type as described, the skin bridge's size from the limb.
 Result<JointModel> MakeJoint(const PartModel& part, const PartModel& parent,
@@ -100,6 +104,11 @@ Result<JointModel> MakeJoint(const PartModel& part, const PartModel& parent,
   const bool continues =
       part.attachment > 0.85 &&
       (part.spine_points.front() - parent.spine_points.back()).norm() < 2.0 * joint.radius;
+  joint.parent_axis = z;
+  // A hinge bent at rest (an elbow): the bridge bends with it, entering along the parent's bone.
+  const Vec3 parent_bone = (part.spine_points.front() - parent.spine_points.front()).normalized();
+  if (continues && joint.type == JointType::kHinge && parent_bone.dot(z) < std::cos(kBentAtRest))
+    joint.parent_axis = parent_bone;
   if (continues) {
     double sum = 0.0;
     for (const Vec3& q : parent.profiles.back().local_points) sum += q.head<2>().norm();
@@ -174,7 +183,7 @@ void BindJoints(const RigModel& model, std::uint32_t own, const Vec3& p, VertexA
       continue;  // another part: its own motion
     // Skin a side claimed up to one bridge half-length across the joint follows the other side.
     const double reach = child.joint.blend_length;
-    const JointBinding b = BindToJoint(child.joint, child.spine_points.front(), p, side, reach);
+    const JointBinding b = BindToJoint(child.joint, RestBridgeEnds(child), p, side, reach);
     if (!(b.weight > 0.0)) continue;
     const JointInfluence influence{int(c), sample, b.u, b.weight, b.bridge};
     if (b.weight > best[0].weight) {

@@ -15,6 +15,8 @@ Status ValidateJoint(const JointModel& joint) {
     if (!(std::isfinite(joint.min_degrees[k]) && std::isfinite(joint.max_degrees[k]) &&
           joint.min_degrees[k] <= joint.max_degrees[k]))
       return Status::Invalid("limits", "must be finite with the lower limit <= the upper");
+  if (!joint.parent_axis.allFinite() || std::abs(joint.parent_axis.norm() - 1.0) > 1e-9)
+    return Status::Invalid("parent_axis", "must be a finite unit vector");
   if (!(std::isfinite(joint.blend_length) && joint.blend_length >= 0.0))
     return Status::Invalid("blend_length", "must be finite and >= 0");
   if (!(std::isfinite(joint.radius) && joint.radius >= 0.0))

@@ -73,20 +73,45 @@ Mat3 CrossSectionScale(const Vec3& v, const Vec3& a, double area, double limb_ra
 
 }  // namespace
 
-JointBinding BindToJoint(const JointModel& joint, const Vec3& root, const Vec3& p, JointSide side,
-                         double reach) {
+JointBinding BindToJoint(const JointModel& joint, const BridgeEnds& rest, const Vec3& p,
+                         JointSide side, double reach) {
   JointBinding out;
   const double h = joint.blend_length;
   if (!(h > 0.0) || !(joint.radius > 0.0)) return out;
-  const Vec3 axis = joint.axes.col(2);
-  const Vec3 d = p - root;
-  const double s = d.dot(axis);
+  // Far from the whole bridge (every point of it lies within h of the rest root point, the
+  // start of the rest curve at h from it): nothing to bind.
+  const double far = 2.0 * h + reach + kBridgeOuter * std::max(joint.radius, joint.parent_radius);
+  if ((p - (rest.start + h * rest.start_tangent)).squaredNorm() > far * far) return out;
+  // Where p lies along the rest bridge: the nearest of its samples, refined on the chord to the
+  // nearer neighbour; beyond its ends, along the end tangents.
+  const Hermite curve = CurveOf(rest);
+  std::array<Vec3, kBridgeSegments + 1> points;
+  int nearest = 0;
+  for (int k = 0; k <= kBridgeSegments; ++k) {
+    points[k] = curve.At(double(k) / kBridgeSegments);
+    if ((points[k] - p).squaredNorm() < (points[nearest] - p).squaredNorm()) nearest = k;
+  }
+  double best = 1e300;
+  for (int k = std::max(0, nearest - 1); k < std::min(kBridgeSegments, nearest + 1); ++k) {
+    const Vec3 a = points[k], ab = points[k + 1] - a;
+    const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    const double distance = (a + t * ab - p).squaredNorm();
+    if (distance < best) best = distance, out.u = (k + t) / kBridgeSegments;
+  }
+  const double before = (p - rest.start).dot(rest.start_tangent);  // < 0: beyond the parent end
+  const double after = (p - rest.end).dot(rest.end_tangent);       // > 0: beyond the child end
+  const Vec3 along = before < 0.0 ? rest.start_tangent : rest.end_tangent;
+  const Vec3 from = out.u <= 0.0 ? rest.start : out.u >= 1.0 ? rest.end : curve.At(out.u);
+  const Vec3 d = p - from;
+  const double rho =
+      (out.u <= 0.0 || out.u >= 1.0) ? (d - d.dot(along) * along).norm() : std::sqrt(best);
   const bool child_side = side == JointSide::kChild || side == JointSide::kDescendant;
   // A point of one side lying beyond the bridge's far end (a vertex its part claimed across
   // the joint) follows the other side near the bone line: the bridge's end there.
-  if (child_side ? (s <= -h - reach || s >= h) : (s <= -h || s >= h + reach)) return out;
-  out.u = std::clamp((s + h) / (2.0 * h), 0.0, 1.0);
-  const double rho = (d - s * axis).norm();
+  if (child_side ? (before <= -reach || after >= 0.0) : (before <= 0.0 || after >= reach)) {
+    out.u = 0.0;
+    return out;
+  }
   // The limb's radius: the parent's over the parent's half, the child's from the middle on.
   const double parent_radius = joint.parent_radius > 0.0 ? joint.parent_radius : joint.radius;
   const double mix = SmoothStep(0.25, 0.5, out.u);

@@ -145,14 +145,13 @@ void FollowJointBridges(const RigModel& model, RigWorkspace& w, std::span<Vec3> 
     Vec3 unused;
     const Mat3 parent_turn =
         SpineTurn(parent, w, child.parent, child.attachment, &unused, &unused, nullptr, nullptr);
-    BridgeEnds rest, posed;
+    const BridgeEnds rest = RestBridgeEnds(child);
+    BridgeEnds posed;
     const double end_v = std::min(h / std::max(child.spine_length, 1e-12), 1.0);
+    Vec3 rest_end, rest_end_tangent;
     const Mat3 child_turn =
-        SpineTurn(child, w, c, end_v, &rest.end, &posed.end, &rest.end_tangent, &posed.end_tangent);
-    const Vec3 axis = child.joint.axes.col(2);
-    rest.start = child.spine_points.front() - h * axis;
-    rest.start_tangent = axis;
-    posed.start_tangent = parent_turn * axis;
+        SpineTurn(child, w, c, end_v, &rest_end, &posed.end, &rest_end_tangent, &posed.end_tangent);
+    posed.start_tangent = parent_turn * child.joint.parent_axis;
     posed.start = w.spine_points[c].front() - h * posed.start_tangent;
     SampleJointBridge(child.joint, rest, posed, parent_turn, child_turn, &w.bridges[c]);
   }
@@ -298,6 +297,17 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
       layout.vertex_triangles[fill[index]++] = static_cast<std::uint32_t>(f);
   w.triangle_normals.resize(model.triangles.size());
   return w;
+}
+
+BridgeEnds RestBridgeEnds(const PartModel& child) {
+  const double h = child.joint.blend_length;
+  BridgeEnds rest;
+  const double end_v = std::min(h / std::max(child.spine_length, 1e-12), 1.0);
+  rest.end_tangent =
+      InterpolateSpine(child.spine_points, child.spine_frames, end_v, &rest.end).tangent;
+  rest.start_tangent = child.joint.parent_axis;
+  rest.start = child.spine_points.front() - h * rest.start_tangent;
+  return rest;
 }
 
 RigidBodyState RestRigidBodyState(const PartModel& part) {

@@ -39,6 +39,10 @@ struct JointModel {
   Mat3 axes = Mat3::Identity();
   Vec3 min_degrees = Vec3::Constant(-180.0);  // per axis, <= max_degrees
   Vec3 max_degrees = Vec3::Constant(180.0);
+  // The parent's bone direction into the joint, rest world, unit: where the child continues
+  // its parent's chain, from the parent's root point to the joint (an elbow bent at rest
+  // bends its bridge too); for a limb off its parent's side, the child's own bone axis.
+  Vec3 parent_axis = Vec3::UnitZ();
   // Half-length of the skin bridge, m (0: no bridge, the skin follows each side rigidly).
   double blend_length = 0.0;
   // Radius of the limb at the joint, m: the skin within it of the bone line follows the bridge

@@ -32,9 +32,12 @@ inline constexpr double kBridgeInner = 1.25;
 inline constexpr double kBridgeOuter = 2.0;
 inline constexpr double kBridgeEndFade = 0.3;
 
-// `root` is the child's rest root point; `side` says how the point's own part relates to it.
-JointBinding BindToJoint(const JointModel& joint, const Vec3& root, const Vec3& p, JointSide side,
-                         double reach);
+// `rest`: the bridge's rest ends (RestBridgeEnds); `side` says how the point's own part
+// relates to the joint. u is the nearest point of the rest bridge curve (linear between its
+// samples); the radius test measures the distance to it.
+struct BridgeEnds;
+JointBinding BindToJoint(const JointModel& joint, const BridgeEnds& rest, const Vec3& p,
+                         JointSide side, double reach);
 
 // The bridge's two clamped ends for one configuration (rest or posed), world axes.
 struct BridgeEnds {

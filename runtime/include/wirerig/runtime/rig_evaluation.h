@@ -61,6 +61,10 @@ struct PartPose {
   SpineLoads loads;                  // used by deformable parts
 };
 
+// The rest ends of a part's joint bridge: from blend_length before its root point along the
+// joint's parent axis to its spine's point blend_length along it (joint_bridge.h).
+BridgeEnds RestBridgeEnds(const PartModel& child);
+
 // The rigid pose that moves a body from its rest mass properties to `state` (for rigid parts
 // driven by RigidBodyStepJob): rotation = q q0^-1, translation so the centre lands on x_c.
 PartPose PoseFromRigidBody(const PartModel& part, const RigidBodyState& state);
