@@ -146,7 +146,25 @@ SpineProjection ProjectOnSpine(const PartModel& part, const Vec3& p) {
 // nearest visible central curve can hand skin to a curve that sees it from inside the body (an ear
 // to the chest, the throat to the chest when the chin hides it from the neck's curve), and a
 // chain's skin must follow its bone.
-int NeighbourAround(const RigModel& model, int own, const Vec3& p) {
+// A ball around each part's spine samples: a lower bound of the distance to the spine.
+struct SpineBounds {
+  Vec3 centre = Vec3::Zero();
+  double radius = 0.0;
+};
+std::vector<SpineBounds> BoundSpines(const RigModel& model) {
+  std::vector<SpineBounds> out;
+  for (const PartModel& part : model.parts) {
+    SpineBounds b;
+    for (const Vec3& q : part.spine_points) b.centre += q;
+    b.centre /= double(part.spine_points.size());
+    for (const Vec3& q : part.spine_points) b.radius = std::max(b.radius, (q - b.centre).norm());
+    out.push_back(b);
+  }
+  return out;
+}
+
+int NeighbourAround(const RigModel& model, const std::vector<SpineBounds>& bounds, int own,
+                    const Vec3& p) {
   constexpr double kAroundRadii = 1.5;
   constexpr double kNearer = 0.8;
   const PartModel& part = model.parts[std::size_t(own)];
@@ -156,6 +174,8 @@ int NeighbourAround(const RigModel& model, int own, const Vec3& p) {
   for (std::size_t i = 0; i < model.parts.size(); ++i) {
     const PartModel& other = model.parts[i];
     if (int(i) == own) continue;
+    const double lower = (p - bounds[i].centre).norm() - bounds[i].radius;
+    if (lower >= best_distance || lower >= kAroundRadii * other.max_radius) continue;
     const SpineProjection there = ProjectOnSpine(other, p);
     if (there.distance < kAroundRadii * other.max_radius && there.distance < best_distance) {
       best = int(i);
@@ -167,7 +187,9 @@ int NeighbourAround(const RigModel& model, int own, const Vec3& p) {
 
 // Up to two joint bridges for the vertex at p owned by part `own`: the strongest, with the
 // weights scaled down to sum to at most 1.
-void BindJoints(const RigModel& model, std::uint32_t own, const Vec3& p, VertexAttachment* a) {
+// `rest_ends`: per part, its joint bridge's rest ends (RestBridgeEnds; unused for the root).
+void BindJoints(const RigModel& model, const std::vector<BridgeEnds>& rest_ends, std::uint32_t own,
+                const Vec3& p, VertexAttachment* a) {
   const PartModel& part = model.parts[own];
   const double n = double(part.spine_points.size() - 1);
   const auto sample = std::uint32_t(std::lround(ProjectOnSamples(part.spine_points, p) * n));
@@ -183,7 +205,7 @@ void BindJoints(const RigModel& model, std::uint32_t own, const Vec3& p, VertexA
       continue;  // another part: its own motion
     // Skin a side claimed up to one bridge half-length across the joint follows the other side.
     const double reach = child.joint.blend_length;
-    const JointBinding b = BindToJoint(child.joint, RestBridgeEnds(child), p, side, reach);
+    const JointBinding b = BindToJoint(child.joint, rest_ends[c], p, side, reach);
     if (!(b.weight > 0.0)) continue;
     const JointInfluence influence{int(c), sample, b.u, b.weight, b.bridge};
     if (b.weight > best[0].weight) {
@@ -269,13 +291,17 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
     }
   }
   model.vertices.resize(mesh.welded_positions.size());
+  const std::vector<SpineBounds> spine_bounds = BoundSpines(model);
+  std::vector<BridgeEnds> rest_ends(model.parts.size());
+  for (std::size_t i = 1; i < model.parts.size(); ++i)
+    rest_ends[i] = RestBridgeEnds(model.parts[i]);
   for (std::size_t v = 0; v < mesh.welded_positions.size(); ++v) {
     const Vec3& p = mesh.welded_positions[v];
     VertexAttachment& a = model.vertices[v];
-    a.part = std::uint32_t(NeighbourAround(model, rig.vertex_part[v], p));
+    a.part = std::uint32_t(NeighbourAround(model, spine_bounds, rig.vertex_part[v], p));
     built.report.reowned_vertices += int(a.part) != rig.vertex_part[v];
     const PartModel& part = model.parts[a.part];
-    BindJoints(model, a.part, p, &a);
+    BindJoints(model, rest_ends, a.part, p, &a);
     built.report.bridged_vertices += a.joints[0].joint >= 0;
     const double s = ProjectOnSamples(part.spine_points, p);
     const std::size_t last = part.profiles.size() - 1;
