@@ -611,6 +611,7 @@ class Describer {
   double SideMass(int node, int excluded) const;
   void ExtendEnds(Part& part) const;
   void Name();
+  std::size_t LimbSplit(const std::vector<Vec3>& curve) const;
 
   const std::vector<Vec3>& mesh_positions_;
   const std::vector<Triangle>& mesh_triangles_;
@@ -1134,6 +1135,56 @@ void Describer::Name() {
   if (t0.y() > t1.y()) Reverse(torso);  // from the lower end (the hips of a biped) up
 }
 
+// Where a limb's curve splits into its upper and lower segments (the elbow or knee): the
+// sharpest bend between 30% and 70% of its length if it turns by more than kJointBend there,
+// else the narrowest point there (distance to the surface), else the middle. An index strictly
+// inside the curve, or 0 when the curve is too short to split.
+std::size_t Describer::LimbSplit(const std::vector<Vec3>& curve) const {
+  constexpr double kJointBend = 0.25;  // rad, about 15 degrees
+  if (curve.size() < 5) return 0;
+  std::vector<double> at(curve.size(), 0.0);
+  for (std::size_t k = 1; k < curve.size(); ++k)
+    at[k] = at[k - 1] + (curve[k] - curve[k - 1]).norm();
+  const double length = at.back();
+  if (!(length > 0.0)) return 0;
+  // The turn at k over a stretch of about a tenth of the limb on each side.
+  auto turn = [&](std::size_t k) {
+    std::size_t a = k, b = k;
+    while (a > 0 && at[k] - at[a] < 0.1 * length) --a;
+    while (b + 1 < curve.size() && at[b] - at[k] < 0.1 * length) ++b;
+    const Vec3 u = curve[k] - curve[a], v = curve[b] - curve[k];
+    if (u.norm() <= 0.0 || v.norm() <= 0.0) return 0.0;
+    return std::atan2(u.cross(v).norm(), u.dot(v));
+  };
+  std::size_t sharpest = 0, narrowest = 0, middle = 0;
+  double sharpest_turn = 0.0, narrowest_radius = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 1; k + 1 < curve.size(); ++k) {
+    const double f = at[k] / length;
+    if (middle == 0 && f >= 0.5) middle = k;
+    if (f < 0.3 || f > 0.7) continue;
+    if (const double t = turn(k); t > sharpest_turn) sharpest_turn = t, sharpest = k;
+    if (const double r = surface_.Distance(curve[k]); r < narrowest_radius)
+      narrowest_radius = r, narrowest = k;
+  }
+  if (sharpest > 0 && sharpest_turn > kJointBend) return sharpest;
+  if (narrowest > 0) return narrowest;
+  return middle;
+}
+
+// The names of a limb's two segments: a biped's arms and legs as a game skeleton names them,
+// a quadruped's legs "<leg>_upper" and "<leg>_lower".
+std::pair<std::string, std::string> SegmentNames(const std::string& limb) {
+  if (limb == "arm_left") return {"upper_arm_l", "forearm_l"};
+  if (limb == "arm_right") return {"upper_arm_r", "forearm_r"};
+  if (limb == "leg_left") return {"thigh_l", "shin_l"};
+  if (limb == "leg_right") return {"thigh_r", "shin_r"};
+  return {limb + "_upper", limb + "_lower"};
+}
+
+bool IsLimb(const std::string& name) {
+  return name.starts_with("arm_") || name.starts_with("leg_");
+}
+
 Result<RigDescription> Describer::Run() {
   const std::string context = "curve skeleton description: ";
   if (std::string why = Validate(); !why.empty()) return Error{context + why};
@@ -1361,10 +1412,25 @@ Result<RigDescription> Describer::Run() {
     }
     PartDescription out;
     out.name = part.name.empty() ? "branch_" + std::to_string(++branch_number) : part.name;
-    out.central_curve = std::move(curve);
     if (part.parent >= 0 && kept[part.parent] >= 0) {
       out.parent = description.parts[kept[part.parent]].name;
     }
+    // Limbs are chains: upper and lower segments with a joint between (elbow, knee); what
+    // hangs from the limb hangs from its lower segment.
+    if (const std::size_t split = IsLimb(part.name) ? LimbSplit(curve) : 0; split > 0) {
+      const auto [upper, lower] = SegmentNames(part.name);
+      PartDescription second;
+      second.name = lower;
+      second.parent = upper;
+      second.central_curve.assign(curve.begin() + long(split), curve.end());
+      out.name = upper;
+      out.central_curve.assign(curve.begin(), curve.begin() + long(split) + 1);
+      description.parts.push_back(std::move(out));
+      kept[i] = static_cast<int>(description.parts.size());
+      description.parts.push_back(std::move(second));
+      continue;
+    }
+    out.central_curve = std::move(curve);
     kept[i] = static_cast<int>(description.parts.size());
     description.parts.push_back(std::move(out));
   }

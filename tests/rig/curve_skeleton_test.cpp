@@ -360,14 +360,25 @@ TEST(CurveSkeleton, CowIsAQuadrupedWithHeadAndTail) {
   ASSERT_TRUE(result.ok()) << result.error();
   const RigDescription& description = result.value();
   EXPECT_EQ(ValidateRigDescription(description), "");
-  const std::multiset<std::string> expected{
-      "torso",           "head",          "tail",          "leg_front_left",
-      "leg_front_right", "leg_back_left", "leg_back_right"};
+  // Each leg is a chain: an upper segment from the torso and a lower one below the knee.
+  const std::multiset<std::string> expected{"torso",
+                                            "head",
+                                            "tail",
+                                            "leg_front_left_upper",
+                                            "leg_front_left_lower",
+                                            "leg_front_right_upper",
+                                            "leg_front_right_lower",
+                                            "leg_back_left_upper",
+                                            "leg_back_left_lower",
+                                            "leg_back_right_upper",
+                                            "leg_back_right_lower"};
   EXPECT_EQ(Names(description), expected);
-  ASSERT_EQ(description.parts.size(), 7u);
+  ASSERT_EQ(description.parts.size(), 11u);
   EXPECT_EQ(description.parts[0].name, "torso");
   for (const PartDescription& part : description.parts) {
-    if (part.name != "torso") {
+    if (part.name.ends_with("_lower")) {
+      EXPECT_EQ(part.parent, part.name.substr(0, part.name.size() - 6) + "_upper");
+    } else if (part.name != "torso") {
       EXPECT_EQ(part.parent, "torso") << part.name;
     }
     for (const Vec3& p : part.central_curve) {
@@ -397,14 +408,21 @@ TEST(CurveSkeleton, CowIsAQuadrupedWithHeadAndTail) {
   // its head points to +X and +Y is up).
   for (const std::string side : {"left", "right"}) {
     for (const std::string end : {"front", "back"}) {
-      const PartDescription* leg = Find(description, "leg_" + end + "_" + side);
-      ASSERT_TRUE(leg);
-      const Vec3 top = leg->central_curve.front(), foot = leg->central_curve.back();
+      const PartDescription* leg = Find(description, "leg_" + end + "_" + side + "_upper");
+      const PartDescription* lower = Find(description, "leg_" + end + "_" + side + "_lower");
+      ASSERT_TRUE(leg && lower);
+      const Vec3 top = leg->central_curve.front(), foot = lower->central_curve.back();
       EXPECT_LT(foot.y(), top.y() - 0.2) << leg->name;
       EXPECT_LT(foot.y(), ground + 0.1) << leg->name;
       EXPECT_EQ((foot - middle).dot(axis) > 0.0, end == "front") << leg->name;
       EXPECT_EQ(foot.z() < 0.0, side == "left") << leg->name;
-      EXPECT_GT(Length(leg->central_curve), 0.2) << leg->name;
+      // The knee joins the two segments, each between 30% and 70% of the leg.
+      EXPECT_LT((leg->central_curve.back() - lower->central_curve.front()).norm(), 1e-12);
+      const double upper_length = Length(leg->central_curve);
+      const double total = upper_length + Length(lower->central_curve);
+      EXPECT_GT(total, 0.2) << leg->name;
+      EXPECT_GT(upper_length, 0.25 * total) << leg->name;
+      EXPECT_LT(upper_length, 0.75 * total) << leg->name;
     }
   }
 }
@@ -435,8 +453,10 @@ TEST(CurveSkeleton, CamelIsAQuadruped) {
   ASSERT_TRUE(description.ok()) << description.error();
   EXPECT_EQ(ValidateRigDescription(description.value()), "");
   const std::multiset<std::string> names = Names(description.value());
-  for (const char* name : {"torso", "head", "tail", "leg_front_left", "leg_front_right",
-                           "leg_back_left", "leg_back_right"}) {
+  for (const char* name :
+       {"torso", "head", "tail", "leg_front_left_upper", "leg_front_right_upper",
+        "leg_back_left_upper", "leg_back_right_upper", "leg_front_left_lower",
+        "leg_front_right_lower", "leg_back_left_lower", "leg_back_right_lower"}) {
     EXPECT_EQ(names.count(name), 1u) << name;
   }
   // The camel faces +Z.
@@ -455,8 +475,10 @@ TEST(CurveSkeleton, StandingManIsABiped) {
   ASSERT_TRUE(result.ok()) << result.error();
   const RigDescription& description = result.value();
   EXPECT_EQ(ValidateRigDescription(description), "");
-  const std::multiset<std::string> expected{"torso",     "head",     "arm_left",
-                                            "arm_right", "leg_left", "leg_right"};
+  // Arms and legs as chains named as a game skeleton names them.
+  const std::multiset<std::string> expected{"torso",       "head",      "upper_arm_l", "forearm_l",
+                                            "upper_arm_r", "forearm_r", "thigh_l",     "shin_l",
+                                            "thigh_r",     "shin_r"};
   EXPECT_EQ(Names(description), expected);
   const PartDescription* torso = Find(description, "torso");
   const PartDescription* head = Find(description, "head");
@@ -464,11 +486,13 @@ TEST(CurveSkeleton, StandingManIsABiped) {
   EXPECT_LT(torso->central_curve.front().y(), torso->central_curve.back().y());  // hips first
   EXPECT_GT(head->central_curve.back().y(), torso->central_curve.back().y());
   // He faces +Z, so his left is +X.
-  EXPECT_GT(Find(description, "arm_left")->central_curve.back().x(), 0.05);
-  EXPECT_LT(Find(description, "arm_right")->central_curve.back().x(), -0.05);
-  EXPECT_GT(Find(description, "leg_left")->central_curve.back().x(), 0.05);
-  EXPECT_LT(Find(description, "leg_right")->central_curve.back().x(), -0.05);
-  for (const char* leg : {"leg_left", "leg_right"}) {
+  EXPECT_GT(Find(description, "forearm_l")->central_curve.back().x(), 0.05);
+  EXPECT_LT(Find(description, "forearm_r")->central_curve.back().x(), -0.05);
+  EXPECT_GT(Find(description, "shin_l")->central_curve.back().x(), 0.05);
+  EXPECT_LT(Find(description, "shin_r")->central_curve.back().x(), -0.05);
+  EXPECT_EQ(Find(description, "forearm_l")->parent, "upper_arm_l");
+  EXPECT_EQ(Find(description, "shin_r")->parent, "thigh_r");
+  for (const char* leg : {"shin_l", "shin_r"}) {
     EXPECT_LT(Find(description, leg)->central_curve.back().y(), -0.4) << leg;
   }
 }

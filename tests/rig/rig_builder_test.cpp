@@ -95,8 +95,8 @@ TEST(RigBuilder, HumanFromItsDescription) {
     if (part.name.starts_with("thigh")) {
       EXPECT_LT(part.attachment, 0.3) << part.name;
     }
-    if (part.name.starts_with("forearm") || part.name.starts_with("shin") ||
-        part.name == "neck" || part.name == "head") {
+    if (part.name.starts_with("forearm") || part.name.starts_with("shin") || part.name == "neck" ||
+        part.name == "head") {
       EXPECT_GT(part.attachment, 0.9) << part.name;
     }
   }
@@ -116,7 +116,7 @@ TEST(RigBuilder, CowFromItsCurveSkeleton) {
   EXPECT_TRUE(HasPart(rig, "tail"));
   EXPECT_EQ(std::count_if(rig.parts.begin(), rig.parts.end(),
                           [](const RigPart& p) { return p.name.starts_with("leg"); }),
-            4);
+            8);  // four legs, each an upper and a lower segment
   ExpectRigFitsMesh(mesh, built.value());
 }
 

@@ -38,8 +38,12 @@ Result<CurveSkeleton> ExtractCurveSkeleton(const Mesh& mesh);
 // forwards, left being the animal's own left (up x front: -Z for a head towards +X); a biped
 // (upright torso, two branches ending near the ground) gets "head", "arm_left", "arm_right",
 // "leg_left", "leg_right", assumed to face +Z (left = +X; -Z when its feet spread along Z),
-// its torso running upwards; everything else is "branch_N". Profile counts keep their defaults;
-// the mesh path, import options and vertex_part are left empty.
+// its torso running upwards; everything else is "branch_N". Arms and legs are chains: each is
+// split at its sharpest bend between 30% and 70% of its length (over 15 degrees), else at its
+// narrowest point there, else in the middle, into an upper and a lower segment (a biped's
+// "upper_arm_l"/"forearm_l", "thigh_l"/"shin_l" and _r; a quadruped's "leg_front_left_upper"/
+// "leg_front_left_lower", ...), the lower hanging from the upper. Profile counts keep their
+// defaults; the mesh path, import options and vertex_part are left empty.
 Result<RigDescription> DescribeFromCurveSkeleton(const Mesh& mesh, const CurveSkeleton& skeleton);
 
 }  // namespace wirerig
