@@ -41,7 +41,7 @@ Result<std::vector<CatalogEntry>> LoadCatalog(const std::string& path) {
     for (std::size_t i = 0; i < ArraySize(array); ++i) {
       const JsonObject o(ArrayElement(array, i), "/" + std::to_string(i));
       o.RejectUnknownKeys(
-          {"name", "title", "figure", "scene", "picture", "summary", "time", "sheet"});
+          {"name", "title", "figure", "scene", "picture", "summary", "time", "sheet", "skin"});
       CatalogEntry e;
       e.name = o.String("name");
       e.title = o.String("title");
@@ -54,6 +54,11 @@ Result<std::vector<CatalogEntry>> LoadCatalog(const std::string& path) {
       e.time = o.Number("time", -1.0);
       e.sheet = o.Integer("sheet", 4);
       if (e.sheet < 1 || e.sheet > 16) throw FieldError(o.PathOf("sheet"), "must be in [1, 16]");
+      if (o.Has("skin")) {
+        if (!o.Required("skin").is_boolean())
+          throw FieldError(o.PathOf("skin"), "must be true or false");
+        e.skin = o.Required("skin").get<bool>();
+      }
       entries.push_back(std::move(e));
     }
   } catch (const FieldError& e) {
@@ -132,6 +137,15 @@ int RunGalleryCommand(const SamplesCommandOptions& options, std::ostream& out, s
       err << "wirerig gallery: " << e.name << ": the picture failed\n";
       return code;
     }
+    const fs::path skin_picture = scene.parent_path() / (e.name + "_skin.png");
+    if (e.skin) {
+      render.output = skin_picture.string();
+      render.wires = false;
+      if (int code = RunRenderCommand(render, out, err); code != 0) {
+        err << "wirerig gallery: " << e.name << ": the picture without wires failed\n";
+        return code;
+      }
+    }
     if (options.glb) {
       BakeCommandOptions bake;
       bake.scene = scene.string();
@@ -148,6 +162,9 @@ int RunGalleryCommand(const SamplesCommandOptions& options, std::ostream& out, s
        << e.summary << " Scene: [`" << e.scene << "`]("
        << fs::relative(scene, page.parent_path()).generic_string() << ").\n\n![" << e.name << "]("
        << relative.generic_string() << ")\n";
+    if (e.skin)
+      md << "\nWithout the wires:\n\n![" << e.name << " skin]("
+         << fs::relative(skin_picture, page.parent_path()).generic_string() << ")\n";
   }
   if (Result<fs::path> written = WriteFileAtomically(page, md.str()); !written) {
     err << "wirerig gallery: " << written.error() << "\n";
