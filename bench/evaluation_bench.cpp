@@ -31,6 +31,7 @@
 #include <utility>
 #include <vector>
 
+#include "bench_setup.h"
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_description.h"
@@ -49,15 +50,7 @@ namespace {
 
 constexpr std::size_t kSubdividedVertices = 100'000;
 
-// Setup failures end the run: a benchmark of a rig that was not built would measure nothing.
-template <typename T>
-T Check(Result<T> result, const char* what) {
-  if (!result) {
-    std::cerr << what << ": " << result.error() << "\n";
-    std::exit(1);
-  }
-  return std::move(result).value();
-}
+using bench::Check;
 
 // ---------------------------------------------------------------------------------------------
 // Subdivision of a welded mesh.

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_setup.h"
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/reference_skinning.h"
 #include "wirerig/rig/rig_builder.h"
@@ -24,14 +25,7 @@
 namespace wirerig {
 namespace {
 
-template <typename T>
-T Check(Result<T> result, const char* what) {
-  if (!result) {
-    std::cerr << what << ": " << result.error() << "\n";
-    std::exit(1);
-  }
-  return std::move(result).value();
-}
+using bench::Check;
 
 struct Scene {
   Mesh mesh;
