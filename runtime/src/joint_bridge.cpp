@@ -105,7 +105,7 @@ JointBinding BindToJoint(const JointModel& joint, const BridgeEnds& rest, const 
   const Vec3 d = p - from;
   const double rho =
       (out.u <= 0.0 || out.u >= 1.0) ? (d - d.dot(along) * along).norm() : std::sqrt(best);
-  const bool child_side = side == JointSide::kChild || side == JointSide::kDescendant;
+  const bool child_side = side == JointSide::kChild;
   // A point of one side lying beyond the bridge's far end (a vertex its part claimed across
   // the joint) follows the other side near the bone line: the bridge's end there.
   if (child_side ? (before <= -reach || after >= 0.0) : (before <= 0.0 || after >= reach)) {
@@ -118,9 +118,6 @@ JointBinding BindToJoint(const JointModel& joint, const BridgeEnds& rest, const 
   const double radius = (1.0 - mix) * parent_radius + mix * joint.radius;
   out.bridge = 1.0 - SmoothStep(kBridgeInner * radius, kBridgeOuter * radius, rho);
   out.weight = 1.0;
-  // A part beyond the two the joint connects meets the bridge's end with its own motion.
-  if (side == JointSide::kAncestor) out.weight *= SmoothStep(0.0, kBridgeEndFade, out.u);
-  if (side == JointSide::kDescendant) out.weight *= SmoothStep(0.0, kBridgeEndFade, 1.0 - out.u);
   return out;
 }
 

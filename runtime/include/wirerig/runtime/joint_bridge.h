@@ -8,21 +8,19 @@
 
 namespace wirerig {
 
-// Where a rest skin point lies on a joint's bridge. u in [0, 1] runs from the parent's end
-// (blend_length before the child's root point, along the child's rest bone axis) to the
-// child's end. weight in [0, 1] is how fully the joint, rather than the point's own part, moves
-// it: 1 for points of the parent or child, fading in over kBridgeEndFade of u from the far end
-// for points of the parent's ancestors or the child's descendants (parts claiming skin across
-// the joint), so they meet their own part's skin where the bridge meets their side. bridge in
-// [0, 1] is how much of that follows the swept cross-sections rather than the two sides'
-// rigid motions blended by smoothstep(u): 1 within radius * kBridgeInner of the bone line,
-// fading smoothly to 0 at radius * kBridgeOuter, where radius runs from joint.parent_radius
-// over the parent's half (u <= 1/4) to joint.radius (u >= 1/2) (skin far from the limb, like a
-// thumb by the wrist, is no cross-section of it). At its ends the bridge moves exactly as the
-// side it meets, so points there join their own part's skin continuously. A point of one side
-// up to `reach` beyond the bridge's far end (a vertex its part claimed across the joint) binds
-// to that end (u = 0 or 1): it follows the other side.
-enum class JointSide : int { kParent, kAncestor, kChild, kDescendant };
+// Where a rest skin point of the joint's parent or child lies on the joint's bridge. u in
+// [0, 1] runs from the parent's end (blend_length before the child's root point, along the
+// joint's parent axis) to the child's end. weight (1, or 0: not on the bridge) is how fully the
+// joint, rather than the point's own part, moves it. bridge in [0, 1] is how much of that
+// follows the swept cross-sections rather than the two sides' rigid motions blended by
+// smoothstep(u): 1 within radius * kBridgeInner of the bridge curve, fading smoothly to 0 at
+// radius * kBridgeOuter, where radius runs from joint.parent_radius over the parent's half
+// (u <= 1/4) to joint.radius (u >= 1/2) (skin far from the limb, like a thumb by the wrist, is
+// no cross-section of it). At its ends the bridge moves exactly as the side it meets, so points
+// there join their own part's skin continuously. A point of one side up to `reach` beyond the
+// bridge's far end (a vertex its part claimed across the joint) binds to that end (u = 0 or 1):
+// it follows the other side.
+enum class JointSide : int { kParent, kChild };
 struct JointBinding {
   double u = 0.0;
   double weight = 0.0;  // 0: not on the bridge
@@ -30,7 +28,6 @@ struct JointBinding {
 };
 inline constexpr double kBridgeInner = 1.25;
 inline constexpr double kBridgeOuter = 2.0;
-inline constexpr double kBridgeEndFade = 0.3;
 
 // `rest`: the bridge's rest ends (RestBridgeEnds); `side` says how the point's own part
 // relates to the joint. u is the nearest point of the rest bridge curve (linear between its
