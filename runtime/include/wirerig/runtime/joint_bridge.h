@@ -29,13 +29,6 @@ struct JointBinding {
 inline constexpr double kBridgeInner = 1.25;
 inline constexpr double kBridgeOuter = 2.0;
 
-// `rest`: the bridge's rest ends (RestBridgeEnds); `side` says how the point's own part
-// relates to the joint. u is the nearest point of the rest bridge curve (linear between its
-// samples); the radius test measures the distance to it.
-struct BridgeEnds;
-JointBinding BindToJoint(const JointModel& joint, const BridgeEnds& rest, const Vec3& p,
-                         JointSide side, double reach);
-
 // The bridge's two clamped ends for one configuration (rest or posed), world axes.
 struct BridgeEnds {
   Vec3 start = Vec3::Zero();           // on the parent's side: root - blend_length * start tangent
@@ -43,6 +36,12 @@ struct BridgeEnds {
   Vec3 end = Vec3::Zero();             // the child's spine point blend_length along it
   Vec3 end_tangent = Vec3::UnitZ();    // unit
 };
+
+// `rest`: the bridge's rest ends (RestBridgeEnds); `side` says how the point's own part
+// relates to the joint. u is the nearest point of the rest bridge curve (linear between its
+// samples); the radius test measures the distance to it.
+JointBinding BindToJoint(const JointModel& joint, const BridgeEnds& rest, const Vec3& p,
+                         JointSide side, double reach);
 
 // The bridge sampled at u_k = k / kBridgeSegments: each sample maps a rest point q at
 // bridge coordinate u_k to q' = centre + map * (q - rest_centre).
