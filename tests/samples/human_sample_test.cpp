@@ -5,6 +5,10 @@
 //    F L / EA; the shin rides on the thigh's shortened end and shortens by its own F L / EA.
 //  * shape: the chest's loaded stretches bulge by q L^4 / 384 EI at their middles, along the
 //    world load; the rest of each loop stays.
+//  * sex: the pectorals' loaded stretches (chest profile 2) bulge forward by q L^4 / 384 EI at
+//    their middles; the pelvis's sides move in by their closed forms (the right side, mid-stretch
+//    of a clamped stretch: q L^4 / 384 EI; the left side, the loop's seam, the guided end of a
+//    cantilever stretch: q L^4 / 24 EI), so the hips' width along x shrinks by both.
 //  * pose and dancer: a keyed part's spine is its rest spine carried by the product of the
 //    joint rotations down its chain, R = A Rx(x) Ry(y) Rz(z) A^T about each root (joint.h),
 //    computed here from the joint axes; the limbs swing visibly and the dance loops.
@@ -12,6 +16,7 @@
 //    would clamp it silently).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -120,6 +125,64 @@ TEST(HumanSamples, ShapeBulgesTheChestByTheClampedWireFormula) {
   }
 }
 
+TEST(HumanSamples, SexFlattensTheChestByTheClampedWireFormulaAndNarrowsTheHips) {
+  std::unique_ptr<PlayedScene> played = PlaySample("human/human_sex.scene.json");
+  ASSERT_NE(played, nullptr);
+  const std::size_t chest = played->Part("chest"), pelvis = played->Part("pelvis");
+  played->Evaluate(0.0);
+  const auto rest = played->playback->workspace().profile_points;  // every part's, at rest
+  played->Evaluate(2.0);
+  const auto& points = played->playback->workspace().profile_points;
+
+  // Chest profile 2: a clamped stretch over each pectoral, [0.52, 0.73] (right) and [0.77, 0.98]
+  // (left), 0.05 N/m forward in world axes. Their middles, u = 0.625 and 0.875, are the loop's
+  // points 15 and 21 of 24; no other load reaches them and the chest is not posed (world = its
+  // rest frame).
+  const ProfileModel& pectorals = played->scene.model.parts[chest].profiles[2];
+  ASSERT_EQ(pectorals.local_points.size(), 24u);
+  const Vec3 forward(0.0, 0.0, 0.05);  // N/m, world
+  struct Stretch {
+    double from, to;
+    std::size_t middle;
+  };
+  for (const Stretch& s : {Stretch{0.52, 0.73, 15}, Stretch{0.77, 0.98, 21}}) {
+    const double length = StretchLength(pectorals, s.from, s.to);
+    const double peak = std::pow(length, 4) / (384.0 * pectorals.stiffness.bending);
+    const Vec3 expected = peak * forward;
+    const Vec3 moved = points[chest][2][s.middle] - rest[chest][2][s.middle];
+    EXPECT_LT((moved - expected).norm(), 1e-6 * expected.norm()) << "point " << s.middle;
+    EXPECT_GT(expected.z(), 0.008) << "point " << s.middle;  // visibly: over 8 mm forward
+  }
+  EXPECT_LT((points[chest][2][6] - rest[chest][2][6]).norm(), 1e-12);  // the back stays
+
+  // Hips: pelvis profile 2, its sides pushed in by 0.0016 N/m along world x. The right side
+  // (point 12, u = 0.5) is the middle of the clamped stretch [0.25, 0.75]: q L^4 / 384 EI. The
+  // left side is the loop's seam (point 0, u = 0 = 1), the guided end of the cantilever stretch
+  // [0.75, 1]: q L^4 / 24 EI (the clamped stretches that start at the seam hold it still).
+  const ProfileModel& hips = played->scene.model.parts[pelvis].profiles[2];
+  ASSERT_EQ(hips.local_points.size(), 24u);
+  const double q = 0.0016;
+  const double right =
+      q * std::pow(StretchLength(hips, 0.25, 0.75), 4) / (384.0 * hips.stiffness.bending);
+  const double left =
+      q * std::pow(StretchLength(hips, 0.75, 1.0), 4) / (24.0 * hips.stiffness.bending);
+  const Vec3 right_moved = points[pelvis][2][12] - rest[pelvis][2][12];
+  const Vec3 left_moved = points[pelvis][2][0] - rest[pelvis][2][0];
+  EXPECT_LT((right_moved - Vec3(right, 0.0, 0.0)).norm(), 1e-6 * right);
+  EXPECT_LT((left_moved - Vec3(-left, 0.0, 0.0)).norm(), 1e-6 * left);
+  // The sides stay the loop's extremes along x, so its width shrinks by both pushes.
+  const auto width = [](const std::vector<Vec3>& loop) {
+    double lo = loop.front().x(), hi = lo;
+    for (const Vec3& p : loop) {
+      lo = std::min(lo, p.x());
+      hi = std::max(hi, p.x());
+    }
+    return hi - lo;
+  };
+  EXPECT_NEAR(width(points[pelvis][2]), width(rest[pelvis][2]) - left - right, 1e-9);
+  EXPECT_GT(left + right, 0.008);  // visibly: the hips over 8 mm narrower
+}
+
 TEST(HumanSamples, PoseTurnsEveryLimbByItsJointChain) {
   std::unique_ptr<PlayedScene> played = PlaySample("human/human_pose.scene.json");
   ASSERT_NE(played, nullptr);
@@ -173,9 +236,9 @@ TEST(DancerSample, LimbsFollowTheirJointChainsSwingWideAndTheDanceLoops) {
 }
 
 TEST(HumanSamples, EveryKeyedJointAngleStaysInsideItsLimits) {
-  for (const char* scene :
-       {"human/human_wave.scene.json", "human/human_pose.scene.json",
-        "human/human_shape.scene.json", "human/human_age.scene.json", "dancer/dancer.scene.json"}) {
+  for (const char* scene : {"human/human_wave.scene.json", "human/human_pose.scene.json",
+                            "human/human_shape.scene.json", "human/human_sex.scene.json",
+                            "human/human_age.scene.json", "dancer/dancer.scene.json"}) {
     SCOPED_TRACE(scene);
     std::unique_ptr<PlayedScene> played = PlaySample(scene);
     ASSERT_NE(played, nullptr);
