@@ -87,7 +87,8 @@ const Scene& Capsule100k() {
     Scene s;
     s.mesh = MakeCapsule(0.1, 1.0, 256, 180, 8);  // ~100k triangles
     RigDescription description;
-    description.parts.push_back({"body", {Vec3(0, 0, 0), Vec3(0, 1, 0)}, kProfiles, 20, "", {}, {}});
+    description.parts.push_back(
+        {"body", {Vec3(0, 0, 0), Vec3(0, 1, 0)}, kProfiles, 20, "", {}, {}});
     Prepare(s, description);
     return s;
   }();

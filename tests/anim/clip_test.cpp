@@ -225,7 +225,7 @@ RawClip JointClip(const Vec3& first, const Vec3& last) {
   RawPartTracks arm;
   arm.part = "arm";
   arm.channels.joint_angles.keys = {{0.0, first, Interpolation::kLinear},
-                                     {1.0, last, Interpolation::kLinear}};
+                                    {1.0, last, Interpolation::kLinear}};
   raw.parts.push_back(arm);
   return raw;
 }

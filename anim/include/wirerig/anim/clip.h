@@ -103,8 +103,8 @@ struct PartChannels {
   double axial_fixed_at = 0.0;      // v where the spine is held axially
   std::vector<AxialPointLoadChannels<TrackT>> axial_point_loads;
   std::vector<AxialLineLoadChannels<TrackT>> axial_line_loads;
-  TrackT<Vec3> rotation;     // axis-angle vector, rad, world axes
-  TrackT<Vec3> translation;  // m, world axes
+  TrackT<Vec3> rotation;      // axis-angle vector, rad, world axes
+  TrackT<Vec3> translation;   // m, world axes
   TrackT<Vec3> joint_angles;  // degrees about the joint's X, Y, Z axes
   std::vector<RigidForceChannels<TrackT>> rigid_forces;
   TrackT<Vec3> rigid_torque;  // N m, world axes

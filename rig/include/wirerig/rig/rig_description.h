@@ -5,7 +5,8 @@
 // Rules (checked by ValidateRigDescription): part names are unique and not empty; every
 // central curve has at least 2 finite points, consecutive points distinct; profile_count >= 2;
 // 3 <= points_per_profile <= 1024; a parent names an earlier part; exactly the first part has
-// no parent; parents never form a cycle; joints follow ValidateJointDescription; vertex weights, when present, are one per welded vertex.
+// no parent; parents never form a cycle; joints follow ValidateJointDescription; vertex weights,
+// when present, are one per welded vertex.
 #pragma once
 
 #include <filesystem>
