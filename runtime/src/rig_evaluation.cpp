@@ -135,7 +135,35 @@ Mat3 SpineTurn(const PartModel& part, const RigWorkspace& w, std::size_t i, doub
 
 // Step 7 of Run(): each bridged joint's bridge for this frame, then every vertex on a bridge
 // moved from where its own part put it towards the bridge's image of its rest-space point.
-void FollowJointBridges(const RigModel& model, RigWorkspace& w, std::span<Vec3> positions) {
+// The per-vertex part of step 7, over the entries of task k (whole vertices; see
+// RigEvaluationLayout::joint_task_starts).
+struct BridgePass {
+  const RigModel* model;
+  const RigWorkspace* w;
+  Vec3* positions;
+
+  static void Entries(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const BridgePass*>(context);
+    const RigEvaluationLayout& layout = self.w->layout;
+    const std::size_t end = layout.joint_task_starts[k + 1];
+    for (std::size_t e = layout.joint_task_starts[k]; e < end;) {
+      const std::uint32_t vertex = layout.joint_vertices[e].vertex;
+      const Vec3 own = self.positions[vertex];
+      Vec3 sum = Vec3::Zero();
+      for (; e < end && layout.joint_vertices[e].vertex == vertex; ++e) {
+        const RigEvaluationLayout::JointVertex& j = layout.joint_vertices[e];
+        const Vec3 rest =
+            self.model->parts[j.part].spine_points[j.sample] +
+            self.w->spine_undo[j.part][j.sample] * (own - self.w->spine_points[j.part][j.sample]);
+        sum += j.weight * (ApplyJointBridge(self.w->bridges[j.joint], j.u, j.bridge, rest) - own);
+      }
+      self.positions[vertex] = own + sum;
+    }
+  }
+};
+
+void FollowJointBridges(const RigModel& model, RigWorkspace& w, std::span<Vec3> positions,
+                        const ParallelFor* parallel) {
   const RigEvaluationLayout& layout = w.layout;
   if (layout.joint_vertices.empty()) return;
   for (std::uint32_t c : layout.bridged_parts) {
@@ -155,25 +183,11 @@ void FollowJointBridges(const RigModel& model, RigWorkspace& w, std::span<Vec3> 
     posed.start = w.spine_points[c].front() - h * posed.start_tangent;
     SampleJointBridge(child.joint, rest, posed, parent_turn, child_turn, &w.bridges[c]);
   }
-  for (std::size_t i = 0; i < model.parts.size(); ++i) {
-    const PartModel& part = model.parts[i];
-    for (std::size_t k = 0; k < part.spine_frames.size(); ++k)
-      w.spine_undo[i][k] =
-          FrameAxes(part.spine_frames[k]) * FrameAxes(w.spine_frames[i][k]).transpose();
-  }
-  const std::size_t count = layout.joint_vertices.size();
-  for (std::size_t e = 0; e < count;) {
-    const std::uint32_t vertex = layout.joint_vertices[e].vertex;
-    const Vec3 own = positions[vertex];
-    Vec3 sum = Vec3::Zero();
-    for (; e < count && layout.joint_vertices[e].vertex == vertex; ++e) {
-      const RigEvaluationLayout::JointVertex& j = layout.joint_vertices[e];
-      const Vec3 rest = model.parts[j.part].spine_points[j.sample] +
-                        w.spine_undo[j.part][j.sample] * (own - w.spine_points[j.part][j.sample]);
-      sum += j.weight * (ApplyJointBridge(w.bridges[j.joint], j.u, j.bridge, rest) - own);
-    }
-    positions[vertex] = own + sum;
-  }
+  for (const auto& [part, sample] : layout.undo_samples)
+    w.spine_undo[part][sample] = FrameAxes(model.parts[part].spine_frames[sample]) *
+                                 FrameAxes(w.spine_frames[part][sample]).transpose();
+  const BridgePass pass{&model, &w, positions.data()};
+  RunTasks(parallel, layout.joint_task_starts.size() - 1, &BridgePass::Entries, &pass);
 }
 
 Status ValidateLoads(const SpineLoads& loads) {
@@ -265,6 +279,20 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
     if (part.parent >= 0 && part.joint.blend_length > 0.0)
       layout.bridged_parts.push_back(static_cast<std::uint32_t>(i));
   }
+  // Tasks of about kTaskSize entries, each ending with a whole vertex; the spine samples the
+  // entries undo through.
+  layout.joint_task_starts = {0};
+  for (std::size_t e = 0; e < layout.joint_vertices.size(); ++e) {
+    const bool full = e - layout.joint_task_starts.back() >= kTaskSize;
+    if (full && layout.joint_vertices[e].vertex != layout.joint_vertices[e - 1].vertex)
+      layout.joint_task_starts.push_back(static_cast<std::uint32_t>(e));
+  }
+  layout.joint_task_starts.push_back(static_cast<std::uint32_t>(layout.joint_vertices.size()));
+  for (const RigEvaluationLayout::JointVertex& j : layout.joint_vertices)
+    layout.undo_samples.emplace_back(j.part, j.sample);
+  std::sort(layout.undo_samples.begin(), layout.undo_samples.end());
+  layout.undo_samples.erase(std::unique(layout.undo_samples.begin(), layout.undo_samples.end()),
+                            layout.undo_samples.end());
   w.bridges.resize(model.parts.size());
   for (const PartModel& part : model.parts)
     w.spine_undo.emplace_back(part.spine_points.size(), Mat3::Identity());
@@ -558,7 +586,7 @@ Status EvaluateRigJob::Run() const {
            &VertexPass::Vertices, &pass);
 
   // 7. Vertices near joints follow the skin bridges.
-  FollowJointBridges(*model, w, positions);
+  FollowJointBridges(*model, w, positions, parallel);
 
   // 8. Area-weighted vertex normals.
   if (normals.empty()) return Status::Ok();

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "wirerig/runtime/axial_job.h"
@@ -118,6 +119,10 @@ struct RigEvaluationLayout {
   };
   std::vector<JointVertex> joint_vertices;   // in vertex order
   std::vector<std::uint32_t> bridged_parts;  // parts whose joint has a skin bridge
+  // The bridge pass's tasks: entries [joint_task_starts[k], joint_task_starts[k + 1]), each
+  // ending with a whole vertex; and the (part, spine sample) pairs its entries undo through.
+  std::vector<std::uint32_t> joint_task_starts;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> undo_samples;
   // Normals: the vertices in the order of their first triangle (so the triangle normals are
   // read almost in order), and for the i-th of them its triangles in increasing order,
   // vertex_triangles[vertex_triangle_offsets[i] .. vertex_triangle_offsets[i + 1]).
