@@ -91,14 +91,22 @@ ReferenceSkin MakeReferenceSkin(const RigModel& model, std::span<const Vec3> res
       if (j.joint < 0) continue;
       const double child = SmoothStep(j.u);
       dense[v][std::size_t(j.joint)] += j.weight * child;
-      dense[v][std::size_t(model.parts[std::size_t(j.joint)].parent)] += j.weight * (1 - child);
-      own -= j.weight;
+      const auto parent = std::size_t(model.parts[std::size_t(j.joint)].parent);
+      dense[v][parent] += j.weight * (1 - child);
+      // The bridge replaces the own part's motion, or adds to it relative to the parent's.
+      if (j.relative)
+        dense[v][parent] -= j.weight;
+      else
+        own -= j.weight;
     }
     dense[v][a.part] += own;
+    // The largest weights by magnitude (a joint's skin spread over an ancestor's subtracts its
+    // parent's motion).
     std::vector<std::pair<double, std::size_t>> order;
     for (std::size_t b = 0; b < bones; ++b)
-      if (dense[v][b] > 0.0) order.push_back({dense[v][b], b});
-    std::sort(order.rbegin(), order.rend());
+      if (dense[v][b] != 0.0) order.push_back({dense[v][b], b});
+    std::sort(order.begin(), order.end(),
+              [](const auto& l, const auto& r) { return std::abs(l.first) > std::abs(r.first); });
     order.resize(std::min<std::size_t>(order.size(), ReferenceSkin::kInfluences));
     double sum = 0.0;
     for (const auto& o : order) sum += o.first;

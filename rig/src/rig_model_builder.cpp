@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "joint_skin_spread.h"
 #include "wirerig/rig/spine_curves.h"
 #include "wirerig/runtime/joint_bridge.h"
 #include "wirerig/runtime/rig_evaluation.h"
@@ -189,10 +190,7 @@ int NeighbourAround(const RigModel& model, const std::vector<SpineBounds>& bound
 // weights scaled down to sum to at most 1.
 // `rest_ends`: per part, its joint bridge's rest ends (RestBridgeEnds; unused for the root).
 void BindJoints(const RigModel& model, const std::vector<BridgeEnds>& rest_ends, std::uint32_t own,
-                const Vec3& p, VertexAttachment* a) {
-  const PartModel& part = model.parts[own];
-  const double n = double(part.spine_points.size() - 1);
-  const auto sample = std::uint32_t(std::lround(ProjectOnSamples(part.spine_points, p) * n));
+                std::uint32_t sample, const Vec3& p, VertexAttachment* a) {
   std::array<JointInfluence, 2> best{};
   for (std::size_t c = 1; c < model.parts.size(); ++c) {
     const PartModel& child = model.parts[c];
@@ -207,7 +205,7 @@ void BindJoints(const RigModel& model, const std::vector<BridgeEnds>& rest_ends,
     const double reach = child.joint.blend_length;
     const JointBinding b = BindToJoint(child.joint, rest_ends[c], p, side, reach);
     if (!(b.weight > 0.0)) continue;
-    const JointInfluence influence{int(c), sample, b.u, b.weight, b.bridge};
+    const JointInfluence influence{int(c), sample, b.u, b.weight, b.bridge, b.section};
     if (b.weight > best[0].weight) {
       best[1] = best[0];
       best[0] = influence;
@@ -215,9 +213,6 @@ void BindJoints(const RigModel& model, const std::vector<BridgeEnds>& rest_ends,
       best[1] = influence;
     }
   }
-  const double total = best[0].weight + best[1].weight;
-  if (total > 1.0)
-    for (JointInfluence& j : best) j.weight /= total;
   a->joints = best;
 }
 
@@ -291,6 +286,7 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
     }
   }
   model.vertices.resize(mesh.welded_positions.size());
+  std::vector<std::uint32_t> own_samples(mesh.welded_positions.size());
   const std::vector<SpineBounds> spine_bounds = BoundSpines(model);
   std::vector<BridgeEnds> rest_ends(model.parts.size());
   for (std::size_t i = 1; i < model.parts.size(); ++i)
@@ -301,9 +297,9 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
     a.part = std::uint32_t(NeighbourAround(model, spine_bounds, rig.vertex_part[v], p));
     built.report.reowned_vertices += int(a.part) != rig.vertex_part[v];
     const PartModel& part = model.parts[a.part];
-    BindJoints(model, rest_ends, a.part, p, &a);
-    built.report.bridged_vertices += a.joints[0].joint >= 0;
     const double s = ProjectOnSamples(part.spine_points, p);
+    own_samples[v] = std::uint32_t(std::lround(s * double(part.spine_points.size() - 1)));
+    BindJoints(model, rest_ends, a.part, own_samples[v], p, &a);
     const std::size_t last = part.profiles.size() - 1;
     std::size_t pair = 0;
     while (pair + 1 < last && part.profiles[pair + 1].spine_v <= s) ++pair;
@@ -336,6 +332,9 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
                                                  part.profiles[a.profile].spine_v, &origin));
     a.cap_local = axes.transpose() * (p - origin);
   }
+  built.report.unspread_vertices = SpreadJointBindings(mesh.welded_positions, own_samples, &model);
+  for (const VertexAttachment& a : model.vertices)
+    built.report.bridged_vertices += a.joints[0].joint >= 0 || a.joints[1].joint >= 0;
   return built;
 }
 

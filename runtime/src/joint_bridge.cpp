@@ -117,6 +117,7 @@ JointBinding BindToJoint(const JointModel& joint, const BridgeEnds& rest, const 
   const double mix = SmoothStep(0.25, 0.5, out.u);
   const double radius = (1.0 - mix) * parent_radius + mix * joint.radius;
   out.bridge = 1.0 - SmoothStep(kBridgeInner * radius, kBridgeOuter * radius, rho);
+  out.section = rho > radius ? radius / rho : 1.0;
   out.weight = 1.0;
   return out;
 }
@@ -153,20 +154,27 @@ void SampleJointBridge(const JointModel& joint, const BridgeEnds& rest, const Br
     const Mat3 rotation =
         (parent * ScaleRotation(swing, u) * ScaleRotation(twist, u)).toRotationMatrix();
     const double area = std::clamp(1.0 + growth * 4.0 * u * (1.0 - u), 0.25, 4.0);
+    out->turn[k] = rotation;
     out->map[k] =
         CrossSectionScale(curve.Derivative(u), curve.SecondDerivative(u), area, joint.radius) *
         rotation;
   }
 }
 
-Vec3 ApplyJointBridge(const BridgeSamples& bridge, double u, double fraction, const Vec3& q) {
+Vec3 ApplyJointBridge(const BridgeSamples& bridge, double u, double fraction, const Vec3& q,
+                      double section) {
   const double x = std::clamp(u, 0.0, 1.0) * kBridgeSegments;
   const int k = std::min(static_cast<int>(x), kBridgeSegments - 1);
   const double f = x - k;
   const Vec3 rest_centre = (1.0 - f) * bridge.rest_centre[k] + f * bridge.rest_centre[k + 1];
   const Vec3 centre = (1.0 - f) * bridge.centre[k] + f * bridge.centre[k + 1];
   const Mat3 map = (1.0 - f) * bridge.map[k] + f * bridge.map[k + 1];
-  const Vec3 swept = centre + map * (q - rest_centre);
+  const Vec3 d = q - rest_centre;
+  Vec3 swept = centre + map * d;
+  if (section < 1.0) {
+    const Vec3 turned = ((1.0 - f) * bridge.turn[k] + f * bridge.turn[k + 1]) * d;
+    swept = centre + turned + section * (swept - centre - turned);
+  }
   if (fraction >= 1.0) return swept;
   const double child = SmoothStep(0.0, 1.0, u);
   const Vec3 blended = (1.0 - child) * (bridge.parent_turn * q + bridge.parent_offset) +

@@ -155,7 +155,9 @@ struct BridgePass {
         const Vec3 rest =
             self.model->parts[j.part].spine_points[j.sample] +
             self.w->spine_undo[j.part][j.sample] * (own - self.w->spine_points[j.part][j.sample]);
-        sum += j.weight * (ApplyJointBridge(self.w->bridges[j.joint], j.u, j.bridge, rest) - own);
+        const BridgeSamples& bridge = self.w->bridges[j.joint];
+        const Vec3 base = j.relative ? Vec3(bridge.parent_turn * rest + bridge.parent_offset) : own;
+        sum += j.weight * (ApplyJointBridge(bridge, j.u, j.bridge, rest, j.section) - base);
       }
       self.positions[vertex] = own + sum;
     }
@@ -273,7 +275,7 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
       if (j.joint >= 0)
         layout.joint_vertices.push_back(
             {static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(j.joint),
-             model.vertices[v].part, j.sample, j.u, j.weight, j.bridge});
+             model.vertices[v].part, j.sample, j.u, j.weight, j.bridge, j.section, j.relative});
   for (std::size_t i = 0; i < model.parts.size(); ++i) {
     const PartModel& part = model.parts[i];
     if (part.parent >= 0 && part.joint.blend_length > 0.0)

@@ -523,7 +523,7 @@ TEST(RigEvaluation, FlatVertexPassAgreesWithApplyPairBindingAndTriangleOrderNorm
   const RigWorkspace& w = got.workspace;
   // Reference: every vertex by ApplyPairBinding (or its cap frame) on the evaluated wires.
   double worst = 0.0;
-  std::size_t pairs = 0, caps = 0, on_bridges = 0;
+  std::size_t pairs = 0, caps = 0, on_bridges = 0, relative = 0;
   for (std::size_t v = 0; v < got.positions.size(); ++v) {
     const VertexAttachment& a = human.model.vertices[v];
     const PartModel& part = human.model.parts[a.part];
@@ -555,10 +555,14 @@ TEST(RigEvaluation, FlatVertexPassAgreesWithApplyPairBindingAndTriangleOrderNorm
                         FrameAxes(w.spine_frames[a.part][j.sample]).transpose();
       const Vec3 rest =
           part.spine_points[j.sample] + undo * (expected - w.spine_points[a.part][j.sample]);
-      bridged +=
-          j.weight *
-          (ApplyJointBridge(w.bridges[std::size_t(j.joint)], j.u, j.bridge, rest) - expected);
+      // The bridge replaces the own part's motion, or (skin of another part) adds to it the
+      // joint's turn relative to its parent.
+      const BridgeSamples& bridge = w.bridges[std::size_t(j.joint)];
+      const Vec3 base =
+          j.relative ? Vec3(bridge.parent_turn * rest + bridge.parent_offset) : expected;
+      bridged += j.weight * (ApplyJointBridge(bridge, j.u, j.bridge, rest, j.section) - base);
       ++on_bridges;
+      relative += j.relative;
     }
     expected += bridged;
     worst = std::max(worst, (got.positions[v] - expected).norm());
@@ -566,6 +570,7 @@ TEST(RigEvaluation, FlatVertexPassAgreesWithApplyPairBindingAndTriangleOrderNorm
   EXPECT_GT(pairs, 1000u);
   EXPECT_GT(caps, 10u);
   EXPECT_GT(on_bridges, 100u);
+  EXPECT_GT(relative, 10u);  // the shoulders' and hips' skin spreads over the torso
   EXPECT_LT(worst, 1e-12 * human.diagonal);
   // Normals: accumulated over the triangles in order, then normalised, exactly.
   std::vector<Vec3> sum(got.positions.size(), Vec3::Zero());

@@ -36,6 +36,7 @@ struct RigModelReport {
   std::size_t flagged_vertices = 0;   // the pair binding used a documented fallback
   std::size_t bridged_vertices = 0;   // follow a joint's skin bridge
   std::size_t reowned_vertices = 0;   // beyond their part's end, around a neighbour's bone
+  std::size_t unspread_vertices = 0;  // a joint's skin would spread over them: no free slot
 };
 
 struct BuiltRigModel {

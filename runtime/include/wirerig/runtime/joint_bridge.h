@@ -21,10 +21,14 @@ namespace wirerig {
 // bridge's far end (a vertex its part claimed across the joint) binds to that end (u = 0 or 1):
 // it follows the other side.
 enum class JointSide : int { kParent, kChild };
+// section in (0, 1] is the share of the swept cross-section's growth (the bridge keeping its
+// volume) the point takes: 1 within the limb's radius, radius / distance beyond (flesh around
+// the limb, like a buttock by a hip, is not squeezed out with it).
 struct JointBinding {
   double u = 0.0;
   double weight = 0.0;  // 0: not on the bridge
   double bridge = 0.0;
+  double section = 1.0;
 };
 inline constexpr double kBridgeInner = 1.25;
 inline constexpr double kBridgeOuter = 2.0;
@@ -52,7 +56,8 @@ struct BridgeSamples {
   Vec3 parent_offset = Vec3::Zero(), child_offset = Vec3::Zero();
   std::array<Vec3, kBridgeSegments + 1> rest_centre;
   std::array<Vec3, kBridgeSegments + 1> centre;
-  std::array<Mat3, kBridgeSegments + 1> map;
+  std::array<Mat3, kBridgeSegments + 1> map;   // the section's turn, then its growth
+  std::array<Mat3, kBridgeSegments + 1> turn;  // the section's turn alone
 };
 
 // Samples the bridge for a pose: `rest` and `posed` ends, and the rotations the parent's and
@@ -66,7 +71,9 @@ void SampleJointBridge(const JointModel& joint, const BridgeEnds& rest, const Br
                        const Mat3& parent_rotation, const Mat3& child_rotation, BridgeSamples* out);
 
 // The image of the rest-space point q at coordinate u (clamped to [0, 1]): `fraction` of the
-// swept cross-section's motion, the rest the two sides' motions blended by smoothstep(u).
-Vec3 ApplyJointBridge(const BridgeSamples& bridge, double u, double fraction, const Vec3& q);
+// swept cross-section's motion (taking `section` of its growth; JointBinding::section), the
+// rest the two sides' motions blended by smoothstep(u).
+Vec3 ApplyJointBridge(const BridgeSamples& bridge, double u, double fraction, const Vec3& q,
+                      double section = 1.0);
 
 }  // namespace wirerig

@@ -46,13 +46,19 @@ struct PartModel {
 };
 
 // A vertex near a joint follows the joint's skin bridge (joint_bridge.h) by `weight`, on top of
-// where its own part puts it.
+// where its own part puts it: the bridge's image of the vertex minus a base is added. The base
+// is where the vertex's own part put it when that part is the joint's parent or child (the
+// bridge replaces that motion), and the parent's rigid motion of it when the vertex belongs to
+// another part (`relative`: skin of an ancestor that the joint's skin spreads over follows the
+// joint's turn relative to its parent). Several joints' corrections add.
 struct JointInfluence {
   std::int32_t joint = -1;   // the joint's child part; -1: none
   std::uint32_t sample = 0;  // the own part's spine sample nearest the vertex at rest
   double u = 0.0;            // bridge coordinate
-  double weight = 0.0;       // in (0, 1]; a vertex's weights sum to at most 1
+  double weight = 0.0;       // in (0, 1]
   double bridge = 0.0;       // JointBinding::bridge
+  double section = 1.0;      // JointBinding::section
+  bool relative = false;
 };
 
 struct VertexAttachment {

@@ -1,0 +1,189 @@
+#include "joint_skin_spread.h"
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <limits>
+#include <queue>
+#include <vector>
+
+namespace wirerig {
+namespace {
+
+struct Neighbour {
+  std::uint32_t vertex = 0;
+  double weight = 0.0;  // 1 / rest length
+  double length = 0.0;
+};
+using Adjacency = std::vector<std::vector<Neighbour>>;
+
+Adjacency MakeAdjacency(std::span<const Vec3> rest, const std::vector<Triangle>& triangles) {
+  Adjacency out(rest.size());
+  auto add = [&](std::uint32_t a, std::uint32_t b) {
+    for (const Neighbour& n : out[a])
+      if (n.vertex == b) return;
+    const double length = std::max((rest[a] - rest[b]).norm(), 1e-12);
+    out[a].push_back({b, 1.0 / length, length});
+    out[b].push_back({a, 1.0 / length, length});
+  };
+  for (const Triangle& t : triangles)
+    for (int k = 0; k < 3; ++k) add(t[k], t[(k + 1) % 3]);
+  return out;
+}
+
+// in_subtree[p]: part p is `root` or one of its descendants (parents precede children).
+std::vector<bool> Subtree(const RigModel& model, std::size_t root) {
+  std::vector<bool> out(model.parts.size(), false);
+  out[root] = true;
+  for (std::size_t p = root + 1; p < model.parts.size(); ++p)
+    if (model.parts[p].parent >= 0 && out[std::size_t(model.parts[p].parent)]) out[p] = true;
+  return out;
+}
+
+// ancestor[p]: part p is `part` or one of its ancestors.
+std::vector<bool> AncestorsOf(const RigModel& model, int part) {
+  std::vector<bool> out(model.parts.size(), false);
+  for (int p = part; p >= 0; p = model.parts[std::size_t(p)].parent) out[std::size_t(p)] = true;
+  return out;
+}
+
+JointInfluence* InfluenceOf(VertexAttachment& a, int joint) {
+  for (JointInfluence& j : a.joints)
+    if (j.joint == joint) return &j;
+  return nullptr;
+}
+
+constexpr double kFixedBridge = 1.0 - 1e-9;
+
+// Whether the vertex's u on `joint` is its own: it rides on the bridge as a cross-section
+// (bridge 1) and lies on no sibling joint's bridge (skin between two legs is no section of
+// either).
+bool Fixed(const RigModel& model, const VertexAttachment& a, const JointInfluence& j) {
+  if (j.bridge < kFixedBridge) return false;
+  const int parent = model.parts[std::size_t(j.joint)].parent;
+  for (const JointInfluence& other : a.joints)
+    if (other.joint >= 0 && other.joint != j.joint &&
+        model.parts[std::size_t(other.joint)].parent == parent)
+      return false;
+  return true;
+}
+
+// One joint: see the header. Returns the vertices left out for want of a slot.
+std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_t> own_samples,
+                        std::size_t c, RigModel* model) {
+  const PartModel& child = model->parts[c];
+  const std::vector<bool> child_side = Subtree(*model, c);
+  const std::vector<bool> parent_side = AncestorsOf(*model, child.parent);
+  const std::size_t n = model->vertices.size();
+  const int joint = int(c);
+
+  // Free vertices: blended by the bridge, then the parent side's skin within reach of them.
+  std::vector<double> distance(n, std::numeric_limits<double>::infinity());
+  using Item = std::pair<double, std::uint32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+  for (std::uint32_t v = 0; v < n; ++v) {
+    const JointInfluence* j = InfluenceOf(model->vertices[v], joint);
+    if (j != nullptr && !Fixed(*model, model->vertices[v], *j)) {
+      distance[v] = 0.0;
+      queue.push({0.0, v});
+    }
+  }
+  if (queue.empty()) return 0;
+  const double reach = kSpreadRadii * child.joint.radius;
+  const double sibling_reach = kSiblingSpreadRadii * child.joint.radius;
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > distance[v]) continue;
+    for (const Neighbour& nb : adjacency[v]) {
+      const double next = d + nb.length;
+      if (next > reach || next >= distance[nb.vertex]) continue;
+      const VertexAttachment& a = model->vertices[nb.vertex];
+      const JointInfluence* j = InfluenceOf(model->vertices[nb.vertex], joint);
+      const bool sibling = model->parts[a.part].parent == child.parent && a.part != c;
+      if (j == nullptr && !parent_side[a.part] && !(sibling && next <= sibling_reach))
+        continue;  // the child's skin, or another limb's beyond its reach
+      if (j != nullptr && Fixed(*model, a, *j)) continue;
+      distance[nb.vertex] = next;
+      queue.push({next, nb.vertex});
+    }
+  }
+  std::vector<std::int32_t> index(n, -1);
+  std::vector<std::uint32_t> free;
+  for (std::uint32_t v = 0; v < n; ++v)
+    if (std::isfinite(distance[v])) {
+      index[v] = std::int32_t(free.size());
+      free.push_back(v);
+    }
+
+  // The value a vertex outside the free set holds: its bridge coordinate on the joint, else
+  // 0 on the parent's side and 1 on the child's.
+  // The fields solved for: u, JointInfluence::bridge and JointInfluence::section.
+  using Fields = Eigen::RowVector3d;
+  auto fixed_value = [&](std::uint32_t v) -> Fields {
+    const JointInfluence* j = InfluenceOf(model->vertices[v], joint);
+    if (j != nullptr) return {j->u, j->bridge, j->section};
+    return {child_side[model->vertices[v].part] ? 1.0 : 0.0, 0.0, 0.0};
+  };
+  // Harmonic u over the free vertices; a tiny pull to the bound value keeps every block
+  // definite (a free patch with no fixed neighbour keeps its values).
+  constexpr double kPull = 1e-6;
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(Eigen::Index(free.size()), 3);
+  for (std::size_t i = 0; i < free.size(); ++i) {
+    const std::uint32_t v = free[i];
+    const JointInfluence* j = InfluenceOf(model->vertices[v], joint);
+    double diagonal = 0.0;
+    for (const Neighbour& nb : adjacency[v]) {
+      diagonal += nb.weight;
+      if (index[nb.vertex] >= 0)
+        entries.emplace_back(Eigen::Index(i), index[nb.vertex], -nb.weight);
+      else
+        rhs.row(Eigen::Index(i)) += nb.weight * fixed_value(nb.vertex);
+    }
+    const double pull = kPull * std::max(diagonal, 1.0);
+    entries.emplace_back(Eigen::Index(i), Eigen::Index(i), diagonal + pull);
+    if (j != nullptr) rhs.row(Eigen::Index(i)) += pull * Fields(j->u, j->bridge, j->section);
+  }
+  Eigen::SparseMatrix<double> matrix(Eigen::Index(free.size()), Eigen::Index(free.size()));
+  matrix.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(matrix);
+  if (solver.info() != Eigen::Success) return 0;  // keep the per-vertex binding
+  const Eigen::MatrixX3d solved = solver.solve(rhs);
+
+  std::size_t left_out = 0;
+  for (std::size_t i = 0; i < free.size(); ++i) {
+    VertexAttachment& a = model->vertices[free[i]];
+    const double value = std::clamp(solved(Eigen::Index(i), 0), 0.0, 1.0);
+    const double bridge = std::clamp(solved(Eigen::Index(i), 1), 0.0, 1.0);
+    const double section = std::clamp(solved(Eigen::Index(i), 2), 0.0, 1.0);
+    if (JointInfluence* j = InfluenceOf(a, joint)) {
+      j->u = value;
+      j->bridge = bridge;
+      j->section = section;
+      continue;
+    }
+    if (!(value > 0.0)) continue;
+    JointInfluence* slot = InfluenceOf(a, -1);
+    if (slot == nullptr) {
+      ++left_out;
+      continue;
+    }
+    *slot = JointInfluence{joint,   own_samples[free[i]],       value, 1.0, bridge,
+                           section, int(a.part) != child.parent};
+  }
+  return left_out;
+}
+
+}  // namespace
+
+std::size_t SpreadJointBindings(std::span<const Vec3> rest,
+                                std::span<const std::uint32_t> own_samples, RigModel* model) {
+  const Adjacency adjacency = MakeAdjacency(rest, model->triangles);
+  std::size_t left_out = 0;
+  for (std::size_t c = 1; c < model->parts.size(); ++c)
+    if (model->parts[c].parent >= 0 && model->parts[c].joint.blend_length > 0.0)
+      left_out += SpreadJoint(adjacency, own_samples, c, model);
+  return left_out;
+}
+
+}  // namespace wirerig

@@ -1,0 +1,29 @@
+// Smooths each joint's skin binding over the mesh surface, so no edge carries a jump of motion
+// (used by BuildRigModel after the per-vertex binding).
+//
+// Per joint: skin riding on the bridge as rigid cross-sections (JointInfluence::bridge at 1)
+// keeps its bridge coordinate u; skin the bridge only blends (bridge < 1: far from the limb,
+// like an armpit or the torso around a shoulder) and the skin of the joint's parent and its
+// ancestors within kSpreadRadii x the joint's radius of it along the surface get u harmonic
+// over the surface (edge weights 1 / length), with u = 0 on the parent's side and 1 on the
+// child's beyond. Ancestors' skin joins as `relative` influences (rig_model.h). A vertex
+// already on two bridges is not given a third; their count is returned.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "wirerig/runtime/rig_model.h"
+
+namespace wirerig {
+
+inline constexpr double kSpreadRadii = 3.0;
+inline constexpr double kSiblingSpreadRadii = 1.0;
+
+// `rest`: the welded rest positions of model.vertices; `own_samples`: per vertex, its own part's
+// spine sample nearest it. Returns the vertices left out for want of a free influence slot.
+std::size_t SpreadJointBindings(std::span<const Vec3> rest,
+                                std::span<const std::uint32_t> own_samples, RigModel* model);
+
+}  // namespace wirerig
