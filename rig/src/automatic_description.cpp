@@ -1,6 +1,7 @@
 #include "wirerig/rig/automatic_description.h"
 
 #include "wirerig/rig/curve_skeleton.h"
+#include "wirerig/rig/skeleton_description.h"
 
 namespace wirerig {
 

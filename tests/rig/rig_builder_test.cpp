@@ -11,6 +11,7 @@
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/mesh_statistics.h"
 #include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/rig/skeleton_description.h"
 #include "wirerig/rig/triangle_bvh.h"
 
 #ifndef WIRERIG_ASSET_DIR

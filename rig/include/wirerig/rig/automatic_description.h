@@ -1,5 +1,5 @@
 // A rig description for a mesh that comes without one: from its skeleton when it has joints
-// (one part per joint chain), else from its curve skeleton (CGAL mean-curvature flow).
+// (one part per bone), else from its curve skeleton (CGAL mean-curvature flow).
 #pragma once
 
 #include <string>

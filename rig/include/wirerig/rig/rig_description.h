@@ -1,6 +1,7 @@
 // RigDescription: how a mesh is divided into parts for rigging (paper section 2.1). Each part
 // has a rough central curve, from the user's JSON description, from the asset's skeleton
-// (one part per joint chain), or found automatically from the mesh's curve skeleton.
+// (one part per bone, skeleton_description.h), or found automatically from the mesh's curve
+// skeleton (curve_skeleton.h).
 //
 // Rules (checked by ValidateRigDescription): part names are unique and not empty; every
 // central curve has at least 2 finite points, consecutive points distinct; profile_count >= 2;
@@ -55,9 +56,5 @@ Result<RigDescription> ParseRigDescription(const nlohmann::json& document);
 Result<RigDescription> LoadRigDescription(const std::filesystem::path& path);
 // Empty when valid, else "<json pointer>: <reason>" naming the first broken rule.
 std::string ValidateRigDescription(const RigDescription& description);
-
-// From the asset's skeleton: one part per chain of joints (a chain ends where a joint has
-// zero or several children), hierarchy from the skeleton, vertices assigned by skin weights.
-Result<RigDescription> DescribeFromSkeleton(const Mesh& mesh);
 
 }  // namespace wirerig
