@@ -37,6 +37,19 @@ TEST(InputScript, ParsesEveryEvent) {
   EXPECT_EQ(e[7].frame, 5);
 }
 
+TEST(InputScript, ParsesMoveToGizmo) {
+  Result<std::vector<InputEvent>> events =
+      ParseInputScript("6 move-to-gizmo y 0.25\n7 move-to-gizmo x 0\n", "test.input");
+  ASSERT_TRUE(events) << events.error();
+  const auto& e = events.value();
+  ASSERT_EQ(e.size(), 2u);
+  EXPECT_EQ(e[0].type, InputEventType::kMoveToGizmo);
+  EXPECT_EQ(e[0].axis, 1);
+  EXPECT_FLOAT_EQ(e[0].x, 0.25f);
+  EXPECT_EQ(e[1].axis, 0);
+  EXPECT_EQ(e[1].frame, 7);
+}
+
 TEST(InputScript, ErrorsNameTheSourceAndLine) {
   struct Case {
     const char* text;
@@ -49,6 +62,8 @@ TEST(InputScript, ErrorsNameTheSourceAndLine) {
       {"0 press thumb\n", "s.input:1: press takes a button"},
       {"0 jump\n", "s.input:1: unknown event 'jump'"},
       {"0 move-to-wire 1 1.5\n", "s.input:1: move-to-wire takes"},
+      {"0 move-to-gizmo w 0.5\n", "s.input:1: move-to-gizmo takes"},
+      {"0 move-to-gizmo z 2\n", "s.input:1: move-to-gizmo takes"},
       {"0 key F1\n", "s.input:1: key takes"},
       {"-1 key f\n", "s.input:1: the line must start"},
       {"5\n", "s.input:1: an event name must follow"},

@@ -379,6 +379,16 @@ void Application::HandleEvent(const InputEvent& e) {
                    e.wire);
       break;
     }
+    case InputEventType::kMoveToGizmo: {
+      Vec2f pixel;
+      if (GizmoPixel(e.axis, e.x, &pixel)) {
+        MouseMove(pixel);
+      } else {
+        std::fprintf(stderr, "input script: frame %d: no gizmo ring %c on screen\n", e.frame,
+                     "xyz"[std::clamp(e.axis, 0, 2)]);
+      }
+      break;
+    }
     case InputEventType::kPress:
     case InputEventType::kRelease:
       MouseButtonEvent(e.button, e.type == InputEventType::kPress, false);
@@ -404,7 +414,9 @@ void Application::HandleEvent(const InputEvent& e) {
 void Application::MouseMove(const Vec2f& pixel) {
   const Vec2f delta = pixel - mouse_;
   mouse_ = pixel;
-  if (grabbing_) {
+  if (handling_) {
+    OnHandleDrag(pixel);
+  } else if (grabbing_) {
     OnWireDrag(grab_, DragPoint(camera_, size_, pixel, grab_.point));
   } else if (panning_) {
     const float metres_per_pixel =
@@ -419,6 +431,10 @@ void Application::MouseMove(const Vec2f& pixel) {
 void Application::MouseButtonEvent(MouseButton button, bool pressed, bool shift) {
   buttons_[int(button)] = pressed;
   if (!pressed) {
+    if (handling_ && button == MouseButton::kLeft) {
+      handling_ = false;
+      OnHandleRelease();
+    }
     if (grabbing_ && button == MouseButton::kLeft) {
       grabbing_ = false;
       OnWireRelease();
@@ -428,6 +444,10 @@ void Application::MouseButtonEvent(MouseButton button, bool pressed, bool shift)
     return;
   }
   if (button == MouseButton::kLeft && !shift) {
+    if (OnHandlePress(mouse_)) {
+      handling_ = true;
+      return;
+    }
     const WirePick pick = PickPolyline(frame_.polylines, camera_, size_, mouse_);
     if (pick.hit) {
       grabbing_ = true;

@@ -86,6 +86,14 @@ Result<std::vector<InputEvent>> ParseInputScript(std::string_view text,
         return fail("move-to-wire takes a wire id >= 0 and a parameter v in [0, 1]");
       }
       e.wire = unsigned(id);
+    } else if (name == "move-to-gizmo") {
+      e.type = InputEventType::kMoveToGizmo;
+      const std::string axes = "xyz";
+      if (!need(2) || w[2].size() != 1 || axes.find(w[2][0]) == std::string::npos ||
+          !ParseFloat(w[3], &e.x) || e.x < 0.0f || e.x > 1.0f) {
+        return fail("move-to-gizmo takes a ring axis (x, y or z) and a fraction t in [0, 1]");
+      }
+      e.axis = int(axes.find(w[2][0]));
     } else if (name == "press" || name == "release") {
       e.type = name == "press" ? InputEventType::kPress : InputEventType::kRelease;
       if (!need(1) || !ParseButton(w[2], &e.button)) {
@@ -101,7 +109,7 @@ Result<std::vector<InputEvent>> ParseInputScript(std::string_view text,
       }
     } else {
       return fail("unknown event '" + name +
-                  "' (move, move-by, move-to-wire, press, release, scroll, key)");
+                  "' (move, move-by, move-to-wire, move-to-gizmo, press, release, scroll, key)");
     }
     events.push_back(e);
   }

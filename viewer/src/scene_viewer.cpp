@@ -46,6 +46,8 @@ Result<bool> SceneViewer::Open(const SceneDescription& description) {
   timeline().playing = timeline().duration > 0.0;  // a scene's clip plays when it opens
   selected_part_ = std::min(selected_part_, int(scene_->model.parts.size()) - 1);
   dragging_ = false;
+  evaluated_ = false;
+  gizmo_drag_ = JointGizmoDrag{};
   return true;
 }
 
@@ -69,6 +71,14 @@ void SceneViewer::OnDisplay(RenderFrame& frame) {
     status_ = "evaluation: " + ToString(s);
   } else {
     picture_->Update(*playback_, positions_, normals_);
+    // Where each joint stands now, for the rotation gizmo.
+    const RigModel& model = scene_->model;
+    posed_joints_.resize(model.parts.size());
+    for (std::size_t p = 0; p < model.parts.size(); ++p)
+      posed_joints_[p] =
+          PoseJoint(model, playback_->workspace(), p, playback_->sample().poses[p],
+                    playback_->InteractiveJointAngles(static_cast<std::uint32_t>(p)));
+    evaluated_ = true;
     if (dragging_) {
       // How far the grabbed point of the wire moved from where it was grabbed.
       const RigWorkspace& w = playback_->workspace();
@@ -134,6 +144,108 @@ void SceneViewer::OnWireDrag(const WirePick& grab, const Vec3f& target) {
 void SceneViewer::OnWireRelease() {
   dragging_ = false;
   (void)playback_->SetInteractiveLoad(std::nullopt);
+}
+
+JointGizmo SceneViewer::CurrentGizmo() const {
+  if (!show_gizmo_ || !evaluated_ || selected_part_ < 0 ||
+      std::size_t(selected_part_) >= posed_joints_.size())
+    return JointGizmo{};
+  const auto p = static_cast<std::uint32_t>(selected_part_);
+  const PartModel& part = scene_->model.parts[p];
+  if (part.parent < 0) return JointGizmo{};
+  const PosedJoint& posed = posed_joints_[p];
+  const Mat3 axes = JointGizmoAxes(part.joint, posed.frame, playback_->InteractiveJointAngles(p));
+  return BuildJointGizmo(camera(), display_size(), posed.center, axes, part.joint.type);
+}
+
+bool SceneViewer::OnHandlePress(const Vec2f& pixel) {
+  const JointGizmo gizmo = CurrentGizmo();
+  const int ring = HitTestJointGizmo(gizmo, pixel);
+  if (ring < 0) return false;
+  gizmo_part_ = static_cast<std::uint32_t>(selected_part_);
+  drag_gizmo_ = gizmo;
+  gizmo_drag_ =
+      BeginJointGizmoDrag(gizmo, ring, pixel, playback_->InteractiveJointAngles(gizmo_part_));
+  ++gizmo_drags_;
+  return true;
+}
+
+void SceneViewer::OnHandleDrag(const Vec2f& pixel) {
+  if (gizmo_drag_.ring < 0 || gizmo_part_ >= scene_->model.parts.size()) return;
+  const Vec3 angles = UpdateJointGizmoDrag(drag_gizmo_, scene_->model.parts[gizmo_part_].joint,
+                                           pixel, &gizmo_drag_);
+  const Status s = playback_->SetInteractiveJointAngles(gizmo_part_, angles);
+  if (!s) status_ = ToString(s);
+}
+
+void SceneViewer::OnHandleRelease() { gizmo_drag_ = JointGizmoDrag{}; }
+
+bool SceneViewer::GizmoPixel(int axis, float t, Vec2f* pixel) const {
+  const JointGizmo gizmo = CurrentGizmo();
+  for (const JointGizmoRing& ring : gizmo.rings) {
+    if (ring.axis != axis || ring.pixels.empty()) continue;
+    // Along the ring's polyline, between its points.
+    const double x = double(std::clamp(t, 0.0f, 1.0f)) * double(ring.pixels.size());
+    const auto i = static_cast<std::size_t>(std::floor(x)) % ring.pixels.size();
+    const float f = float(x - std::floor(x));
+    *pixel = (1.0f - f) * ring.pixels[i] + f * ring.pixels[(i + 1) % ring.pixels.size()];
+    return true;
+  }
+  return false;
+}
+
+// The rotation gizmo on the background draw list (over the 3D view, under the panels): X red,
+// Y green, Z blue, fading towards the side of each ring away from the eye, the hovered or
+// dragged ring bright and thick; while dragging, a line from the joint to the cursor and the
+// angle.
+void SceneViewer::DrawGizmo() {
+  const JointGizmo gizmo = CurrentGizmo();
+  if (!gizmo.visible) return;
+  const ImGuiIO& io = ImGui::GetIO();
+  // Our pixels are the framebuffer's; ImGui draws in window coordinates.
+  const ImVec2 scale(io.DisplayFramebufferScale.x > 0.0f ? io.DisplayFramebufferScale.x : 1.0f,
+                     io.DisplayFramebufferScale.y > 0.0f ? io.DisplayFramebufferScale.y : 1.0f);
+  auto to_imgui = [&](const Vec2f& p) { return ImVec2(p.x() / scale.x, p.y() / scale.y); };
+  int hot = -1;  // axis
+  if (gizmo_drag_.ring >= 0) {
+    hot = gizmo_drag_.axis;
+  } else if (!io.WantCaptureMouse) {
+    const int ring = HitTestJointGizmo(gizmo, mouse());
+    if (ring >= 0) hot = gizmo.rings[std::size_t(ring)].axis;
+  }
+  const int colours[3][3] = {{230, 60, 60}, {70, 200, 80}, {70, 120, 245}};
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  // Far sides first, then near sides, the hot ring last.
+  for (int pass = 0; pass < 3; ++pass) {
+    for (const JointGizmoRing& ring : gizmo.rings) {
+      const bool is_hot = ring.axis == hot;
+      if ((pass == 2) != is_hot) continue;
+      const int* c = colours[ring.axis];
+      const int lift = is_hot ? 70 : 0;
+      const std::size_t n = ring.pixels.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t j = (i + 1) % n;
+        const float near = 0.5f * (ring.toward_eye[i] + ring.toward_eye[j]);
+        if (pass < 2 && (near >= 0.0f) != (pass == 1)) continue;
+        const int alpha = near >= 0.0f ? 255 : int(255.0f + 175.0f * std::max(near, -1.0f));
+        const ImU32 colour = IM_COL32(std::min(c[0] + lift, 255), std::min(c[1] + lift, 255),
+                                      std::min(c[2] + lift, 255), alpha);
+        draw->AddLine(to_imgui(ring.pixels[i]), to_imgui(ring.pixels[j]), colour,
+                      is_hot ? 4.0f : 2.0f);
+      }
+    }
+  }
+  const ImVec2 centre = to_imgui(gizmo.center_pixel);
+  draw->AddCircleFilled(centre, 3.0f, IM_COL32(240, 240, 240, 220));
+  if (gizmo_drag_.ring >= 0 && gizmo_part_ < scene_->model.parts.size()) {
+    const ImVec2 cursor = to_imgui(mouse());
+    draw->AddLine(centre, cursor, IM_COL32(240, 240, 240, 160), 1.0f);
+    const Vec3 angles = playback_->InteractiveJointAngles(gizmo_part_);
+    char text[48];
+    std::snprintf(text, sizeof text, "%c %.1f deg", "xyz"[gizmo_drag_.axis],
+                  angles[gizmo_drag_.axis]);
+    draw->AddText(ImVec2(cursor.x + 14.0f, cursor.y - 6.0f), IM_COL32(255, 255, 255, 255), text);
+  }
 }
 
 void SceneViewer::Apply(SceneDescription edited) {
@@ -255,7 +367,9 @@ void SceneViewer::DrawEditor() {
   if (ImGui::Combo("colour", &coloring, colorings, 3))
     picture_->set_coloring(static_cast<SceneColoring>(coloring));
   if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
-  ImGui::TextWrapped("Drag a wire to push it; drag elsewhere to orbit.");
+  ImGui::TextWrapped(
+      "Drag a gizmo ring to turn the selected joint; drag a wire to push it (and select its "
+      "part); drag elsewhere to orbit.");
   ImGui::End();
 }
 
@@ -272,6 +386,9 @@ void SceneViewer::DrawJointSliders(const PartModel& part) {
   for (int k = 0; k < count; ++k)
     changed |= ImGui::SliderFloat(labels[k], &angles[k], float(part.joint.min_degrees[k]),
                                   float(part.joint.max_degrees[k]), "%.0f");
+  ImGui::Checkbox("rotation gizmo", &show_gizmo_);
+  ImGui::SameLine();
+  ImGui::TextDisabled("drag a ring to turn the joint");
   if (ImGui::Button("reset joint")) {
     angles[0] = angles[1] = angles[2] = 0.0f;
     changed = true;
@@ -283,14 +400,21 @@ void SceneViewer::DrawJointSliders(const PartModel& part) {
   }
 }
 
-void SceneViewer::OnGui() { DrawEditor(); }
+void SceneViewer::OnGui() {
+  DrawGizmo();
+  DrawEditor();
+}
 
 void SceneViewer::OnShutdown() {
+  const auto selected = static_cast<std::uint32_t>(selected_part_);
+  const Vec3 joint = playback_->InteractiveJointAngles(selected);
   std::printf(
       "view: picks=%d force=%s wire_moved=%s mesh_moved=%s max_wire_motion=%.4f m "
-      "max_mesh_motion=%.4f m peak_force=%.3g N frames=%d\n",
+      "max_mesh_motion=%.4f m peak_force=%.3g N gizmo_drags=%d joint=%s:%.1f,%.1f,%.1f "
+      "frames=%d\n",
       picks_, peak_force_ > 0.0 ? "yes" : "no", max_wire_motion_ > 1e-2 ? "yes" : "no",
       max_mesh_motion_ > 1e-3 ? "yes" : "no", max_wire_motion_, max_mesh_motion_, peak_force_,
+      gizmo_drags_, scene_->model.parts[selected].name.c_str(), joint.x(), joint.y(), joint.z(),
       statistics().frame);
 }
 

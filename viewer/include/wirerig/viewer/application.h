@@ -12,8 +12,10 @@
 //     render, then OnGui()          ImGui widgets (windowed mode only)
 //   OnShutdown()                    once, context still current
 //
-// Mouse: left-drag on a pickable wire grabs it (OnWireGrab, OnWireDrag every move,
-// OnWireRelease); left-drag elsewhere orbits; right- or middle-drag (or shift+left) pans;
+// Mouse: a left press the application takes for a handle of its own (OnHandlePress, e.g. a
+// gizmo) drags that handle (OnHandleDrag every move, OnHandleRelease); else left-drag on a
+// pickable wire grabs it (OnWireGrab, OnWireDrag every move, OnWireRelease); left-drag
+// elsewhere orbits; right- or middle-drag (or shift+left) pans;
 // the wheel zooms. Keys: F frames the model, W/A/S/D/Q/E fly the orbit target, Z toggles the
 // wireframe, space plays/pauses the timeline, escape quits.
 //
@@ -91,14 +93,34 @@ class Application {
     (void)target;
   }
   virtual void OnWireRelease() {}
+  // A left press (without shift) at `pixel`, asked before wire picking: return true to take
+  // the drag for a handle of the application's own (a gizmo); then OnHandleDrag gets every
+  // move and OnHandleRelease the release, and neither a wire grab nor an orbit starts.
+  virtual bool OnHandlePress(const Vec2f& pixel) {
+    (void)pixel;
+    return false;
+  }
+  virtual void OnHandleDrag(const Vec2f& pixel) { (void)pixel; }
+  virtual void OnHandleRelease() {}
+  // Where an input script's `move-to-gizmo AXIS T` puts the cursor: the pixel at fraction T
+  // around the ring of axis AXIS (0 X, 1 Y, 2 Z) of the application's gizmo. False: none.
+  virtual bool GizmoPixel(int axis, float t, Vec2f* pixel) const {
+    (void)axis;
+    (void)t;
+    (void)pixel;
+    return false;
+  }
 
   Camera& camera() { return camera_; }
+  const Camera& camera() const { return camera_; }
   Timeline& timeline() { return timeline_; }
   RenderOptions& render_options() { return render_options_; }
   const FrameStatistics& statistics() const { return statistics_; }
   const ApplicationOptions& options() const { return options_; }
   // The current display size in pixels.
   Size display_size() const { return size_; }
+  // The cursor in pixels of the display (top-left origin).
+  Vec2f mouse() const { return mouse_; }
   // Frames the camera on the bounds of the last displayed frame.
   void FrameModel();
 
@@ -128,6 +150,7 @@ class Application {
   bool panning_ = false;
   bool orbiting_ = false;
   bool grabbing_ = false;
+  bool handling_ = false;  // a handle (OnHandlePress) is being dragged
   WirePick grab_;
   bool keys_held_[6] = {};  // W A S D Q E
   bool quit_ = false;

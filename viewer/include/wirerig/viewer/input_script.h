@@ -5,6 +5,9 @@
 //   <frame> move <x> <y>           cursor to a fraction of the window (0..1 from the top-left)
 //   <frame> move-by <dx> <dy>      cursor moved by fractions of the window
 //   <frame> move-to-wire <id> <v>  cursor onto wire `id` (RenderPolyline::id) at parameter v
+//   <frame> move-to-gizmo <x|y|z> <t>  cursor onto the joint gizmo's ring of that axis, at
+//                                  fraction t in [0, 1] around it from its point nearest the
+//                                  eye, in the direction of a positive turn (joint_gizmo.h)
 //   <frame> press <left|right|middle>
 //   <frame> release <left|right|middle>
 //   <frame> scroll <dy>            wheel steps (positive zooms in)
@@ -29,6 +32,7 @@ enum class InputEventType : int {
   kRelease = 4,
   kScroll = 5,
   kKey = 6,
+  kMoveToGizmo = 7,
 };
 
 enum class MouseButton : int { kLeft = 0, kRight = 1, kMiddle = 2 };
@@ -36,9 +40,10 @@ enum class MouseButton : int { kLeft = 0, kRight = 1, kMiddle = 2 };
 struct InputEvent {
   int frame = 0;
   InputEventType type = InputEventType::kMove;
-  float x = 0.0f;     // move, move-by: fractions; move-to-wire: v; scroll: steps in x (0)
+  float x = 0.0f;     // move, move-by: fractions; move-to-wire: v; move-to-gizmo: t; scroll: 0
   float y = 0.0f;     // move, move-by: fractions; scroll: steps
   unsigned wire = 0;  // move-to-wire
+  int axis = 0;       // move-to-gizmo: 0 X, 1 Y, 2 Z (x holds t)
   MouseButton button = MouseButton::kLeft;  // press, release
   int key = 0;  // key: an upper-case letter or digit, ' ', '\t', 27 (escape)
 };

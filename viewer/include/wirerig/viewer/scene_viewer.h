@@ -1,6 +1,9 @@
 // SceneViewer: the viewer application on a scene (`wirerig view SCENE`). It plays the scene's
 // clip on the timeline (keys shown), draws the deformed mesh with its profile wires (blue) and
 // spine wires (pink) and the load arrows, and lets the user:
+//  * turn the selected part's joint: drag a ring of the rotation gizmo drawn on the joint
+//    (joint_gizmo.h; X red, Y green, Z blue; a hinge has its X ring only), or use the joint
+//    sliders; the skin follows through the joint's bridge;
 //  * drag a wire: a live point force at the grabbed place (spine: the cantilever stiffness
 //    3 EI / a^3 that puts the grabbed point under the mouse; profile: 192 EI / L^3 of a clamped
 //    loop), re-evaluated in closed form every frame;
@@ -8,8 +11,10 @@
 //    undo; save the edited scene; export the clip to .glb (morph mode);
 //  * switch to another sample with a picker.
 // OnShutdown prints one summary line for scripted runs:
-//   "view: picks=N force=yes|no wire_moved=yes|no mesh_moved=yes|no ... frames=N"
-// (wire_moved: the grabbed point of the wire moved over 1 cm while dragged).
+//   "view: picks=N force=yes|no wire_moved=yes|no mesh_moved=yes|no ... gizmo_drags=N
+//    joint=PART:X,Y,Z frames=N"
+// (wire_moved: the grabbed point of the wire moved over 1 cm while dragged; joint: the
+// selected part's interactive joint angles in degrees).
 #pragma once
 
 #include <filesystem>
@@ -20,6 +25,7 @@
 #include "wirerig/anim/playback.h"
 #include "wirerig/anim/scene.h"
 #include "wirerig/viewer/application.h"
+#include "wirerig/viewer/joint_gizmo.h"
 #include "wirerig/viewer/scene_frame.h"
 
 namespace wirerig {
@@ -40,6 +46,10 @@ class SceneViewer : public Application {
   explicit SceneViewer(SceneViewerOptions options);
   ~SceneViewer() override;
 
+  // The open scene's playback (after Run has initialised it, until the viewer is destroyed).
+  const Playback& playback() const { return *playback_; }
+  int selected_part() const { return selected_part_; }
+
  protected:
   bool OnInitialize() override;
   void OnDisplay(RenderFrame& frame) override;
@@ -48,6 +58,10 @@ class SceneViewer : public Application {
   void OnWireGrab(const WirePick& pick) override;
   void OnWireDrag(const WirePick& grab, const Vec3f& target) override;
   void OnWireRelease() override;
+  bool OnHandlePress(const Vec2f& pixel) override;
+  void OnHandleDrag(const Vec2f& pixel) override;
+  void OnHandleRelease() override;
+  bool GizmoPixel(int axis, float t, Vec2f* pixel) const override;
 
  private:
   // Loads (or rebuilds after an edit) the scene and everything made from it; the error names
@@ -55,6 +69,10 @@ class SceneViewer : public Application {
   Result<bool> Open(const SceneDescription& description);
   void DrawEditor();
   void DrawJointSliders(const PartModel& part);
+  // The rotation gizmo of the selected part's joint, as the last evaluation posed it, seen by
+  // the current camera (not visible: no joint that turns, or hidden).
+  JointGizmo CurrentGizmo() const;
+  void DrawGizmo();
   void Apply(SceneDescription edited);
 
   SceneViewerOptions options_;
@@ -78,6 +96,15 @@ class SceneViewer : public Application {
   Vec3 grab_point_ = Vec3::Zero();  // where the grabbed wire was when grabbed
   double max_wire_motion_ = 0.0;    // how far the grabbed point moved while dragged
   int selected_part_ = 0;
+  // The rotation gizmo: every part's joint as the last evaluation posed it, and the ring drag
+  // in progress (on the gizmo as it stood when the drag began).
+  bool show_gizmo_ = true;
+  bool evaluated_ = false;  // posed_joints_ belong to the open scene's last evaluation
+  std::vector<PosedJoint> posed_joints_;
+  JointGizmo drag_gizmo_;
+  JointGizmoDrag gizmo_drag_;
+  std::uint32_t gizmo_part_ = 0;
+  int gizmo_drags_ = 0;
   // The editor's fields for the selected part of the open scene, reloaded when either changes.
   struct EditorFields {
     int part = -1;
