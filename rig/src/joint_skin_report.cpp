@@ -20,7 +20,7 @@ std::vector<std::uint8_t> LimbSide(const RigModel& model, std::size_t c) {
   std::vector<std::uint8_t> out(model.vertices.size(), 0);
   for (std::size_t v = 0; v < model.vertices.size(); ++v) {
     const VertexAttachment& a = model.vertices[v];
-    out[v] = in_subtree[a.part] || a.joints[0].joint == int(c) || a.joints[1].joint == int(c);
+    out[v] = in_subtree[a.part] || a.OnJoint(int(c));
   }
   return out;
 }

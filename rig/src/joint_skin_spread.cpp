@@ -163,18 +163,28 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
       continue;
     }
     if (!(value > 0.0)) continue;
-    JointInfluence* slot = InfluenceOf(a, -1);
-    if (slot == nullptr) {
-      ++left_out;
-      continue;
-    }
-    *slot = JointInfluence{joint,   own_samples[free[i]],       value, 1.0, bridge,
-                           section, int(a.part) != child.parent};
+    const JointInfluence spread{joint,   own_samples[free[i]],       value, 1.0, bridge,
+                                section, int(a.part) != child.parent};
+    left_out += !AddJointInfluence(spread, &a);
   }
   return left_out;
 }
 
 }  // namespace
+
+bool AddJointInfluence(const JointInfluence& influence, VertexAttachment* a) {
+  auto strength = [&](const JointInfluence& j) {
+    if (j.joint < 0) return -1.0;
+    const bool child_side = j.joint == int(a->part);
+    return j.weight * (child_side ? 1.0 - j.u : j.u);
+  };
+  JointInfluence* weakest = &a->joints[0];
+  for (JointInfluence& j : a->joints)
+    if (strength(j) < strength(*weakest)) weakest = &j;
+  if (weakest->joint >= 0 && strength(*weakest) >= strength(influence)) return false;
+  *weakest = influence;
+  return true;
+}
 
 std::size_t SpreadJointBindings(std::span<const Vec3> rest,
                                 std::span<const std::uint32_t> own_samples, RigModel* model) {

@@ -6,8 +6,9 @@
 // like an armpit or the torso around a shoulder) and the skin of the joint's parent and its
 // ancestors within kSpreadRadii x the joint's radius of it along the surface get u harmonic
 // over the surface (edge weights 1 / length), with u = 0 on the parent's side and 1 on the
-// child's beyond. Ancestors' skin joins as `relative` influences (rig_model.h). A vertex
-// already on two bridges is not given a third; their count is returned.
+// child's beyond. Ancestors' and siblings' skin joins as `relative` influences (rig_model.h).
+// A vertex whose kJointInfluences slots hold stronger influences is left out; their count is
+// returned.
 #pragma once
 
 #include <cstddef>
@@ -20,6 +21,11 @@ namespace wirerig {
 
 inline constexpr double kSpreadRadii = 3.0;
 inline constexpr double kSiblingSpreadRadii = 1.0;
+
+// Gives the vertex the influence, in a free slot or instead of its weakest influence if that
+// is weaker (strength: how far the influence moves the vertex from where its own part puts it,
+// weight x u on the parent's side, weight x (1 - u) on the child's). False: left out.
+bool AddJointInfluence(const JointInfluence& influence, VertexAttachment* a);
 
 // `rest`: the welded rest positions of model.vertices; `own_samples`: per vertex, its own part's
 // spine sample nearest it. Returns the vertices left out for want of a free influence slot.

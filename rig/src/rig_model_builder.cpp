@@ -186,12 +186,12 @@ int NeighbourAround(const RigModel& model, const std::vector<SpineBounds>& bound
   return best;
 }
 
-// Up to two joint bridges for the vertex at p owned by part `own`: the strongest, with the
-// weights scaled down to sum to at most 1.
+// The joint bridges of the vertex at p owned by part `own` (its own joint's and its children's;
+// the strongest kJointInfluences).
 // `rest_ends`: per part, its joint bridge's rest ends (RestBridgeEnds; unused for the root).
 void BindJoints(const RigModel& model, const std::vector<BridgeEnds>& rest_ends, std::uint32_t own,
                 std::uint32_t sample, const Vec3& p, VertexAttachment* a) {
-  std::array<JointInfluence, 2> best{};
+  a->joints = {};
   for (std::size_t c = 1; c < model.parts.size(); ++c) {
     const PartModel& child = model.parts[c];
     JointSide side;
@@ -205,15 +205,8 @@ void BindJoints(const RigModel& model, const std::vector<BridgeEnds>& rest_ends,
     const double reach = child.joint.blend_length;
     const JointBinding b = BindToJoint(child.joint, rest_ends[c], p, side, reach);
     if (!(b.weight > 0.0)) continue;
-    const JointInfluence influence{int(c), sample, b.u, b.weight, b.bridge, b.section};
-    if (b.weight > best[0].weight) {
-      best[1] = best[0];
-      best[0] = influence;
-    } else if (b.weight > best[1].weight) {
-      best[1] = influence;
-    }
+    AddJointInfluence({int(c), sample, b.u, b.weight, b.bridge, b.section}, a);
   }
-  a->joints = best;
 }
 
 }  // namespace
@@ -334,7 +327,7 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
   }
   built.report.unspread_vertices = SpreadJointBindings(mesh.welded_positions, own_samples, &model);
   for (const VertexAttachment& a : model.vertices)
-    built.report.bridged_vertices += a.joints[0].joint >= 0 || a.joints[1].joint >= 0;
+    built.report.bridged_vertices += a.joints[0].joint >= 0;
   return built;
 }
 

@@ -44,6 +44,9 @@ Hermite CurveOf(const BridgeEnds& ends) {
   return {ends.start, handle * ends.start_tangent, ends.end, handle * ends.end_tangent};
 }
 
+// How near the bend's centre of curvature a section may reach, as a fraction of its radius.
+constexpr double kFit = 0.9;
+
 // The in-plane scale of the cross-section where the bent curve has velocity v and acceleration
 // a, growing its area by `area`. Evenly where the bend allows; but the section must not reach
 // the bend's centre of curvature (sections would cross there), so towards it the scale is held
@@ -51,7 +54,6 @@ Hermite CurveOf(const BridgeEnds& ends) {
 // the growth goes across the bend, along the binormal (flesh squeezed on the inside of an elbow
 // bulges sideways).
 Mat3 CrossSectionScale(const Vec3& v, const Vec3& a, double area, double limb_radius) {
-  constexpr double kFit = 0.9;
   const double speed = v.norm();
   if (!(speed > 0.0)) return Mat3::Identity();
   const Vec3 t = v / speed;
@@ -69,6 +71,23 @@ Mat3 CrossSectionScale(const Vec3& v, const Vec3& a, double area, double limb_ra
     scale += towards * (Mat3::Identity() - t * t.transpose());
   }
   return scale;
+}
+
+// Curvature x inward normal of a curve with velocity v and acceleration a.
+Vec3 Bend(const Vec3& v, const Vec3& a) {
+  const double speed2 = v.squaredNorm();
+  if (!(speed2 > 0.0)) return Vec3::Zero();
+  return (a - a.dot(v) / speed2 * v) / speed2;
+}
+double Curvature(const Vec3& v, const Vec3& a) { return Bend(v, a).norm(); }
+
+// The bend's inward normal over the reach kFit / (curvature beyond the rest curvature): zero
+// where the bridge bends no more than at rest, so rest is reproduced exactly.
+Vec3 Inward(const Vec3& v, const Vec3& a, double rest_curvature) {
+  const Vec3 bend = Bend(v, a);
+  const double curvature = bend.norm();
+  if (!(curvature > rest_curvature)) return Vec3::Zero();
+  return bend * ((curvature - rest_curvature) / (curvature * kFit));
 }
 
 }  // namespace
@@ -155,6 +174,8 @@ void SampleJointBridge(const JointModel& joint, const BridgeEnds& rest, const Br
         (parent * ScaleRotation(swing, u) * ScaleRotation(twist, u)).toRotationMatrix();
     const double area = std::clamp(1.0 + growth * 4.0 * u * (1.0 - u), 0.25, 4.0);
     out->turn[k] = rotation;
+    out->inward[k] = Inward(curve.Derivative(u), curve.SecondDerivative(u),
+                            Curvature(rest_curve.Derivative(u), rest_curve.SecondDerivative(u)));
     out->map[k] =
         CrossSectionScale(curve.Derivative(u), curve.SecondDerivative(u), area, joint.radius) *
         rotation;
@@ -175,6 +196,11 @@ Vec3 ApplyJointBridge(const BridgeSamples& bridge, double u, double fraction, co
     const Vec3 turned = ((1.0 - f) * bridge.turn[k] + f * bridge.turn[k + 1]) * d;
     swept = centre + turned + section * (swept - centre - turned);
   }
+  // Softly short of the centre of curvature: reach r along the inward normal becomes
+  // limit tanh(r / limit).
+  const Vec3 inward = (1.0 - f) * bridge.inward[k] + f * bridge.inward[k + 1];
+  const double reach = inward.dot(swept - centre);  // in units of the limit
+  if (reach > 0.0) swept += (std::tanh(reach) - reach) / inward.squaredNorm() * inward;
   if (fraction >= 1.0) return swept;
   const double child = SmoothStep(0.0, 1.0, u);
   const Vec3 blended = (1.0 - child) * (bridge.parent_turn * q + bridge.parent_offset) +

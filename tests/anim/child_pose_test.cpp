@@ -57,8 +57,7 @@ TEST(ChildPose, RotatingAnUpperArmMovesItsArmRigidlyAboutItsRootBeyondTheJointBr
   for (std::size_t v = 0; v < positions.size(); ++v) {
     // Vertices on the shoulder's skin bridge (joint_bridge.h) blend across it instead. The
     // elbow and the wrist are not bent, so their bridges turn rigidly with the arm.
-    if (!in_arm(model.vertices[v].part) || model.vertices[v].joints[0].joint == int(arm) ||
-        model.vertices[v].joints[1].joint == int(arm))
+    if (!in_arm(model.vertices[v].part) || model.vertices[v].OnJoint(int(arm)))
       continue;
     ++checked;
     const Vec3 expected = root + r * (scene.mesh.welded_positions[v] - root);
@@ -76,8 +75,7 @@ TEST(ChildPose, RotatingAnUpperArmMovesItsArmRigidlyAboutItsRootBeyondTheJointBr
   // Every other part stays where it was, but for its skin on the shoulder's bridge.
   std::size_t others_moved = 0, others = 0;
   for (std::size_t v = 0; v < positions.size(); ++v)
-    if (!in_arm(model.vertices[v].part) && model.vertices[v].joints[0].joint != int(arm) &&
-        model.vertices[v].joints[1].joint != int(arm)) {
+    if (!in_arm(model.vertices[v].part) && !model.vertices[v].OnJoint(int(arm))) {
       ++others;
       others_moved += (positions[v] - scene.mesh.welded_positions[v]).norm() > 1e-9;
     }

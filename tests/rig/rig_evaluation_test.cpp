@@ -129,7 +129,7 @@ TEST(RigEvaluation, ChildMotionNeverMovesItsParent) {
   std::size_t arm_moved = 0, parent_bridged = 0;
   for (std::size_t v = 0; v < moved.size(); ++v) {
     const VertexAttachment& a = human.model.vertices[v];
-    const bool on_arm_bridge = a.joints[0].joint == arm || a.joints[1].joint == arm;
+    const bool on_arm_bridge = a.OnJoint(arm);
     if (from_arm[a.part])
       arm_moved += (moved[v] - rest[v]).norm() > 1e-3;
     else if (on_arm_bridge)

@@ -58,6 +58,10 @@ struct BridgeSamples {
   std::array<Vec3, kBridgeSegments + 1> centre;
   std::array<Mat3, kBridgeSegments + 1> map;   // the section's turn, then its growth
   std::array<Mat3, kBridgeSegments + 1> turn;  // the section's turn alone
+  // Towards the bend's centre of curvature, over the distance the section may reach towards
+  // it (1/m; zero where the bridge runs straight): the inside of a bend is squeezed softly
+  // short of the centre, so sections never cross.
+  std::array<Vec3, kBridgeSegments + 1> inward;
 };
 
 // Samples the bridge for a pose: `rest` and `posed` ends, and the rotations the parent's and

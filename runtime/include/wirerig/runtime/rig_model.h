@@ -61,13 +61,23 @@ struct JointInfluence {
   bool relative = false;
 };
 
+// At most this many joint bridges move one vertex (a shoulder's skin near the neck: the neck,
+// the shoulder and the chest's own joint).
+inline constexpr int kJointInfluences = 3;
+
 struct VertexAttachment {
   std::uint32_t part = 0;
   std::uint32_t profile = 0;  // between profiles: the pair (profile, profile + 1); cap: the end
   bool cap = false;
   PairBinding pair;                      // between profiles
   Vec3 cap_local = Vec3::Zero();         // cap: rest position in the end profile's spine frame
-  std::array<JointInfluence, 2> joints;  // the (at most two) bridges the vertex lies on
+  std::array<JointInfluence, kJointInfluences> joints;  // the bridges the vertex lies on
+  // Whether the vertex lies on the bridge of the joint of child part `joint`.
+  bool OnJoint(int joint) const {
+    for (const JointInfluence& j : joints)
+      if (j.joint == joint) return true;
+    return false;
+  }
 };
 
 struct RigModel {
