@@ -163,8 +163,7 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
       continue;
     }
     if (!(value > 0.0)) continue;
-    const JointInfluence spread{joint,   own_samples[free[i]],       value, 1.0, bridge,
-                                section, int(a.part) != child.parent};
+    const JointInfluence spread{joint, own_samples[free[i]], value, 1.0, bridge, section};
     left_out += !AddJointInfluence(spread, &a);
   }
   return left_out;

@@ -6,7 +6,7 @@
 // like an armpit or the torso around a shoulder) and the skin of the joint's parent and its
 // ancestors within kSpreadRadii x the joint's radius of it along the surface get u harmonic
 // over the surface (edge weights 1 / length), with u = 0 on the parent's side and 1 on the
-// child's beyond. Ancestors' and siblings' skin joins as `relative` influences (rig_model.h).
+// child's beyond (ancestors' and siblings' skin too: it moves with the parent's side).
 // A vertex whose kJointInfluences slots hold stronger influences is left out; their count is
 // returned.
 #pragma once

@@ -93,8 +93,8 @@ ReferenceSkin MakeReferenceSkin(const RigModel& model, std::span<const Vec3> res
       dense[v][std::size_t(j.joint)] += j.weight * child;
       const auto parent = std::size_t(model.parts[std::size_t(j.joint)].parent);
       dense[v][parent] += j.weight * (1 - child);
-      // The bridge replaces the own part's motion, or adds to it relative to the parent's.
-      if (j.relative)
+      // The bridge's motion minus its side's (rig_model.h): the child's for the child's skin.
+      if (j.joint != int(a.part))
         dense[v][parent] -= j.weight;
       else
         own -= j.weight;

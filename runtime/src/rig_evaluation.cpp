@@ -156,7 +156,8 @@ struct BridgePass {
             self.model->parts[j.part].spine_points[j.sample] +
             self.w->spine_undo[j.part][j.sample] * (own - self.w->spine_points[j.part][j.sample]);
         const BridgeSamples& bridge = self.w->bridges[j.joint];
-        const Vec3 base = j.relative ? Vec3(bridge.parent_turn * rest + bridge.parent_offset) : own;
+        const Vec3 base =
+            j.child_side ? own : Vec3(bridge.parent_turn * rest + bridge.parent_offset);
         sum += j.weight * (ApplyJointBridge(bridge, j.u, j.bridge, rest, j.section) - base);
       }
       self.positions[vertex] = own + sum;
@@ -275,7 +276,8 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
       if (j.joint >= 0)
         layout.joint_vertices.push_back(
             {static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(j.joint),
-             model.vertices[v].part, j.sample, j.u, j.weight, j.bridge, j.section, j.relative});
+             model.vertices[v].part, j.sample, j.u, j.weight, j.bridge, j.section,
+             j.joint == std::int32_t(model.vertices[v].part)});
   for (std::size_t i = 0; i < model.parts.size(); ++i) {
     const PartModel& part = model.parts[i];
     if (part.parent >= 0 && part.joint.blend_length > 0.0)

@@ -57,8 +57,7 @@ TEST(ChildPose, RotatingAnUpperArmMovesItsArmRigidlyAboutItsRootBeyondTheJointBr
   for (std::size_t v = 0; v < positions.size(); ++v) {
     // Vertices on the shoulder's skin bridge (joint_bridge.h) blend across it instead. The
     // elbow and the wrist are not bent, so their bridges turn rigidly with the arm.
-    if (!in_arm(model.vertices[v].part) || model.vertices[v].OnJoint(int(arm)))
-      continue;
+    if (!in_arm(model.vertices[v].part) || model.vertices[v].OnJoint(int(arm))) continue;
     ++checked;
     const Vec3 expected = root + r * (scene.mesh.welded_positions[v] - root);
     if ((positions[v] - expected).norm() > 1e-6) {

@@ -116,7 +116,7 @@ struct RigEvaluationLayout {
     std::uint32_t part = 0;   // the vertex's own part
     std::uint32_t sample = 0;
     double u = 0.0, weight = 0.0, bridge = 0.0, section = 1.0;
-    bool relative = false;  // JointInfluence::relative
+    bool child_side = false;  // the vertex belongs to the joint's child
   };
   std::vector<JointVertex> joint_vertices;   // in vertex order
   std::vector<std::uint32_t> bridged_parts;  // parts whose joint has a skin bridge

@@ -46,11 +46,10 @@ struct PartModel {
 };
 
 // A vertex near a joint follows the joint's skin bridge (joint_bridge.h) by `weight`, on top of
-// where its own part puts it: the bridge's image of the vertex minus a base is added. The base
-// is where the vertex's own part put it when that part is the joint's parent or child (the
-// bridge replaces that motion), and the parent's rigid motion of it when the vertex belongs to
-// another part (`relative`: skin of an ancestor that the joint's skin spreads over follows the
-// joint's turn relative to its parent). Several joints' corrections add.
+// where its own part puts it: it moves by weight x (the bridge's image of it - its side's rigid
+// motion of it), its side being the joint's child if the vertex belongs to the child, else the
+// parent (the parent's skin, and the skin of other parts near the joint that the joint's skin
+// spreads over). Its own part's deformation is kept, and several joints' corrections add.
 struct JointInfluence {
   std::int32_t joint = -1;   // the joint's child part; -1: none
   std::uint32_t sample = 0;  // the own part's spine sample nearest the vertex at rest
@@ -58,7 +57,6 @@ struct JointInfluence {
   double weight = 0.0;       // in (0, 1]
   double bridge = 0.0;       // JointBinding::bridge
   double section = 1.0;      // JointBinding::section
-  bool relative = false;
 };
 
 // At most this many joint bridges move one vertex (a shoulder's skin near the neck: the neck,
@@ -69,8 +67,8 @@ struct VertexAttachment {
   std::uint32_t part = 0;
   std::uint32_t profile = 0;  // between profiles: the pair (profile, profile + 1); cap: the end
   bool cap = false;
-  PairBinding pair;                      // between profiles
-  Vec3 cap_local = Vec3::Zero();         // cap: rest position in the end profile's spine frame
+  PairBinding pair;               // between profiles
+  Vec3 cap_local = Vec3::Zero();  // cap: rest position in the end profile's spine frame
   std::array<JointInfluence, kJointInfluences> joints;  // the bridges the vertex lies on
   // Whether the vertex lies on the bridge of the joint of child part `joint`.
   bool OnJoint(int joint) const {
