@@ -14,6 +14,9 @@
 //    computed here from the joint axes; the limbs swing visibly and the dance loops.
 //  * every keyed joint angle of every human scene stays inside its joint's limits (the runtime
 //    would clamp it silently).
+//  * the skin holds on every frame (30 per second) of the posing scenes: no folded edge, no edge
+//    stretched beyond 2x (skin_quality.h; what ../shared/tools/meshquality.py measures on a
+//    morph-mode bake).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,6 +26,7 @@
 #include <vector>
 
 #include "sample_test_support.h"
+#include "wirerig/rig/skin_quality.h"
 
 namespace wirerig::samples {
 namespace {
@@ -111,7 +115,7 @@ TEST(HumanSamples, ShapeBulgesTheChestByTheClampedWireFormula) {
   const auto rest = played->playback->workspace().profile_points[chest];
   played->Evaluate(2.0);
   const auto& points = played->playback->workspace().profile_points[chest];
-  const Vec3 load(0.0, 0.0, 0.03);  // N/m, world: the front of the ribs forward
+  const Vec3 load(0.0, 0.0, 0.027);  // N/m, world: the front of the ribs forward
   for (std::uint32_t p : {1u, 2u, 3u}) {
     const ProfileModel& profile = part.profiles[p];
     ASSERT_EQ(profile.local_points.size(), 24u);
@@ -254,6 +258,27 @@ TEST(HumanSamples, EveryKeyedJointAngleStaysInsideItsLimits) {
             << played->scene.model.parts[p].name << " at t = " << t << ": " << a.transpose();
       }
     }
+  }
+}
+
+TEST(HumanSamples, SkinHoldsOnEveryFrame) {
+  for (const char* scene :
+       {"human/human_wave.scene.json", "human/human_pose.scene.json",
+        "human/human_shape.scene.json", "human/human_sex.scene.json", "dancer/dancer.scene.json"}) {
+    SCOPED_TRACE(scene);
+    std::unique_ptr<PlayedScene> played = PlaySample(scene);
+    ASSERT_NE(played, nullptr);
+    const SkinQualityReference reference = MakeSkinQualityReference(
+        played->scene.mesh.welded_positions, played->scene.model.triangles);
+    const double duration = played->playback->clip().duration;
+    std::size_t frames = 0;
+    for (double t = 0.0; t <= duration + 1e-9; t += 1.0 / 30.0, ++frames) {
+      played->Evaluate(t);
+      const SkinQuality quality = MeasureSkin(reference, played->positions);
+      ASSERT_EQ(quality.folded_edges, 0u) << "t = " << t;
+      ASSERT_LT(quality.worst_stretch, 2.0) << "t = " << t;
+    }
+    EXPECT_GT(frames, 30u);
   }
 }
 
