@@ -197,10 +197,11 @@ Vec3 ApplyJointBridge(const BridgeSamples& bridge, double u, double fraction, co
     swept = centre + turned + section * (swept - centre - turned);
   }
   // Softly short of the centre of curvature: reach r along the inward normal becomes
-  // limit tanh(r / limit).
+  // limit s / sqrt(1 + s^2), s = r / limit (1:1 near the centre line, never past the limit).
   const Vec3 inward = (1.0 - f) * bridge.inward[k] + f * bridge.inward[k + 1];
   const double reach = inward.dot(swept - centre);  // in units of the limit
-  if (reach > 0.0) swept += (std::tanh(reach) - reach) / inward.squaredNorm() * inward;
+  if (reach > 0.0)
+    swept += (reach / std::sqrt(1.0 + reach * reach) - reach) / inward.squaredNorm() * inward;
   if (fraction >= 1.0) return swept;
   const double child = SmoothStep(0.0, 1.0, u);
   const Vec3 blended = (1.0 - child) * (bridge.parent_turn * q + bridge.parent_offset) +

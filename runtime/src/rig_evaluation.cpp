@@ -149,12 +149,14 @@ struct BridgePass {
     for (std::size_t e = layout.joint_task_starts[k]; e < end;) {
       const std::uint32_t vertex = layout.joint_vertices[e].vertex;
       const Vec3 own = self.positions[vertex];
+      // Every entry of a vertex undoes through its own part's same spine sample.
+      const RigEvaluationLayout::JointVertex& first = layout.joint_vertices[e];
+      const Vec3 rest = self.model->parts[first.part].spine_points[first.sample] +
+                        self.w->spine_undo[first.part][first.sample] *
+                            (own - self.w->spine_points[first.part][first.sample]);
       Vec3 sum = Vec3::Zero();
       for (; e < end && layout.joint_vertices[e].vertex == vertex; ++e) {
         const RigEvaluationLayout::JointVertex& j = layout.joint_vertices[e];
-        const Vec3 rest =
-            self.model->parts[j.part].spine_points[j.sample] +
-            self.w->spine_undo[j.part][j.sample] * (own - self.w->spine_points[j.part][j.sample]);
         const BridgeSamples& bridge = self.w->bridges[j.joint];
         const Vec3 base =
             j.child_side ? own : Vec3(bridge.parent_turn * rest + bridge.parent_offset);

@@ -109,7 +109,8 @@ struct RigEvaluationLayout {
   std::vector<Pair> pairs;                  // in vertex order
   std::vector<Cap> caps;                    // in vertex order
   // A vertex on a joint's skin bridge: its own part's spine sample (to undo the own part's
-  // motion into rest space) and where it lies on the bridge. A vertex's entries are adjacent.
+  // motion into rest space) and where it lies on the bridge. A vertex's entries are adjacent and
+  // share its own part's spine sample.
   struct JointVertex {
     std::uint32_t vertex = 0;
     std::uint32_t joint = 0;  // the joint's child part
