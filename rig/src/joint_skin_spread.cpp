@@ -14,19 +14,42 @@ struct Neighbour {
   double weight = 0.0;  // 1 / rest length
   double length = 0.0;
 };
-using Adjacency = std::vector<std::vector<Neighbour>>;
+// The mesh's edges, per vertex: neighbours of v are list[offsets[v] .. offsets[v + 1]).
+struct Adjacency {
+  std::vector<std::uint32_t> offsets;
+  std::vector<Neighbour> list;
+  std::span<const Neighbour> operator[](std::uint32_t v) const {
+    return {list.data() + offsets[v], list.data() + offsets[v + 1]};
+  }
+};
 
 Adjacency MakeAdjacency(std::span<const Vec3> rest, const std::vector<Triangle>& triangles) {
-  Adjacency out(rest.size());
-  auto add = [&](std::uint32_t a, std::uint32_t b) {
-    for (const Neighbour& n : out[a])
-      if (n.vertex == b) return;
-    const double length = std::max((rest[a] - rest[b]).norm(), 1e-12);
-    out[a].push_back({b, 1.0 / length, length});
-    out[b].push_back({a, 1.0 / length, length});
-  };
+  // Every triangle edge both ways, bucketed by vertex, then each bucket deduplicated.
+  const std::size_t n = rest.size();
+  std::vector<std::uint32_t> count(n + 1, 0);
   for (const Triangle& t : triangles)
-    for (int k = 0; k < 3; ++k) add(t[k], t[(k + 1) % 3]);
+    for (std::uint32_t v : t) count[v + 1] += 2;
+  for (std::size_t v = 0; v < n; ++v) count[v + 1] += count[v];
+  std::vector<std::uint32_t> others(count[n]);
+  std::vector<std::uint32_t> fill(count.begin(), count.end() - 1);
+  for (const Triangle& t : triangles)
+    for (int k = 0; k < 3; ++k) {
+      others[fill[t[k]]++] = t[(k + 1) % 3];
+      others[fill[t[k]]++] = t[(k + 2) % 3];
+    }
+  Adjacency out;
+  out.offsets.assign(n + 1, 0);
+  out.list.reserve(count[n] / 2);
+  for (std::uint32_t a = 0; a < n; ++a) {
+    const auto first = others.begin() + count[a], last = others.begin() + count[a + 1];
+    std::sort(first, last);
+    const auto unique_end = std::unique(first, last);
+    for (auto b = first; b != unique_end; ++b) {
+      const double length = std::max((rest[a] - rest[*b]).norm(), 1e-12);
+      out.list.push_back({*b, 1.0 / length, length});
+    }
+    out.offsets[a + 1] = std::uint32_t(out.list.size());
+  }
   return out;
 }
 
@@ -67,20 +90,29 @@ bool Fixed(const RigModel& model, const VertexAttachment& a, const JointInfluenc
   return true;
 }
 
-// One joint: see the header. Returns the vertices left out for want of a slot.
+// Per-vertex buffers shared by the joints (reset where a joint touched them).
+struct Scratch {
+  std::vector<double> distance;     // along the surface from the joint's blended skin
+  std::vector<std::int32_t> index;  // in the free set, or -1
+};
+
+// One joint: see the header. `bound`: the vertices bound to it when the spread began (some may
+// have lost it to a stronger joint since). Returns the vertices left out for want of a slot.
 std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_t> own_samples,
-                        std::size_t c, RigModel* model) {
+                        std::size_t c, std::span<const std::uint32_t> bound, Scratch& scratch,
+                        RigModel* model) {
   const PartModel& child = model->parts[c];
   const std::vector<bool> child_side = Subtree(*model, c);
   const std::vector<bool> parent_side = AncestorsOf(*model, child.parent);
-  const std::size_t n = model->vertices.size();
   const int joint = int(c);
+  std::vector<double>& distance = scratch.distance;
+  std::vector<std::int32_t>& index = scratch.index;
 
   // Free vertices: blended by the bridge, then the parent side's skin within reach of them.
-  std::vector<double> distance(n, std::numeric_limits<double>::infinity());
+  std::vector<std::uint32_t> free;
   using Item = std::pair<double, std::uint32_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-  for (std::uint32_t v = 0; v < n; ++v) {
+  for (std::uint32_t v : bound) {
     const JointInfluence* j = InfluenceOf(model->vertices[v], joint);
     if (j != nullptr && !Fixed(*model, model->vertices[v], *j)) {
       distance[v] = 0.0;
@@ -94,6 +126,10 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
     const auto [d, v] = queue.top();
     queue.pop();
     if (d > distance[v]) continue;
+    if (index[v] < 0) {
+      index[v] = std::int32_t(free.size());
+      free.push_back(v);
+    }
     for (const Neighbour& nb : adjacency[v]) {
       const double next = d + nb.length;
       if (next > reach || next >= distance[nb.vertex]) continue;
@@ -107,13 +143,6 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
       queue.push({next, nb.vertex});
     }
   }
-  std::vector<std::int32_t> index(n, -1);
-  std::vector<std::uint32_t> free;
-  for (std::uint32_t v = 0; v < n; ++v)
-    if (std::isfinite(distance[v])) {
-      index[v] = std::int32_t(free.size());
-      free.push_back(v);
-    }
 
   // The value a vertex outside the free set holds: its bridge coordinate on the joint, else
   // 0 on the parent's side and 1 on the child's.
@@ -147,8 +176,13 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
   Eigen::SparseMatrix<double> matrix(Eigen::Index(free.size()), Eigen::Index(free.size()));
   matrix.setFromTriplets(entries.begin(), entries.end());
   const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(matrix);
+  const Eigen::MatrixX3d solved =
+      solver.info() == Eigen::Success ? Eigen::MatrixX3d(solver.solve(rhs)) : Eigen::MatrixX3d();
+  for (std::uint32_t v : free) {
+    distance[v] = std::numeric_limits<double>::infinity();
+    index[v] = -1;
+  }
   if (solver.info() != Eigen::Success) return 0;  // keep the per-vertex binding
-  const Eigen::MatrixX3d solved = solver.solve(rhs);
 
   std::size_t left_out = 0;
   for (std::size_t i = 0; i < free.size(); ++i) {
@@ -188,10 +222,16 @@ bool AddJointInfluence(const JointInfluence& influence, VertexAttachment* a) {
 std::size_t SpreadJointBindings(std::span<const Vec3> rest,
                                 std::span<const std::uint32_t> own_samples, RigModel* model) {
   const Adjacency adjacency = MakeAdjacency(rest, model->triangles);
+  std::vector<std::vector<std::uint32_t>> bound(model->parts.size());
+  for (std::uint32_t v = 0; v < model->vertices.size(); ++v)
+    for (const JointInfluence& j : model->vertices[v].joints)
+      if (j.joint >= 0) bound[std::size_t(j.joint)].push_back(v);
+  Scratch scratch{std::vector<double>(rest.size(), std::numeric_limits<double>::infinity()),
+                  std::vector<std::int32_t>(rest.size(), -1)};
   std::size_t left_out = 0;
   for (std::size_t c = 1; c < model->parts.size(); ++c)
     if (model->parts[c].parent >= 0 && model->parts[c].joint.blend_length > 0.0)
-      left_out += SpreadJoint(adjacency, own_samples, c, model);
+      left_out += SpreadJoint(adjacency, own_samples, c, bound[c], scratch, model);
   return left_out;
 }
 

@@ -188,9 +188,9 @@ int NeighbourAround(const RigModel& model, const std::vector<SpineBounds>& bound
 
 // The joint bridges of the vertex at p owned by part `own` (its own joint's and its children's;
 // the strongest kJointInfluences).
-// `rest_ends`: per part, its joint bridge's rest ends (RestBridgeEnds; unused for the root).
-void BindJoints(const RigModel& model, const std::vector<BridgeEnds>& rest_ends, std::uint32_t own,
-                std::uint32_t sample, const Vec3& p, VertexAttachment* a) {
+// `rest_bridges`: per part, its joint's bridge at rest (unused for the root).
+void BindJoints(const RigModel& model, const std::vector<RestBridge>& rest_bridges,
+                std::uint32_t own, std::uint32_t sample, const Vec3& p, VertexAttachment* a) {
   a->joints = {};
   for (std::size_t c = 1; c < model.parts.size(); ++c) {
     const PartModel& child = model.parts[c];
@@ -203,7 +203,7 @@ void BindJoints(const RigModel& model, const std::vector<BridgeEnds>& rest_ends,
       continue;  // another part: its own motion
     // Skin a side claimed up to one bridge half-length across the joint follows the other side.
     const double reach = child.joint.blend_length;
-    const JointBinding b = BindToJoint(child.joint, rest_ends[c], p, side, reach);
+    const JointBinding b = BindToJoint(child.joint, rest_bridges[c], p, side, reach);
     if (!(b.weight > 0.0)) continue;
     AddJointInfluence({int(c), sample, b.u, b.weight, b.bridge, b.section}, a);
   }
@@ -281,9 +281,9 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
   model.vertices.resize(mesh.welded_positions.size());
   std::vector<std::uint32_t> own_samples(mesh.welded_positions.size());
   const std::vector<SpineBounds> spine_bounds = BoundSpines(model);
-  std::vector<BridgeEnds> rest_ends(model.parts.size());
+  std::vector<RestBridge> rest_bridges(model.parts.size());
   for (std::size_t i = 1; i < model.parts.size(); ++i)
-    rest_ends[i] = RestBridgeEnds(model.parts[i]);
+    rest_bridges[i] = MakeRestBridge(RestBridgeEnds(model.parts[i]));
   for (std::size_t v = 0; v < mesh.welded_positions.size(); ++v) {
     const Vec3& p = mesh.welded_positions[v];
     VertexAttachment& a = model.vertices[v];
@@ -292,7 +292,7 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
     const PartModel& part = model.parts[a.part];
     const double s = ProjectOnSamples(part.spine_points, p);
     own_samples[v] = std::uint32_t(std::lround(s * double(part.spine_points.size() - 1)));
-    BindJoints(model, rest_ends, a.part, own_samples[v], p, &a);
+    BindJoints(model, rest_bridges, a.part, own_samples[v], p, &a);
     const std::size_t last = part.profiles.size() - 1;
     std::size_t pair = 0;
     while (pair + 1 < last && part.profiles[pair + 1].spine_v <= s) ++pair;

@@ -92,8 +92,17 @@ Vec3 Inward(const Vec3& v, const Vec3& a, double rest_curvature) {
 
 }  // namespace
 
-JointBinding BindToJoint(const JointModel& joint, const BridgeEnds& rest, const Vec3& p,
+RestBridge MakeRestBridge(const BridgeEnds& rest) {
+  RestBridge out;
+  out.ends = rest;
+  const Hermite curve = CurveOf(rest);
+  for (int k = 0; k <= kBridgeSegments; ++k) out.points[k] = curve.At(double(k) / kBridgeSegments);
+  return out;
+}
+
+JointBinding BindToJoint(const JointModel& joint, const RestBridge& rest_bridge, const Vec3& p,
                          JointSide side, double reach) {
+  const BridgeEnds& rest = rest_bridge.ends;
   JointBinding out;
   const double h = joint.blend_length;
   if (!(h > 0.0) || !(joint.radius > 0.0)) return out;
@@ -103,13 +112,10 @@ JointBinding BindToJoint(const JointModel& joint, const BridgeEnds& rest, const 
   if ((p - (rest.start + h * rest.start_tangent)).squaredNorm() > far * far) return out;
   // Where p lies along the rest bridge: the nearest of its samples, refined on the chord to the
   // nearer neighbour; beyond its ends, along the end tangents.
-  const Hermite curve = CurveOf(rest);
-  std::array<Vec3, kBridgeSegments + 1> points;
+  const std::array<Vec3, kBridgeSegments + 1>& points = rest_bridge.points;
   int nearest = 0;
-  for (int k = 0; k <= kBridgeSegments; ++k) {
-    points[k] = curve.At(double(k) / kBridgeSegments);
+  for (int k = 0; k <= kBridgeSegments; ++k)
     if ((points[k] - p).squaredNorm() < (points[nearest] - p).squaredNorm()) nearest = k;
-  }
   double best = 1e300;
   for (int k = std::max(0, nearest - 1); k < std::min(kBridgeSegments, nearest + 1); ++k) {
     const Vec3 a = points[k], ab = points[k + 1] - a;
@@ -120,7 +126,7 @@ JointBinding BindToJoint(const JointModel& joint, const BridgeEnds& rest, const 
   const double before = (p - rest.start).dot(rest.start_tangent);  // < 0: beyond the parent end
   const double after = (p - rest.end).dot(rest.end_tangent);       // > 0: beyond the child end
   const Vec3 along = before < 0.0 ? rest.start_tangent : rest.end_tangent;
-  const Vec3 from = out.u <= 0.0 ? rest.start : out.u >= 1.0 ? rest.end : curve.At(out.u);
+  const Vec3 from = out.u <= 0.0 ? rest.start : out.u >= 1.0 ? rest.end : CurveOf(rest).At(out.u);
   const Vec3 d = p - from;
   const double rho =
       (out.u <= 0.0 || out.u >= 1.0) ? (d - d.dot(along) * along).norm() : std::sqrt(best);

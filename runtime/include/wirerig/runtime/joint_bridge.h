@@ -31,6 +31,7 @@ struct JointBinding {
   double section = 1.0;
 };
 inline constexpr double kBridgeInner = 1.25;
+inline constexpr int kBridgeSegments = 32;  // a bridge's samples: kBridgeSegments + 1
 inline constexpr double kBridgeOuter = 2.0;
 
 // The bridge's two clamped ends for one configuration (rest or posed), world axes.
@@ -41,15 +42,21 @@ struct BridgeEnds {
   Vec3 end_tangent = Vec3::UnitZ();    // unit
 };
 
-// `rest`: the bridge's rest ends (RestBridgeEnds); `side` says how the point's own part
-// relates to the joint. u is the nearest point of the rest bridge curve (linear between its
-// samples); the radius test measures the distance to it.
-JointBinding BindToJoint(const JointModel& joint, const BridgeEnds& rest, const Vec3& p,
+// The rest bridge's curve sampled at u_k = k / kBridgeSegments, made once per joint for binding.
+struct RestBridge {
+  BridgeEnds ends;
+  std::array<Vec3, kBridgeSegments + 1> points;
+};
+RestBridge MakeRestBridge(const BridgeEnds& rest);
+
+// `rest`: the bridge at rest (MakeRestBridge of RestBridgeEnds); `side` says how the point's
+// own part relates to the joint. u is the nearest point of the rest bridge curve (linear between
+// its samples); the radius test measures the distance to it.
+JointBinding BindToJoint(const JointModel& joint, const RestBridge& rest, const Vec3& p,
                          JointSide side, double reach);
 
 // The bridge sampled at u_k = k / kBridgeSegments: each sample maps a rest point q at
 // bridge coordinate u_k to q' = centre + map * (q - rest_centre).
-inline constexpr int kBridgeSegments = 32;
 struct BridgeSamples {
   // The two sides' rigid motions: x -> turn * x + offset.
   Mat3 parent_turn = Mat3::Identity(), child_turn = Mat3::Identity();
