@@ -14,8 +14,15 @@ namespace wirerig::cli {
 
 CLI::App* AddDemoCommand(CLI::App& app, DemoCommandOptions& options) {
   CLI::App* demo = app.add_subcommand(
-      "demo", "The octopus demo: bake a 10 s swim to .glb and draw a contact sheet, headless");
-  demo->add_option("-o,--output", options.output, "Folder for octopus.glb, .png and .scene.json")
+      "demo",
+      "The demo: bake the octopus's 10 s swim and the human's 10 s walk to .glb and draw their "
+      "contact sheets, headless");
+  demo->add_option("-o,--output", options.output,
+                   "Folder for octopus.glb, .png and .scene.json, walk.glb and .png")
+      ->capture_default_str();
+  options.samples = WIRERIG_SAMPLES_DIR;
+  demo->add_option("--samples", options.samples,
+                   "Samples folder holding walk/walk.scene.json (empty: no walk)")
       ->capture_default_str();
   return demo;
 }
@@ -47,6 +54,19 @@ int RunDemoCommand(const DemoCommandOptions& options, std::ostream& out, std::os
   render.scene = scene.string();
   render.output = (folder / "octopus.png").string();
   render.size = "640x400";
+  render.sheet = 6;
+  if (int code = RunRenderCommand(render, out, err); code != 0) return code;
+
+  // The walk: human.zae on its bone chain (its mesh comes from scripts/setup.sh), baked in skin
+  // mode (a joint per spine sample, residual-free: a few MB rather than a morph per frame).
+  if (options.samples.empty()) return 0;
+  const fs::path walk = fs::path(options.samples) / "walk" / "walk.scene.json";
+  bake.scene = render.scene = walk.string();
+  bake.output = (folder / "walk.glb").string();
+  bake.mode = "skin";
+  if (int code = RunBakeCommand(bake, out, err); code != 0) return code;
+  render.output = (folder / "walk.png").string();
+  render.size = "400x400";
   render.sheet = 6;
   return RunRenderCommand(render, out, err);
 }

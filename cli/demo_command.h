@@ -12,7 +12,10 @@ namespace wirerig::cli {
 
 struct DemoCommandOptions {
   std::string output = "out";  // folder, created if missing
-  bool progress = false;       // set by main when stderr is a terminal
+  // The samples folder holding walk/walk.scene.json (the human's walk, baked beside the
+  // octopus); empty: no walk. The command line's default is the source tree's samples folder.
+  std::string samples;
+  bool progress = false;  // set by main when stderr is a terminal
 };
 
 CLI::App* AddDemoCommand(CLI::App& app, DemoCommandOptions& options);

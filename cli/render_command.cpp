@@ -97,7 +97,8 @@ int RunRenderCommand(const RenderCommandOptions& options, std::ostream& out, std
     out << "written: " << options.output << "\n";
     return 0;
   }
-  // Contact sheet: every tile keeps the first tile's camera so motion reads across tiles.
+  // Contact sheet: every tile keeps the first tile's camera so motion reads across tiles (moved
+  // with the part the camera hint follows, if any).
   const int n = options.sheet;
   const int columns = n <= 4 ? n : (n <= 9 ? 3 : 4);
   std::vector<ContactSheetTile> tiles;
@@ -111,7 +112,9 @@ int RunRenderCommand(const RenderCommandOptions& options, std::ostream& out, std
     pictures.back().set_coloring(coloring);
     pictures.back().Update(playback, positions, normals);
     if (i == 0) camera = pictures.back().InitialCamera(size);
-    tiles.push_back({pictures.back().frame(), camera, TimeLabel(t)});
+    Camera tile_camera = camera;  // a followed part: the target moves with it
+    tile_camera.target += pictures.back().FollowOffset() - pictures.front().FollowOffset();
+    tiles.push_back({pictures.back().frame(), tile_camera, TimeLabel(t)});
   }
   Result<std::filesystem::path> written =
       RenderContactSheet(tiles, size, columns, options.output, render_options);

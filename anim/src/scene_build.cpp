@@ -301,6 +301,13 @@ Result<BuiltScene> BuildScene(const SceneDescription& scene) {
     if (settings != scene.parts.end() && settings->second.kind) part.kind = *settings->second.kind;
   }
 
+  if (scene.camera && !scene.camera->follow.empty()) {
+    const auto& parts = out.model.parts;
+    if (std::none_of(parts.begin(), parts.end(),
+                     [&](const PartModel& p) { return p.name == scene.camera->follow; }))
+      return fail("/camera/follow: the rig has no part named \"" + scene.camera->follow + "\"");
+  }
+
   // The clips, against the model.
   for (std::size_t i = 0; i < scene.clips.size(); ++i) {
     Result<Clip> clip = BuildClip(scene.clips[i], out.model);

@@ -235,13 +235,14 @@ json PlaybackToJson(const PlaybackOptions& p) {
 }
 
 CameraHint ReadCamera(const JsonObject& o) {
-  o.RejectUnknownKeys({"target", "yaw", "pitch", "distance", "fov"});
+  o.RejectUnknownKeys({"target", "yaw", "pitch", "distance", "fov", "follow"});
   CameraHint camera;
   camera.target = o.Vector3("target", camera.target);
   camera.yaw = o.Number("yaw", camera.yaw);
   camera.pitch = o.Number("pitch", camera.pitch);
   camera.distance = o.Number("distance", camera.distance);
   camera.fov = o.Number("fov", camera.fov);
+  if (o.Has("follow")) camera.follow = o.String("follow");
   if (!IsFinite(camera.target)) throw FieldError(o.PathOf("target"), "must be finite");
   if (!std::isfinite(camera.yaw)) throw FieldError(o.PathOf("yaw"), "must be finite");
   if (!(camera.pitch > -1.57 && camera.pitch < 1.57))
@@ -254,11 +255,13 @@ CameraHint ReadCamera(const JsonObject& o) {
 }
 
 json CameraToJson(const CameraHint& c) {
-  return {{"target", {c.target.x(), c.target.y(), c.target.z()}},
-          {"yaw", c.yaw},
-          {"pitch", c.pitch},
-          {"distance", c.distance},
-          {"fov", c.fov}};
+  json out = {{"target", {c.target.x(), c.target.y(), c.target.z()}},
+              {"yaw", c.yaw},
+              {"pitch", c.pitch},
+              {"distance", c.distance},
+              {"fov", c.fov}};
+  if (!c.follow.empty()) out["follow"] = c.follow;
+  return out;
 }
 
 }  // namespace

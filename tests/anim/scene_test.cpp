@@ -121,7 +121,10 @@ TEST(Scene, ErrorsNameTheFieldByJsonPointer) {
 }
 
 TEST(Scene, SaveThenLoadGivesTheSameDocument) {
-  const SceneDescription scene = ParseScene(CylinderScene(), ".").value();
+  json document = CylinderScene();
+  document["camera"]["follow"] = "beam";
+  const SceneDescription scene = ParseScene(document, ".").value();
+  EXPECT_EQ(scene.camera->follow, "beam");
   const fs::path path = fs::temp_directory_path() / "wirerig_scene_test" / "beam.scene.json";
   fs::create_directories(path.parent_path());
   ASSERT_TRUE(SaveScene(scene, path).ok());
@@ -170,6 +173,11 @@ TEST(Scene, BuildNamesWhatIsWrong) {
   d = CylinderScene();
   d["parts"]["arm"] = json::object();
   EXPECT_EQ(BuildError(d), "scene \"beam\": /parts/arm: the rig has no part of this name");
+  d = CylinderScene();
+  d["camera"]["follow"] = "arm";
+  EXPECT_EQ(BuildError(d), "scene \"beam\": /camera/follow: the rig has no part named \"arm\"");
+  d["camera"]["follow"] = "beam";
+  EXPECT_EQ(BuildError(d), "ok");
   d = CylinderScene();
   d["clips"][0]["profiles"][0]["profiles"] = {2, 30};
   const std::string error = BuildError(d);

@@ -189,15 +189,19 @@ TEST_F(RenderCommand, BadSizeAndSceneFailCleanly) {
 TEST_F(DemoCommand, WritesTheSceneTheGlbAndTheContactSheet) {
   DemoCommandOptions options;
   options.output = Output("demo").string();
+  options.samples = std::string(WIRERIG_SOURCE_DIR) + "/samples";
   std::ostringstream out, err;
   ASSERT_EQ(RunDemoCommand(options, out, err), 0) << err.str();
-  for (const char* name : {"octopus.scene.json", "octopus.glb", "octopus.png"})
+  for (const char* name :
+       {"octopus.scene.json", "octopus.glb", "octopus.png", "walk.glb", "walk.png"})
     EXPECT_TRUE(fs::exists(fs::path(options.output) / name)) << name;
   const Image sheet = LoadPng(fs::path(options.output) / "octopus.png").value();
   EXPECT_GT(sheet.width, 1000);  // 3 tiles of 640 across
   int code = -1;
   const std::string report = Validate(fs::path(options.output) / "octopus.glb", &code);
   EXPECT_EQ(code, 0) << report;
+  const std::string walk = Validate(fs::path(options.output) / "walk.glb", &code);
+  EXPECT_EQ(code, 0) << walk;
 }
 
 }  // namespace

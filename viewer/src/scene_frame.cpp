@@ -34,6 +34,9 @@ SceneFrame::SceneFrame(const BuiltScene& scene) : scene_(&scene) {
     normals_[v] = Vec3f::UnitY();
   }
   ComputeVertexNormals(positions_, model.triangles, normals_);
+  if (scene.description.camera)
+    for (std::size_t p = 0; p < model.parts.size(); ++p)
+      if (model.parts[p].name == scene.description.camera->follow) follow_part_ = int(p);
   std::size_t loads = 0;
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     const PartModel& part = model.parts[p];
@@ -102,6 +105,10 @@ void SceneFrame::Update(const Playback& playback, std::span<const Vec3> position
     ComputeVertexNormals(positions_, scene_->model.triangles, normals_);
   const RigWorkspace& w = playback.workspace();
   const RigModel& model = scene_->model;
+  if (follow_part_ >= 0) {
+    const auto p = std::size_t(follow_part_);
+    follow_offset_ = ToFloat(Vec3(w.spine_points[p].front() - model.parts[p].spine_points.front()));
+  }
   UpdateColors(w);
   arrow_count_ = 0;
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
@@ -142,7 +149,7 @@ Camera SceneFrame::InitialCamera(Size size) const {
     camera.fov_y = static_cast<float>(hint->fov);
   }
   if (hint && hint->distance > 0.0) {
-    camera.target = ToFloat(hint->target);
+    camera.target = ToFloat(hint->target) + follow_offset_;
     camera.distance = static_cast<float>(hint->distance);
     return camera;
   }

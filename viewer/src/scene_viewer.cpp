@@ -70,7 +70,9 @@ void SceneViewer::OnDisplay(RenderFrame& frame) {
   if (Status s = playback_->Evaluate(timeline().time, positions_, normals_); !s) {
     status_ = "evaluation: " + ToString(s);
   } else {
+    const Vec3f followed = picture_->FollowOffset();
     picture_->Update(*playback_, positions_, normals_);
+    camera().target += picture_->FollowOffset() - followed;  // the part the camera follows
     // Where each joint stands now, for the rotation gizmo.
     const RigModel& model = scene_->model;
     posed_joints_.resize(model.parts.size());

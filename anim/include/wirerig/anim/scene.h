@@ -68,6 +68,8 @@ struct CameraHint {
   double pitch = 0.0;          // rad, positive looking down
   double distance = 0.0;       // m from the target; 0: frame the model
   double fov = 0.8;            // rad, vertical
+  // A part whose spine root the target moves with (a walking character); empty: fixed.
+  std::string follow;
 };
 
 struct SceneDescription {

@@ -37,8 +37,12 @@ class SceneFrame {
   void set_coloring(SceneColoring coloring) { coloring_ = coloring; }
   SceneColoring coloring() const { return coloring_; }
 
-  // The scene's camera hint, or a camera framing the rest mesh, for an image of `size`.
+  // The scene's camera hint, or a camera framing the rest mesh, for an image of `size`; a hint
+  // that follows a part has its target moved with that part (FollowOffset).
   Camera InitialCamera(Size size) const;
+  // How far the camera hint's followed part's spine root has moved from rest at the last
+  // Update (zero when the hint follows nothing), m.
+  Vec3f FollowOffset() const { return follow_offset_; }
 
   // Polyline ids: profile wire k of part p, and the spine of part p.
   std::uint32_t ProfileId(std::size_t part, std::size_t profile) const;
@@ -57,6 +61,8 @@ class SceneFrame {
   RenderMesh mesh_;
   std::string caption_;
   SceneColoring coloring_ = SceneColoring::kBaseColor;
+  int follow_part_ = -1;  // the camera hint's followed part, or -1
+  Vec3f follow_offset_ = Vec3f::Zero();
   std::vector<float> scalars_;                     // per vertex, when coloured
   std::vector<std::vector<float>> sample_values_;  // per part, per spine sample
   std::vector<std::pair<std::uint32_t, std::uint32_t>> vertex_sample_;  // (part, sample)

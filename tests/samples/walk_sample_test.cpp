@@ -1,0 +1,105 @@
+// The walk sample (samples/walk): human.zae walking for 10 s on its bone chain, played headless.
+//  * knees and elbows bend past 60 degrees (the angles the playback applies, clamped to the
+//    joints' limits);
+//  * the body travels: the pelvis ends over 5 m ahead of where it started;
+//  * each foot, while it is down (its ankle within 1 cm of the ankle's lowest height over the
+//    walk), keeps its sole on the ground (the foot's lowest skin point within 1.5 cm of the rest
+//    mesh's lowest point) and does not slide (its ankle moves under 2.5 cm along the ground
+//    over each contact);
+//  * the skin holds on every frame: no folded edge, no edge stretched beyond 2x.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "sample_test_support.h"
+#include "wirerig/rig/skin_quality.h"
+
+namespace wirerig::samples {
+namespace {
+
+constexpr double kFrame = 1.0 / 30.0;  // s
+
+TEST(WalkSample, KneesAndElbowsBendPastSixtyDegrees) {
+  std::unique_ptr<PlayedScene> played = PlaySample("walk/walk.scene.json");
+  ASSERT_NE(played, nullptr);
+  const Clip& clip = played->playback->clip();
+  for (const char* name : {"shin_l", "shin_r", "forearm_l", "forearm_r"}) {
+    const std::size_t p = played->Part(name);
+    const JointModel& joint = played->scene.model.parts[p].joint;
+    double widest = 0.0;
+    for (double t = 0.0; t <= clip.duration; t += kFrame) {
+      const Vec3 applied = ClampJointAngles(joint, clip.parts[p].joint_angles.Sample(t));
+      widest = std::max(widest, applied.x());
+    }
+    EXPECT_GT(widest, 60.0) << name;
+  }
+}
+
+TEST(WalkSample, TravelsWithFeetPlantedAndTheSkinWhole) {
+  std::unique_ptr<PlayedScene> played = PlaySample("walk/walk.scene.json");
+  ASSERT_NE(played, nullptr);
+  const RigModel& model = played->scene.model;
+  const std::vector<Vec3>& rest = played->scene.mesh.welded_positions;
+  double ground = std::numeric_limits<double>::infinity();
+  for (const Vec3& p : rest) ground = std::min(ground, p.y());
+  const SkinQualityReference reference = MakeSkinQualityReference(rest, model.triangles);
+  const std::size_t pelvis = played->Part("pelvis");
+  struct Foot {
+    std::size_t part;
+    std::vector<double> sole, ankle_height;
+    std::vector<Vec3> ankle;
+  };
+  std::vector<Foot> feet = {{played->Part("foot_l"), {}, {}, {}},
+                            {played->Part("foot_r"), {}, {}, {}}};
+  const double duration = played->playback->clip().duration;
+  Vec3 start = Vec3::Zero(), end = Vec3::Zero();
+  for (double t = 0.0; t <= duration + 1e-9; t += kFrame) {
+    played->Evaluate(t);
+    const SkinQuality quality = MeasureSkin(reference, played->positions);
+    ASSERT_EQ(quality.folded_edges, 0u) << "t = " << t;
+    ASSERT_LT(quality.worst_stretch, 2.0) << "t = " << t;
+    const auto& spines = played->playback->workspace().spine_points;
+    if (t == 0.0) start = spines[pelvis].front();
+    end = spines[pelvis].front();
+    for (Foot& foot : feet) {
+      double sole = std::numeric_limits<double>::infinity();
+      for (std::size_t v = 0; v < model.vertices.size(); ++v)
+        if (model.vertices[v].part == foot.part) sole = std::min(sole, played->positions[v].y());
+      foot.sole.push_back(sole);
+      foot.ankle.push_back(spines[foot.part].front());
+      foot.ankle_height.push_back(spines[foot.part].front().y());
+    }
+  }
+  EXPECT_GT(end.z() - start.z(), 5.0);  // forward is +z
+  for (const Foot& foot : feet) {
+    SCOPED_TRACE(model.parts[foot.part].name);
+    const double lowest = *std::min_element(foot.ankle_height.begin(), foot.ankle_height.end());
+    std::size_t contacts = 0, down = 0;
+    Vec3 touchdown = Vec3::Zero();
+    double worst_slide = 0.0, worst_sole = 0.0;
+    for (std::size_t k = 0; k < foot.sole.size(); ++k) {
+      const bool is_down = foot.ankle_height[k] < lowest + 0.01;
+      if (is_down) {
+        ++down;
+        if (k == 0 || !(foot.ankle_height[k - 1] < lowest + 0.01)) {
+          ++contacts;
+          touchdown = foot.ankle[k];
+        }
+        const Vec3 slide = foot.ankle[k] - touchdown;
+        worst_slide = std::max(worst_slide, std::hypot(slide.x(), slide.z()));
+        worst_sole = std::max(worst_sole, std::abs(foot.sole[k] - ground));
+      }
+    }
+    EXPECT_GE(contacts, 9u);  // a step a second
+    EXPECT_GT(down, foot.sole.size() / 4);
+    EXPECT_LT(worst_sole, 0.015);
+    EXPECT_LT(worst_slide, 0.025);
+  }
+}
+
+}  // namespace
+}  // namespace wirerig::samples
