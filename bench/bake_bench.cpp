@@ -21,7 +21,7 @@
 #include "wirerig/anim/scene.h"
 
 #ifndef WIRERIG_SAMPLES_DIR
-#define WIRERIG_SAMPLES_DIR "/work/main/samples"
+#error "the benchmarks need WIRERIG_SAMPLES_DIR (set by CMake)"
 #endif
 
 namespace wirerig {

@@ -19,7 +19,7 @@
 #include "wirerig/runtime/parallel.h"
 
 #ifndef WIRERIG_ASSET_DIR
-#define WIRERIG_ASSET_DIR "/work/main/.cache/assets"
+#error "the benchmarks need WIRERIG_ASSET_DIR (set by CMake)"
 #endif
 
 namespace wirerig {

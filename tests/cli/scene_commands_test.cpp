@@ -14,7 +14,7 @@
 #include "wirerig/viewer/image.h"
 
 #ifndef WIRERIG_SOURCE_DIR
-#define WIRERIG_SOURCE_DIR "/work/main"
+#error "the tests need WIRERIG_SOURCE_DIR (set by CMake)"
 #endif
 
 namespace wirerig::cli {

@@ -32,6 +32,17 @@ namespace {
 
 constexpr double kRadius = 0.08;
 
+// The runtime model of a described rig of `mesh`, with rigid bones.
+RigModel RigidModel(const Mesh& mesh, const RigDescription& description, const std::string& name) {
+  Result<BuiltRig> rig = BuildRig(mesh, description, name);
+  EXPECT_TRUE(rig.ok()) << rig.error();
+  RigModelOptions options;
+  options.spine_kind = SpineKind::kRigid;
+  Result<BuiltRigModel> model = BuildRigModel(mesh, rig.value().rig, options);
+  EXPECT_TRUE(model.ok()) << model.error();
+  return std::move(model).value().model;
+}
+
 struct Limb {
   Mesh mesh;
   RigModel model;
@@ -54,13 +65,7 @@ const Limb& MakeLimb() {
     lower.central_curve = {Vec3(0, 0.5, 0), Vec3(0, 0.05, 0)};
     lower.joint.axis = Vec3::UnitX();
     description.parts = {upper, lower};
-    Result<BuiltRig> rig = BuildRig(out.mesh, description, "capsule");
-    EXPECT_TRUE(rig.ok()) << rig.error();
-    RigModelOptions options;
-    options.spine_kind = SpineKind::kRigid;
-    Result<BuiltRigModel> model = BuildRigModel(out.mesh, rig.value().rig, options);
-    EXPECT_TRUE(model.ok()) << model.error();
-    out.model = std::move(model).value().model;
+    out.model = RigidModel(out.mesh, description, "capsule");
     return out;
   }();
   return limb;
@@ -290,13 +295,7 @@ const HumanRig& Human() {
     Result<ImportedMesh> imported = ImportMesh(description.value().mesh.string());
     EXPECT_TRUE(imported.ok()) << imported.error();
     out.mesh = std::move(imported).value().mesh;
-    Result<BuiltRig> rig = BuildRig(out.mesh, description.value(), "human.zae");
-    EXPECT_TRUE(rig.ok()) << rig.error();
-    RigModelOptions options;
-    options.spine_kind = SpineKind::kRigid;
-    Result<BuiltRigModel> model = BuildRigModel(out.mesh, rig.value().rig, options);
-    EXPECT_TRUE(model.ok()) << model.error();
-    out.model = std::move(model).value().model;
+    out.model = RigidModel(out.mesh, description.value(), "human.zae");
     return out;
   }();
   return human;

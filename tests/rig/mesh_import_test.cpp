@@ -23,7 +23,7 @@
 #include "wirerig/rig/mesh_statistics.h"
 
 #ifndef WIRERIG_ASSET_DIR
-#define WIRERIG_ASSET_DIR "/work/main/.cache/assets"
+#error "the tests need WIRERIG_ASSET_DIR (set by CMake)"
 #endif
 
 namespace wirerig {

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #ifndef WIRERIG_SAMPLES_DIR
-#define WIRERIG_SAMPLES_DIR "/work/main/samples"
+#error "the tests need WIRERIG_SAMPLES_DIR (set by CMake)"
 #endif
 
 namespace wirerig {

@@ -19,10 +19,10 @@
 #include "wirerig/runtime/spine_interpolation.h"
 
 #ifndef WIRERIG_ASSET_DIR
-#define WIRERIG_ASSET_DIR "/work/main/.cache/assets"
+#error "the tests need WIRERIG_ASSET_DIR (set by CMake)"
 #endif
 #ifndef WIRERIG_SAMPLES_DIR
-#define WIRERIG_SAMPLES_DIR "/work/main/samples"
+#error "the tests need WIRERIG_SAMPLES_DIR (set by CMake)"
 #endif
 
 namespace wirerig {
