@@ -104,6 +104,13 @@ CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options) {
                   "Skin thickness for wire sections (m)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  rig->add_flag("--ignore-skeleton", options.ignore_skeleton,
+                "Without a description: rig from the surface even if the file has bones");
+  rig->add_option("--wrap-alpha", options.wrap_alpha,
+                  "Without a description, for an open, non-manifold or many-piece mesh: the size "
+                  "(m) of the watertight wrap its skeleton is taken from (default: its bounding "
+                  "box diagonal / 60)")
+      ->check(CLI::PositiveNumber);
   rig->add_flag("--joint-report", options.joint_report,
                 "Bend every joint through 30-120 degrees and a 90-degree twist; print folded "
                 "edges, stretch, limb volume and cross-section perimeters per skinning method");
@@ -136,7 +143,10 @@ int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostr
   PrintMeshSummary(out, options.mesh, imported.value());
 
   if (options.description.empty()) {
-    Result<AutomaticDescription> automatic = DescribeAutomatically(mesh);
+    AutomaticOptions automatic_options;
+    automatic_options.ignore_skeleton = options.ignore_skeleton;
+    automatic_options.wrap_alpha = options.wrap_alpha;
+    Result<AutomaticDescription> automatic = DescribeAutomatically(mesh, automatic_options);
     if (!automatic) return fail(options.mesh + ": " + automatic.error());
     source = automatic.value().source;
     description = std::move(automatic).value().description;

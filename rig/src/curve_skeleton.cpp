@@ -6,6 +6,9 @@
 // MPFR (the Delaunay triangulation used for the medial poles has exact constructions).
 #include "wirerig/rig/curve_skeleton.h"
 
+#include "floating_point_hold.h"
+#include "wirerig/rig/watertight_proxy.h"
+
 #include <fenv.h>
 
 #include <algorithm>
@@ -74,28 +77,6 @@ bool IsFinite(const Vec3& p) {
   return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
 }
 
-std::string Count(std::size_t n, const char* what) { return std::to_string(n) + " " + what; }
-
-// Saves the floating-point environment, clears the flags and disables every trap until
-// destruction, which clears whatever flags were raised meanwhile and restores the saved
-// environment (traps included). CGAL raises floating-point exceptions as a matter of course:
-// its filtered predicates and lazy constructions compute with intervals whose bounds may be
-// infinite (seen: Interval_nt products in the circumcentre of a Delaunay cell, while the
-// Voronoi poles of a UV sphere are computed, raise FE_INVALID). With traps enabled, as in the
-// tests, that would be a SIGFPE; results are checked for finiteness afterwards instead.
-class ScopedFloatingPointHold {
- public:
-  ScopedFloatingPointHold() { feholdexcept(&saved_); }
-  ~ScopedFloatingPointHold() {
-    feclearexcept(FE_ALL_EXCEPT);
-    fesetenv(&saved_);
-  }
-  ScopedFloatingPointHold(const ScopedFloatingPointHold&) = delete;
-  ScopedFloatingPointHold& operator=(const ScopedFloatingPointHold&) = delete;
-
- private:
-  fenv_t saved_;
-};
 
 // Skeletonization::contract_until_convergence(), with the halfedges numbered before each
 // collapse pass (see std::less<MesoEdge> above).
@@ -154,71 +135,9 @@ void PullInside(const CgalMesh& mesh, std::vector<Vec3>& points) {
   }
 }
 
-// Closed, oriented 2-manifold check over the welded triangles. Empty when fine, else why not.
-std::string CheckClosedManifold(const std::vector<Vec3>& positions,
-                                const std::vector<Triangle>& triangles) {
-  const std::size_t vertex_count = positions.size();
-  for (std::size_t f = 0; f < triangles.size(); ++f) {
-    const Triangle& t = triangles[f];
-    for (std::uint32_t v : t) {
-      if (v >= vertex_count) {
-        return "triangle " + std::to_string(f) + " uses vertex " + std::to_string(v) +
-               " but there are only " + Count(vertex_count, "welded vertices");
-      }
-    }
-    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
-      return "triangle " + std::to_string(f) + " repeats a vertex (degenerate)";
-    }
-  }
-  for (std::size_t v = 0; v < vertex_count; ++v) {
-    if (!IsFinite(positions[v])) {
-      return "welded vertex " + std::to_string(v) + " is not finite";
-    }
-  }
-
-  // Directed edges (a -> b in a triangle's winding), sorted: a closed, consistently oriented
-  // 2-manifold uses every undirected edge exactly twice, once in each direction.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> directed;
-  directed.reserve(triangles.size() * 3);
-  for (const Triangle& t : triangles) {
-    for (int k = 0; k < 3; ++k) directed.emplace_back(t[k], t[(k + 1) % 3]);
-  }
-  std::sort(directed.begin(), directed.end());
-  std::size_t repeated_directed = 0;
-  for (std::size_t i = 1; i < directed.size(); ++i) {
-    if (directed[i] == directed[i - 1]) ++repeated_directed;
-  }
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> undirected;
-  undirected.reserve(directed.size());
-  for (const auto& [a, b] : directed) undirected.emplace_back(std::min(a, b), std::max(a, b));
-  std::sort(undirected.begin(), undirected.end());
-  std::size_t boundary = 0, non_manifold = 0;
-  for (std::size_t i = 0; i < undirected.size();) {
-    std::size_t j = i;
-    while (j < undirected.size() && undirected[j] == undirected[i]) ++j;
-    if (j - i == 1) ++boundary;
-    if (j - i > 2) ++non_manifold;
-    i = j;
-  }
-  if (boundary > 0) {
-    return "the mesh is not closed: " + Count(boundary, "boundary edges") +
-           " (holes or open borders; the curve skeleton needs a closed surface)";
-  }
-  if (non_manifold > 0) {
-    return "the mesh is not 2-manifold: " + Count(non_manifold, "edges") +
-           " shared by three or more triangles";
-  }
-  if (repeated_directed > 0) {
-    return "the mesh is not consistently oriented: " + Count(repeated_directed, "edges") +
-           " run the same way in both of their triangles";
-  }
-
-  return {};
-}
-
 // The surface handed to CGAL: only the vertices that triangles use, and a vertex of its own
 // for every fan of triangles around a pinched vertex (two closed sheets touching at a point,
-// as when a file repeats a vertex that welding then merges). Needs CheckClosedManifold to have
+// as when a file repeats a vertex that welding then merges). Needs ClosedManifoldProblem to have
 // passed: then the link of every vertex (b -> c for each triangle (v, b, c)) is a permutation,
 // and each of its cycles is one fan.
 struct FanSplitMesh {
@@ -284,7 +203,7 @@ FanSplitMesh SplitFans(const std::vector<Vec3>& positions, const std::vector<Tri
         visited[at - corners.begin()] = 1;
         result.triangles[at->corner / 3][at->corner % 3] = index;
         at = std::lower_bound(begin, end, Corner{at->to, 0, 0});
-        if (at == end) break;  // cannot happen once CheckClosedManifold passed
+        if (at == end) break;  // cannot happen once ClosedManifoldProblem passed
       }
     }
   }
@@ -356,7 +275,7 @@ Result<CurveSkeleton> ExtractCurveSkeleton(const Mesh& mesh) {
   }
   const std::vector<Vec3>& positions = mesh.welded_positions;
   const std::vector<Triangle>& triangles = mesh.welded_triangles;
-  if (std::string why = CheckClosedManifold(positions, triangles); !why.empty()) {
+  if (std::string why = ClosedManifoldProblem(positions, triangles); !why.empty()) {
     return Error{"curve skeleton: " + why};
   }
 
