@@ -142,6 +142,7 @@ int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostr
   const Mesh& mesh = imported.value().mesh;
   PrintMeshSummary(out, options.mesh, imported.value());
 
+  std::optional<Mesh> wrap;  // the watertight stand-in of an open mesh, if the rig came from one
   if (options.description.empty()) {
     AutomaticOptions automatic_options;
     automatic_options.ignore_skeleton = options.ignore_skeleton;
@@ -149,11 +150,13 @@ int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostr
     Result<AutomaticDescription> automatic = DescribeAutomatically(mesh, automatic_options);
     if (!automatic) return fail(options.mesh + ": " + automatic.error());
     source = automatic.value().source;
+    wrap = std::move(automatic.value().wrap);
     description = std::move(automatic).value().description;
     description.import = import;
   }
   RigBuildOptions build_options;
   build_options.skin_thickness = options.skin_thickness;
+  build_options.wrap = wrap ? &*wrap : nullptr;
   Result<BuiltRig> built = BuildRig(mesh, description, options.mesh, build_options);
   if (!built) return fail(options.mesh + ": " + built.error());
   PrintRigSummary(out, built.value(), source);

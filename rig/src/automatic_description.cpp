@@ -41,7 +41,8 @@ Result<AutomaticDescription> DescribeAutomatically(const Mesh& mesh,
     Result<RigDescription> from_skeleton = DescribeFromSkeleton(mesh);
     if (!from_skeleton) return Error{from_skeleton.error()};
     return AutomaticDescription{std::move(from_skeleton).value(),
-                                "the skeleton (" + std::to_string(mesh.joints.size()) + " joints)"};
+                                "the skeleton (" + std::to_string(mesh.joints.size()) + " joints)",
+                                std::nullopt};
   }
   const std::string problem = WatertightProblem(mesh);
   if (problem.empty()) {
@@ -52,7 +53,8 @@ Result<AutomaticDescription> DescribeAutomatically(const Mesh& mesh,
     }
     Result<RigDescription> automatic = DescribeFromCurveSkeleton(mesh, skeleton.value());
     if (!automatic) return Error{automatic.error()};
-    return AutomaticDescription{std::move(automatic).value(), "the mesh's curve skeleton"};
+    return AutomaticDescription{std::move(automatic).value(), "the mesh's curve skeleton",
+                                std::nullopt};
   }
   // Open, non-manifold or in pieces: the skeleton and the parts from a watertight wrap; the
   // profile curves are still traced on the mesh itself. A flat sheet has no limbs to find.
@@ -71,7 +73,8 @@ Result<AutomaticDescription> DescribeAutomatically(const Mesh& mesh,
                 wrap.value().mesh.triangles.size());
   return AutomaticDescription{
       std::move(automatic).value(),
-      "the curve skeleton of an alpha wrap (" + std::string(size) + "): " + problem};
+      "the curve skeleton of an alpha wrap (" + std::string(size) + "): " + problem,
+      std::move(wrap).value().mesh};
 }
 
 }  // namespace wirerig

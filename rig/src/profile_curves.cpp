@@ -160,6 +160,11 @@ CastResult CastRays(const ProfileRequest& request, ProfileCurve& profile,
     const bool other_part = first && request.triangle_part[first->triangle] != request.part &&
                             (!chosen || first->t < chosen->t * (1.0 - 1e-9));
     if (!chosen) chosen = first;
+    bool through_hole = false;
+    if (!chosen && request.wrap_bvh) {
+      chosen = request.wrap_bvh->Raycast(profile.origin, direction, 0.0, kFar);
+      through_hole = chosen.has_value();
+    }
     hit[j] = chosen.has_value();
     if (diagnostics) ++diagnostics->rays;
     if (!chosen) {
@@ -168,9 +173,10 @@ CastResult CastRays(const ProfileRequest& request, ProfileCurve& profile,
     }
     if (other_part) ++result.other_part;
     if (diagnostics && other_part) ++diagnostics->other_part_hits;
+    if (diagnostics && through_hole) ++diagnostics->wrap_hits;
     hits[j] = chosen->point;
     ++result.hits;
-    if (!request.triangles.empty()) {
+    if (!request.triangles.empty() && !through_hole) {
       const Triangle& t = request.triangles[chosen->triangle];
       const Vec3& a = request.positions[t[0]];
       const Vec3 normal = (request.positions[t[1]] - a).cross(request.positions[t[2]] - a);
@@ -288,6 +294,7 @@ void Add(ProfileDiagnostics& total, const ProfileDiagnostics& d) {
   total.rays += d.rays;
   total.misses += d.misses;
   total.other_part_hits += d.other_part_hits;
+  total.wrap_hits += d.wrap_hits;
   total.open_profiles += d.open_profiles;
   total.empty_profiles += d.empty_profiles;
   total.self_intersecting += d.self_intersecting;

@@ -1,6 +1,7 @@
 #include "wirerig/rig/rig_builder.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "wirerig/rig/part_assignment.h"
 #include "wirerig/rig/spine_curves.h"
@@ -42,6 +43,7 @@ void Warn(RigBuildReport& report, const std::string& part, const ProfileDiagnost
   };
   add(d.misses, "rays missed the surface");
   add(d.other_part_hits, "rays met another part first");
+  add(d.wrap_hits, "rays escaped through holes: the wrap's surface stood in");
   add(d.open_profiles, "profiles are open");
   add(d.empty_profiles, "profiles had fewer than 2 hits and were dropped");
   add(d.self_intersecting, "profiles cross themselves");
@@ -87,6 +89,9 @@ Result<BuiltRig> BuildRig(const Mesh& mesh, const RigDescription& description,
 
   const bool inward_facing = SignedVolume6(mesh) < 0.0;
   if (inward_facing) built.report.warnings.push_back("the mesh's triangles face inwards");
+  std::optional<TriangleBvh> wrap_bvh;
+  if (options.wrap != nullptr && !options.wrap->welded_triangles.empty())
+    wrap_bvh = TriangleBvh::Build(options.wrap->welded_positions, options.wrap->welded_triangles);
   std::vector<Curve> spines;
   for (std::size_t i = 0; i < description.parts.size(); ++i) {
     const PartDescription& d = description.parts[i];
@@ -103,6 +108,7 @@ Result<BuiltRig> BuildRig(const Mesh& mesh, const RigDescription& description,
     request.points_per_profile = d.points_per_profile;
     request.part_bvh = &part_bvh;
     request.mesh_bvh = &mesh_bvh;
+    request.wrap_bvh = wrap_bvh ? &*wrap_bvh : nullptr;
     request.triangle_part = parts.triangle_part;
     request.part = int(i);
     request.positions = mesh.welded_positions;

@@ -142,8 +142,25 @@ TEST(WatertightProxy, TestwusonRigsFromItsWrapWithTheSkeletonIgnored) {
   for (const char* expected :
        {"torso", "head", "tail", "leg_front_left_upper", "leg_back_right_lower"})
     EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
-  const Result<BuiltRig> rig = BuildRig(mesh, d, "Testwuson.X");
-  EXPECT_TRUE(rig.ok()) << rig.error();
+  // Rays escaping through the model's holes take the wrap's hit: none misses.
+  ASSERT_TRUE(automatic.value().wrap.has_value());
+  RigBuildOptions build_options;
+  build_options.wrap = &*automatic.value().wrap;
+  const Result<BuiltRig> rig = BuildRig(mesh, d, "Testwuson.X", build_options);
+  ASSERT_TRUE(rig.ok()) << rig.error();
+  std::size_t misses = 0, through_holes = 0;
+  for (const PartReport& part : rig.value().report.parts) {
+    misses += part.profiles.misses;
+    through_holes += part.profiles.wrap_hits;
+  }
+  EXPECT_EQ(misses, 0u);
+  EXPECT_GT(through_holes, 0u);
+  const Result<BuiltRig> unwrapped = BuildRig(mesh, d, "Testwuson.X");
+  ASSERT_TRUE(unwrapped.ok()) << unwrapped.error();
+  std::size_t unwrapped_misses = 0;
+  for (const PartReport& part : unwrapped.value().report.parts)
+    unwrapped_misses += part.profiles.misses;
+  EXPECT_EQ(unwrapped_misses, through_holes);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // (one part per bone), else from its curve skeleton (CGAL mean-curvature flow).
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "wirerig/rig/mesh.h"
@@ -13,6 +14,7 @@ namespace wirerig {
 struct AutomaticDescription {
   RigDescription description;
   std::string source;  // for reports: "the skeleton (38 joints)" or "the mesh's curve skeleton"
+  std::optional<Mesh> wrap;  // the watertight stand-in the description came from, if any
 };
 
 struct AutomaticOptions {

@@ -34,6 +34,7 @@ struct ProfileDiagnostics {
   std::size_t rays = 0;
   std::size_t misses = 0;           // rays that hit nothing of the part
   std::size_t other_part_hits = 0;  // rays whose point is on another part's surface
+  std::size_t wrap_hits = 0;        // rays that escaped through a hole: the wrap's hit stood in
   std::size_t open_profiles = 0;
   std::size_t empty_profiles = 0;      // fewer than 2 hits: dropped, and counted here
   std::size_t self_intersecting = 0;   // profiles whose loop crosses itself
@@ -57,6 +58,9 @@ struct ProfileRequest {
   // Optional: the whole mesh's BVH (active triangles) and its triangle -> part map, for rays
   // that leave the part through a junction and for other_part_hits.
   const TriangleBvh* mesh_bvh = nullptr;
+  // Optional: a watertight stand-in of an open mesh (watertight_proxy.h); a ray that meets
+  // nothing of the mesh (it escapes through a hole) takes the stand-in's hit instead.
+  const TriangleBvh* wrap_bvh = nullptr;
   std::span<const int> triangle_part;
   int part = -1;
   int recentre_passes = 8;

@@ -18,6 +18,9 @@ namespace wirerig {
 
 struct RigBuildOptions {
   double skin_thickness = 0.005;  // m
+  // Optional: a watertight stand-in of an open mesh (AutomaticDescription::wrap); profile rays
+  // escaping through the mesh's holes take its hit (ProfileRequest::wrap_bvh).
+  const Mesh* wrap = nullptr;
 };
 
 struct PartReport {
