@@ -310,8 +310,24 @@ Result<BuiltScene> BuildScene(const SceneDescription& scene) {
 
   // The clips, against the model.
   for (std::size_t i = 0; i < scene.clips.size(); ++i) {
-    Result<Clip> clip = BuildClip(scene.clips[i], out.model);
-    if (!clip) return fail("/clips/" + std::to_string(i) + ": " + clip.error());
+    const std::string clip_path = "/clips/" + std::to_string(i);
+    RawClip raw;
+    if (const auto motion = scene.motions.find(scene.clips[i].name);
+        motion != scene.motions.end()) {
+      // Tracks from a motion file (motion_import.h), the clip's own merged on top.
+      Result<RawClip> made = MakeMotionClip(
+          motion->second, scene.clips[i], scene.folder, out.mesh,
+          scene.mesh.procedural.empty() ? Resolve(scene, scene.mesh.file) : std::filesystem::path(),
+          scene.mesh.import, out.model);
+      if (!made) {
+        const std::string& e = made.error();
+        return fail(clip_path + (e.starts_with("/") ? "" : "/motion/") + e);
+      }
+      raw = std::move(made).value();
+    }
+    Result<Clip> clip =
+        BuildClip(scene.motions.contains(scene.clips[i].name) ? raw : scene.clips[i], out.model);
+    if (!clip) return fail(clip_path + ": " + clip.error());
     out.clips.push_back(std::move(clip).value());
   }
   return out;

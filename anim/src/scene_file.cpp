@@ -17,6 +17,9 @@ namespace {
 using nlohmann::json;
 
 constexpr const char* kFormat = "wirerig.scene";
+// The duration a clip with a motion holds until BuildScene reads the motion (long enough for
+// any key of its own tracks; BuildClip checks them against the motion's duration).
+constexpr double kMotionPlaceholderDuration = 1e9;
 
 // Component-wise, so no arithmetic touches an infinity (tests trap floating-point exceptions).
 bool IsFinite(const Vec3& v) {
@@ -301,7 +304,21 @@ Result<SceneDescription> ParseScene(const nlohmann::json& document,
     if (root.Has("playback")) scene.playback = ReadPlayback(root.Object("playback"));
     std::size_t index = 0;
     ForEachElement(root, "clips", [&](const JsonObject& clip) {
-      RawClip raw = ReadClip(clip);
+      // A clip with a motion (motion_import.h) takes its duration from the motion file.
+      std::optional<MotionSource> motion;
+      json copy;
+      if (clip.Has("motion")) {
+        motion = ReadMotionSource(clip.Object("motion"));
+        if (clip.Has("duration"))
+          throw FieldError(clip.PathOf("duration"),
+                           "a clip with a motion takes its duration from the motion (cut it "
+                           "with motion/frames)");
+        copy = document.at(json::json_pointer(clip.path()));
+        copy.erase("motion");
+        copy["duration"] = kMotionPlaceholderDuration;
+      }
+      RawClip raw = motion ? ReadClip(JsonObject(copy, clip.path())) : ReadClip(clip);
+      if (motion) scene.motions[raw.name] = *motion;
       if (std::string error = ValidateRawClip(raw); !error.empty())
         throw FieldError(clip.path(), error);
       for (const RawClip& earlier : scene.clips)
@@ -346,7 +363,13 @@ nlohmann::json SceneToJson(const SceneDescription& scene) {
     out["parts"] = parts;
   }
   json clips = json::array();
-  for (const RawClip& clip : scene.clips) clips.push_back(ClipToJson(clip));
+  for (const RawClip& clip : scene.clips) {
+    clips.push_back(ClipToJson(clip));
+    if (const auto motion = scene.motions.find(clip.name); motion != scene.motions.end()) {
+      clips.back().erase("duration");
+      clips.back()["motion"] = MotionSourceToJson(motion->second);
+    }
+  }
   out["clips"] = clips;
   if (scene.camera) out["camera"] = CameraToJson(*scene.camera);
   return out;

@@ -73,11 +73,29 @@ TEST(RigCommandErrors, HugeClaimedMeshIsRefusedQuickly) {
   ExpectFailure(options, "OutOfMemory.off: claims 353535235358 vertices");
 }
 
-TEST(RigCommandErrors, OpenMeshWithoutDescriptionSaysWhy) {
+TEST(RigCommand, OpenMeshRigsFromItsWrapAndSaysSo) {
   RigCommandOptions options;
   options.mesh = std::string(WIRERIG_ASSET_DIR) + "/assimp/STL/sphereWithHole.stl";
   options.output = Output("hole.rig.json").string();
-  ExpectFailure(options, "sphereWithHole.stl: no skeleton, no description, and no curve skeleton");
+  const CommandRun run = RunRig(options);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("from the curve skeleton of an alpha wrap"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("holes closed"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("the mesh is not closed"), std::string::npos) << run.out;
+  EXPECT_TRUE(LoadRig(options.output).ok());
+}
+
+TEST(RigCommandErrors, FlatSheetWithoutDescriptionSaysWhy) {
+  const fs::path sheet = Output("sheet.obj");
+  std::ofstream(sheet) << "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0.5 0 0.5\n"
+                          "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n";
+  RigCommandOptions options;
+  options.mesh = sheet.string();
+  options.output = Output("sheet.rig.json").string();
+  ExpectFailure(options,
+                "sheet.obj: the mesh is not closed: 4 boundary edges (holes or open "
+                "borders); it is flat (a sheet, thickness under 2% of its size): no limbs "
+                "to rig");
 }
 
 TEST(RigCommandErrors, BrokenDescriptionNamesFileAndField) {

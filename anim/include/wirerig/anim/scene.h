@@ -18,6 +18,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "wirerig/anim/clip.h"
+#include "wirerig/anim/motion_import.h"
 #include "wirerig/anim/playback.h"
 #include "wirerig/rig/mesh.h"
 #include "wirerig/rig/result.h"
@@ -84,6 +85,9 @@ struct SceneDescription {
   std::map<std::string, PartSettings> parts;  // by part name
   PlaybackOptions playback;
   std::vector<RawClip> clips;
+  // By clip name: the clips whose tracks come from a motion file (motion_import.h); BuildScene
+  // makes them, their own tracks in `clips` merged on top.
+  std::map<std::string, MotionSource> motions;
   std::optional<CameraHint> camera;
 };
 

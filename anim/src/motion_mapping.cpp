@@ -1,0 +1,122 @@
+// Mapping files: how a motion capture's joints drive a rig's parts.
+#include <cfenv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "wirerig/anim/motion_mapping.h"
+#include "wirerig/rig/json_fields.h"
+
+namespace wirerig {
+namespace {
+
+using nlohmann::json;
+
+constexpr const char* kFormat = "wirerig.motion_mapping";
+
+std::string RequireName(const json& value, const std::string& path, const char* what) {
+  if (!value.is_string() || value.get<std::string>().empty())
+    throw FieldError(path, std::string("must be a non-empty string (") + what + ")");
+  return value.get<std::string>();
+}
+
+}  // namespace
+
+Result<MotionMapping> ParseMotionMapping(const nlohmann::json& document) {
+  try {
+    const JsonObject root(document, "");
+    root.RejectUnknownKeys({"format", "version", "source", "channels", "root_scale", "joints"});
+    if (root.String("format") != kFormat)
+      throw FieldError("/format", std::string("must be \"") + kFormat + "\"");
+    if (root.Integer("version", -1) != MotionMapping::kFormatVersion)
+      throw FieldError("/version", "must be 1 (this wirerig reads mapping format version 1)");
+    MotionMapping mapping;
+    if (root.Has("source")) {
+      const JsonObject source = root.Object("source");
+      source.RejectUnknownKeys({"up_axis", "unit_scale"});
+      if (source.Has("up_axis") && !ParseUpAxis(source.String("up_axis"), &mapping.up_axis))
+        throw FieldError(source.PathOf("up_axis"), "must be \"x\", \"y\" or \"z\"");
+      mapping.unit_scale = source.Number("unit_scale", 1.0);
+      if (!(std::isfinite(mapping.unit_scale) && mapping.unit_scale >= 1e-9 &&
+            mapping.unit_scale <= 1e9))
+        throw FieldError(source.PathOf("unit_scale"),
+                         "must be a finite number of metres per unit in [1e-9, 1e9]");
+    }
+    if (root.Has("channels")) {
+      const std::string channels = root.String("channels");
+      if (channels == "rotation") {
+        mapping.channels = RetargetChannels::kRotation;
+      } else if (channels == "joint_angles") {
+        mapping.channels = RetargetChannels::kJointAngles;
+      } else {
+        throw FieldError("/channels", "must be \"rotation\" or \"joint_angles\"");
+      }
+    }
+    if (root.Has("root_scale")) {
+      const std::string scale = root.String("root_scale");
+      if (scale == "leg_length") {
+        mapping.root_scale = RootScale::kLegLength;
+      } else if (scale == "unit") {
+        mapping.root_scale = RootScale::kUnit;
+      } else {
+        throw FieldError("/root_scale", "must be \"leg_length\" or \"unit\"");
+      }
+    }
+    const JsonObject joints = root.Object("joints");
+    for (const auto& item : root.Required("joints").items()) {
+      const std::string path = joints.PathOf(item.key());
+      if (item.key().empty()) throw FieldError(path, "a joint name must not be empty");
+      JointMapping entry;
+      entry.joint = item.key();
+      if (item.value().is_string()) {
+        entry.part = RequireName(item.value(), path, "the part's name");
+      } else {
+        const JsonObject o(item.value(), path);
+        o.RejectUnknownKeys({"part", "tip"});
+        entry.part = RequireName(o.Required("part"), o.PathOf("part"), "the part's name");
+        if (o.Has("tip"))
+          entry.tip = RequireName(o.Required("tip"), o.PathOf("tip"), "a joint of the capture");
+      }
+      for (const JointMapping& earlier : mapping.joints)
+        if (earlier.part == entry.part)
+          throw FieldError(path, "part \"" + entry.part + "\" is already driven by joint \"" +
+                                     earlier.joint + "\"");
+      mapping.joints.push_back(std::move(entry));
+    }
+    if (mapping.joints.empty()) throw FieldError("/joints", "maps no joint");
+    return mapping;
+  } catch (const FieldError& e) {
+    return Error{e.what()};
+  } catch (const nlohmann::json::exception& e) {
+    return Error{std::string("/: ") + e.what()};
+  }
+}
+
+Result<MotionMapping> LoadMotionMapping(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error{path.string() + ": cannot open the mapping file"};
+  std::stringstream text;
+  text << in.rdbuf();
+  json document;
+  std::string syntax;
+  {
+    // Huge literals (1e999) overflow while parsing: traps are held, the parser refuses them.
+    std::fenv_t saved;
+    std::feholdexcept(&saved);
+    try {
+      document = json::parse(text.str());
+    } catch (const json::exception& e) {
+      syntax = e.what();
+    }
+    std::fesetenv(&saved);
+  }
+  if (!syntax.empty()) return Error{path.string() + ": not valid JSON (" + syntax + ")"};
+  Result<MotionMapping> mapping = ParseMotionMapping(document);
+  if (!mapping) return Error{path.string() + ": " + mapping.error()};
+  mapping.value().source_file = path.string();
+  return mapping;
+}
+
+}  // namespace wirerig
