@@ -34,6 +34,8 @@ YAW = 0.05          # rad: the pelvis's turn each way
 ARM_SWING = 22.0    # degrees each way
 ELBOW = (62.0, 14.0)  # degrees: mean and swing of the elbows' flexion
 KEYS_PER_CYCLE = 20
+TRACKING_HZ = 8.0       # the joints' PD tracking: natural frequency
+TRACKING_DAMPING = 0.7  # and damping ratio (below 1: overshoot, follow-through)
 
 
 def load_parts():
@@ -167,6 +169,12 @@ def main():
         "mesh": {"file": "../../.cache/assets/assimp/Collada/human.zae"},
         "rig": {"description": "../rigs/human.description.json"},
         "default_kind": "rigid",
+        # The keyed poses are targets: the chain's rigid-body dynamics tracks them (PD at
+        # TRACKING_HZ, damping ratio TRACKING_DAMPING) under the pelvis's own accelerations, so
+        # the limbs lag and follow through. No gravity: with no ground contact in the model, it
+        # would sag the stance leg through the floor (the ground carries the body's weight).
+        "playback": {"tracking": {"frequency": TRACKING_HZ, "damping_ratio": TRACKING_DAMPING,
+                                  "gravity": [0.0, 0.0, 0.0]}},
         "camera": {"target": [0.0, 0.85, 0.0], "yaw": 1.2, "pitch": 0.12, "distance": 3.2,
                    "fov": 0.7, "follow": "pelvis"},
         "clips": [{

@@ -37,6 +37,11 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
       playback.dynamic_bodies_.push_back(body);
     }
   }
+  if (options.tracking.frequency > 0.0) {
+    Result<ArticulatedTracking> tracking = ArticulatedTracking::Make(model, clip, options.tracking);
+    if (!tracking) return Error{"tracking: " + tracking.error()};
+    playback.tracking_ = std::move(tracking).value();
+  }
   std::size_t widest = 0;
   for (const PartChannels<Track>& c : clip.parts) widest = std::max(widest, c.point_loads.size());
   playback.interactive_points_.resize(widest + 1);
@@ -179,6 +184,8 @@ Status Playback::Evaluate(double t, std::span<Vec3> positions, std::span<Vec3> n
   if (!std::isfinite(t)) return Status::Invalid("t", "must be finite");
   const double local = clip_->LocalTime(t);
   SampleClip(*clip_, local, &sample_);
+  if (tracking_)
+    if (Status s = tracking_->Apply(local, sample_.poses); !s) return s;
   if (!dynamic_parts_.empty()) {
     if (Status s = AdvanceBodies(local); !s) return s;
     for (std::size_t d = 0; d < dynamic_parts_.size(); ++d) {

@@ -198,9 +198,25 @@ json PartSettingsToJson(const PartSettings& settings) {
   return out;
 }
 
+TrackingOptions ReadTracking(const JsonObject& o) {
+  o.RejectUnknownKeys({"frequency", "damping_ratio", "gravity"});
+  TrackingOptions tracking;
+  tracking.frequency = o.Number("frequency");
+  if (!(std::isfinite(tracking.frequency) && tracking.frequency > 0.0 &&
+        tracking.frequency <= 100.0))
+    throw FieldError(o.PathOf("frequency"), "must be in (0, 100] Hz");
+  tracking.damping_ratio = o.Number("damping_ratio", tracking.damping_ratio);
+  if (!(std::isfinite(tracking.damping_ratio) && tracking.damping_ratio >= 0.0 &&
+        tracking.damping_ratio <= 10.0))
+    throw FieldError(o.PathOf("damping_ratio"), "must be in [0, 10]");
+  tracking.gravity = o.Vector3("gravity", tracking.gravity);
+  if (!IsFinite(tracking.gravity)) throw FieldError(o.PathOf("gravity"), "must be finite");
+  return tracking;
+}
+
 PlaybackOptions ReadPlayback(const JsonObject& o) {
-  o.RejectUnknownKeys(
-      {"rigid_step", "integrator", "checkpoint_interval", "gravity", "preserve_volume"});
+  o.RejectUnknownKeys({"rigid_step", "integrator", "checkpoint_interval", "gravity",
+                       "preserve_volume", "tracking"});
   PlaybackOptions playback;
   playback.rigid_step = o.Number("rigid_step", playback.rigid_step);
   if (!(std::isfinite(playback.rigid_step) && playback.rigid_step > 0.0 &&
@@ -226,15 +242,22 @@ PlaybackOptions ReadPlayback(const JsonObject& o) {
     if (!value.is_boolean()) throw FieldError(o.PathOf("preserve_volume"), "must be true or false");
     playback.preserve_volume = value.get<bool>();
   }
+  if (o.Has("tracking")) playback.tracking = ReadTracking(o.Object("tracking"));
   return playback;
 }
 
 json PlaybackToJson(const PlaybackOptions& p) {
-  return {{"rigid_step", p.rigid_step},
-          {"integrator", p.integrator == RigidIntegrator::kRk4 ? "rk4" : "momentum"},
-          {"checkpoint_interval", p.checkpoint_interval},
-          {"gravity", {p.gravity.x(), p.gravity.y(), p.gravity.z()}},
-          {"preserve_volume", p.preserve_volume}};
+  json out = {{"rigid_step", p.rigid_step},
+              {"integrator", p.integrator == RigidIntegrator::kRk4 ? "rk4" : "momentum"},
+              {"checkpoint_interval", p.checkpoint_interval},
+              {"gravity", {p.gravity.x(), p.gravity.y(), p.gravity.z()}},
+              {"preserve_volume", p.preserve_volume}};
+  const TrackingOptions& t = p.tracking;
+  if (t.frequency > 0.0)
+    out["tracking"] = {{"frequency", t.frequency},
+                       {"damping_ratio", t.damping_ratio},
+                       {"gravity", {t.gravity.x(), t.gravity.y(), t.gravity.z()}}};
+  return out;
 }
 
 CameraHint ReadCamera(const JsonObject& o) {

@@ -1,9 +1,9 @@
 // The walk sample (samples/walk): human.zae walking for 10 s on its bone chain, played headless.
-//  * knees and elbows bend past 60 degrees (the angles the playback applies, clamped to the
-//    joints' limits);
+//  * the keyed poses drive the chain's articulated dynamics (PD tracking), and the simulated
+//    knees and elbows bend past 60 degrees;
 //  * the body travels: the pelvis ends over 5 m ahead of where it started;
 //  * each foot, while it is down (its ankle within 1 cm of the ankle's lowest height over the
-//    walk), keeps its sole on the ground (the foot's lowest skin point within 1.5 cm of the rest
+//    walk), keeps its sole on the ground (the foot's lowest skin point within 2.5 cm of the rest
 //    mesh's lowest point) and does not slide (its ankle moves under 2.5 cm along the ground
 //    over each contact);
 //  * the skin holds on every frame: no folded edge, no edge stretched beyond 2x.
@@ -26,19 +26,23 @@ constexpr double kFrame = 1.0 / 30.0;  // s
 TEST(WalkSample, KneesAndElbowsBendPastSixtyDegrees) {
   std::unique_ptr<PlayedScene> played = PlaySample("walk/walk.scene.json");
   ASSERT_NE(played, nullptr);
-  const Clip& clip = played->playback->clip();
+  const ArticulatedTracking* tracking = played->playback->tracking();
+  ASSERT_NE(tracking, nullptr);  // the keyed poses drive the chain's dynamics
+  const double duration = played->playback->clip().duration;
   for (const char* name : {"shin_l", "shin_r", "forearm_l", "forearm_r"}) {
     const std::size_t p = played->Part(name);
-    const JointModel& joint = played->scene.model.parts[p].joint;
     double widest = 0.0;
-    for (double t = 0.0; t <= clip.duration; t += kFrame) {
-      const Vec3 applied = ClampJointAngles(joint, clip.parts[p].joint_angles.Sample(t));
-      widest = std::max(widest, applied.x());
+    for (double t = 0.0; t <= duration; t += kFrame) {
+      played->Evaluate(t);
+      widest = std::max(widest, tracking->JointAngles(p).x());  // as simulated
     }
     EXPECT_GT(widest, 60.0) << name;
   }
 }
 
+// The dynamics lags the keys a little (PD tracking at 8 Hz, damping ratio 0.7, no ground
+// contact in the model): the bounds below allow for that lag (the keys alone keep the sole
+// within 1.1 cm).
 TEST(WalkSample, TravelsWithFeetPlantedAndTheSkinWhole) {
   std::unique_ptr<PlayedScene> played = PlaySample("walk/walk.scene.json");
   ASSERT_NE(played, nullptr);
@@ -96,7 +100,7 @@ TEST(WalkSample, TravelsWithFeetPlantedAndTheSkinWhole) {
     }
     EXPECT_GE(contacts, 9u);  // a step a second
     EXPECT_GT(down, foot.sole.size() / 4);
-    EXPECT_LT(worst_sole, 0.015);
+    EXPECT_LT(worst_sole, 0.025);
     EXPECT_LT(worst_slide, 0.025);
   }
 }

@@ -15,6 +15,7 @@
 #include <span>
 #include <vector>
 
+#include "wirerig/anim/articulated_tracking.h"
 #include "wirerig/anim/clip.h"
 #include "wirerig/anim/clip_sampling.h"
 #include "wirerig/anim/rigid_part.h"
@@ -39,6 +40,9 @@ struct PlaybackOptions {
   std::size_t checkpoint_interval = 24;  // steps between cached rigid-body states
   Vec3 gravity = Vec3::Zero();           // m/s^2, on rigid bodies driven by the clip
   bool preserve_volume = false;          // see EvaluateRigJob
+  // Keyed poses played through the chain's articulated dynamics (articulated_tracking.h) when
+  // tracking.frequency > 0.
+  TrackingOptions tracking;
 };
 
 class Playback {
@@ -65,6 +69,8 @@ class Playback {
   // After Evaluate: the deformed spines and profiles, and the inputs sampled at that time.
   const RigWorkspace& workspace() const { return workspace_; }
   const ClipSample& sample() const { return sample_; }
+  // The articulated dynamics tracking the keyed poses, if the options turned it on.
+  const ArticulatedTracking* tracking() const { return tracking_ ? &*tracking_ : nullptr; }
   // After Evaluate: the rigid body of every part at that time (rest state for parts without
   // dynamics). Pinned bodies (child parts) keep their joint as position.
   std::span<const RigidBodyState> bodies() const { return bodies_; }
@@ -87,6 +93,7 @@ class Playback {
   std::vector<RigidBodyState> bodies_;         // per part, at the current time
   std::vector<RigidBodyState> checkpoints_;    // #checkpoints x #dynamic parts
   std::size_t checkpoints_done_ = 0;
+  std::optional<ArticulatedTracking> tracking_;
   std::optional<InteractiveLoad> interactive_;
   std::vector<Vec3> interactive_joints_;            // per part, degrees
   std::vector<PointLoad> interactive_points_;       // clip's loads of a part, plus one

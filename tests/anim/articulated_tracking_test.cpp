@@ -1,0 +1,133 @@
+// Keyed poses through the chain's articulated dynamics (articulated_tracking.h), on a capsule
+// rigged as an upper and a lower segment joined by a hinge:
+//  * a hinge keyed to 40 degrees from the start follows the critically damped response
+//    theta(t) = 40 (1 - (1 + w t) e^{-w t}), w = 2 pi f (the gains scale with the inertia the
+//    joint drives, so f and zeta are the joint's own natural frequency and damping ratio);
+//  * with damping ratio 0.3 it overshoots by the textbook exp(-pi zeta / sqrt(1 - zeta^2));
+//  * scrubbing back and forth gives the same frames (fixed steps from cached states);
+//  * bad options are refused naming the field.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "wirerig/anim/playback.h"
+#include "wirerig/anim/scene.h"
+
+namespace wirerig {
+namespace {
+
+using nlohmann::json;
+
+json ArmScene(double frequency, double damping_ratio) {
+  json scene = json::parse(R"({
+    "format": "wirerig.scene", "version": 1, "name": "arm",
+    "mesh": {"procedural": "capsule", "parameters": {"radius": 0.05, "height": 1.0}},
+    "rig": {"description": {"parts": [
+      {"name": "upper", "central_curve": [[0, 1.02, 0], [0, 0.5, 0]], "profile_count": 8},
+      {"name": "lower", "parent": "upper", "central_curve": [[0, 0.5, 0], [0, -0.02, 0]],
+       "profile_count": 8, "joint": {"type": "hinge", "axis": [1, 0, 0], "blend": 0.0}}]}},
+    "default_kind": "rigid",
+    "clips": [{"name": "bend", "duration": 2, "parts": [
+      {"part": "lower", "joint_angles": {"interpolation": "step",
+                                          "keys": [{"time": 0, "value": [0, 0, 0]},
+                                                   {"time": 0.1, "value": [40, 0, 0]}]}}]}]
+  })");
+  scene["playback"]["tracking"] = {
+      {"frequency", frequency}, {"damping_ratio", damping_ratio}, {"gravity", {0, 0, 0}}};
+  return scene;
+}
+
+struct Played {
+  BuiltScene scene;
+  std::unique_ptr<Playback> playback;
+  std::vector<Vec3> positions;
+};
+
+std::unique_ptr<Played> Play(const json& document) {
+  Result<SceneDescription> description = ParseScene(document, ".");
+  EXPECT_TRUE(description.ok()) << description.error();
+  if (!description) return nullptr;
+  Result<BuiltScene> built = BuildScene(description.value());
+  EXPECT_TRUE(built.ok()) << built.error();
+  if (!built) return nullptr;
+  auto played = std::make_unique<Played>();
+  played->scene = std::move(built).value();
+  Result<Playback> playback = Playback::Make(played->scene.model, played->scene.clips[0],
+                                             played->scene.description.playback);
+  EXPECT_TRUE(playback.ok()) << playback.error();
+  if (!playback) return nullptr;
+  played->playback = std::make_unique<Playback>(std::move(playback).value());
+  played->positions.resize(played->scene.model.vertices.size());
+  return played;
+}
+
+double HingeDegrees(Played& played, double t) {
+  EXPECT_TRUE(played.playback->Evaluate(t, played.positions, {}).ok());
+  return played.playback->tracking()->JointAngles(1).x();
+}
+
+TEST(ArticulatedTracking, KeyedHingeFollowsTheCriticallyDampedResponse) {
+  constexpr double kFrequency = 2.0;
+  std::unique_ptr<Played> played = Play(ArmScene(kFrequency, 1.0));
+  ASSERT_NE(played, nullptr);
+  // The key steps to 40 degrees at 0.1 s: from the first fixed step at or after it.
+  const double step = played->scene.description.playback.tracking.step;
+  std::size_t k = 0;
+  while (double(k) * step < 0.1) ++k;
+  const double start = double(k) * step;
+  const double w = 2.0 * std::numbers::pi * kFrequency;
+  double worst = 0.0;
+  for (double t = 0.15; t <= 1.6; t += 0.05) {
+    const double s = std::floor(t / step + 1e-9) * step - start;  // the state's time
+    const double expected = 40.0 * (1.0 - (1.0 + w * s) * std::exp(-w * s));
+    worst = std::max(worst, std::abs(HingeDegrees(*played, t) - expected));
+  }
+  std::printf("[ measured ] worst %.4f degrees\n", worst);
+  EXPECT_LT(worst, 0.5);  // degrees, of 40
+}
+
+TEST(ArticulatedTracking, LightDampingOvershootsByTheTextbookRatio) {
+  constexpr double kZeta = 0.3;
+  std::unique_ptr<Played> played = Play(ArmScene(2.0, kZeta));
+  ASSERT_NE(played, nullptr);
+  double peak = 0.0;
+  for (double t = 0.1; t <= 1.1; t += 1.0 / 240.0) peak = std::max(peak, HingeDegrees(*played, t));
+  const double overshoot = std::exp(-std::numbers::pi * kZeta / std::sqrt(1.0 - kZeta * kZeta));
+  std::printf("[ measured ] overshoot %.4f, textbook %.4f\n", peak / 40.0 - 1.0, overshoot);
+  EXPECT_NEAR(peak / 40.0 - 1.0, overshoot, 0.02);
+}
+
+TEST(ArticulatedTracking, ScrubbingGivesTheSameFrames) {
+  std::unique_ptr<Played> played = Play(ArmScene(3.0, 0.5));
+  ASSERT_NE(played, nullptr);
+  ASSERT_TRUE(played->playback->Evaluate(1.3, played->positions, {}).ok());
+  const std::vector<Vec3> first = played->positions;
+  ASSERT_TRUE(played->playback->Evaluate(0.2, played->positions, {}).ok());
+  ASSERT_TRUE(played->playback->Evaluate(1.3, played->positions, {}).ok());
+  EXPECT_EQ(played->positions, first);
+}
+
+TEST(ArticulatedTracking, BadOptionsAreRefusedNamingTheField) {
+  json scene = ArmScene(2.0, 1.0);
+  scene["playback"]["tracking"]["frequency"] = -1;
+  Result<SceneDescription> parsed = ParseScene(scene, ".");
+  ASSERT_FALSE(parsed.ok());
+  EXPECT_EQ(parsed.error(), "/playback/tracking/frequency: must be in (0, 100] Hz");
+  scene = ArmScene(2.0, 1.0);
+  scene["playback"]["tracking"]["damping_ratio"] = "high";
+  EXPECT_FALSE(ParseScene(scene, ".").ok());
+  scene = ArmScene(2.0, 1.0);
+  scene["playback"]["tracking"]["stiffness"] = 3;
+  parsed = ParseScene(scene, ".");
+  ASSERT_FALSE(parsed.ok());
+  EXPECT_EQ(parsed.error(), "/playback/tracking/stiffness: unknown field");
+}
+
+}  // namespace
+}  // namespace wirerig
