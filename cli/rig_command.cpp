@@ -12,6 +12,7 @@
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_file.h"
 #include "wirerig/rig/rig_model_builder.h"
+#include "wirerig/rig/rig_quality.h"
 
 namespace wirerig::cli {
 namespace {
@@ -56,10 +57,21 @@ void PrintRigSummary(std::ostream& out, const BuiltRig& built, const std::string
   }
   if (built.report.warnings.empty()) {
     out << "warnings: none\n";
-    return;
+  } else {
+    out << "warnings:\n";
+    for (const std::string& w : built.report.warnings) out << "  " << w << "\n";
   }
-  out << "warnings:\n";
-  for (const std::string& w : built.report.warnings) out << "  " << w << "\n";
+  const RigQuality q = AssessRig(built);
+  std::string without;
+  for (const std::string& name : q.parts_without_profiles) without += " " + name;
+  out << Format(
+      "quality: %.1f%% of the vertices bound (%zu of %zu), %zu of %zu profiles cross, "
+      "%zu rays left the surface, %zu profiles dropped, %zu parts without profiles%s\n",
+      100.0 * double(q.bound_vertices) / double(std::max<std::size_t>(q.vertices, 1)),
+      q.bound_vertices, q.vertices, q.crossing_profiles, q.profiles, q.escaped_rays,
+      q.dropped_profiles, q.parts_without_profiles.size(),
+      without.empty() ? "" : (":" + without).c_str());
+  out << "verdict: " << q.verdict << "\n";
 }
 
 // Per joint, the worst case over its sweep for each method, and the worst over all joints.
@@ -104,6 +116,8 @@ CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options) {
                   "Skin thickness for wire sections (m)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  rig->add_flag("--strict", options.strict,
+                "Refuse the rig (write nothing, exit 1) when its build has any warning");
   rig->add_flag("--ignore-skeleton", options.ignore_skeleton,
                 "Without a description: rig from the surface even if the file has bones");
   rig->add_option("--wrap-alpha", options.wrap_alpha,
@@ -160,6 +174,10 @@ int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostr
   Result<BuiltRig> built = BuildRig(mesh, description, options.mesh, build_options);
   if (!built) return fail(options.mesh + ": " + built.error());
   PrintRigSummary(out, built.value(), source);
+  if (options.strict && !built.value().report.warnings.empty())
+    return fail(options.mesh +
+                ": --strict: " + std::to_string(built.value().report.warnings.size()) +
+                " warnings (listed above); nothing written");
   if (options.joint_report) {
     RigModelOptions model_options;
     model_options.spine_kind = SpineKind::kRigid;

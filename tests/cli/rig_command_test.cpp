@@ -43,6 +43,11 @@ TEST(RigCommand, HumanWithItsDescriptionWritesARigThatLoads) {
   EXPECT_NE(run.out.find("14444 vertices (welded from 15593), 28796 triangles"), std::string::npos)
       << run.out;
   EXPECT_NE(run.out.find("rig: 18 parts from"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("quality: 100.0% of the vertices bound (14444 of 14444), 0 of 128 "
+                         "profiles cross"),
+            std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("verdict: usable: "), std::string::npos) << run.out;
   const Result<Rig> rig = LoadRig(options.output);
   ASSERT_TRUE(rig.ok()) << rig.error();
   EXPECT_EQ(rig.value().parts.size(), 18u);
@@ -83,6 +88,19 @@ TEST(RigCommand, OpenMeshRigsFromItsWrapAndSaysSo) {
   EXPECT_NE(run.out.find("holes closed"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("the mesh is not closed"), std::string::npos) << run.out;
   EXPECT_TRUE(LoadRig(options.output).ok());
+}
+
+TEST(RigCommandErrors, StrictRefusesARigWithWarningsAndWritesNothing) {
+  RigCommandOptions options;
+  options.mesh = std::string(WIRERIG_ASSET_DIR) + "/cow.off";
+  options.output = Output("strict_cow.rig.json").string();
+  options.strict = true;
+  const CommandRun run = RunRig(options);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.out.find("verdict: poor: "), std::string::npos) << run.out;
+  EXPECT_NE(run.err.find("cow.off: --strict: "), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("warnings (listed above); nothing written"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(options.output));
 }
 
 TEST(RigCommandErrors, FlatSheetWithoutDescriptionSaysWhy) {
