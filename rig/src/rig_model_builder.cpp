@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "joint_skin_spread.h"
+#include "loose_pieces.h"
 #include "wirerig/rig/spine_curves.h"
 #include "wirerig/runtime/joint_bridge.h"
 #include "wirerig/runtime/rig_evaluation.h"
@@ -325,6 +326,10 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
                                                  part.profiles[a.profile].spine_v, &origin));
     a.cap_local = axes.transpose() * (p - origin);
   }
+  const LoosePieces loose = BindLoosePieces(mesh, &model);
+  built.report.loose_pieces = loose.pieces;
+  built.report.loose_vertices = loose.vertices;
+  // The spread walks the mesh's edges from joint-bound skin: it never reaches a loose piece.
   built.report.unspread_vertices = SpreadJointBindings(mesh.welded_positions, own_samples, &model);
   for (const VertexAttachment& a : model.vertices)
     built.report.bridged_vertices += a.joints[0].joint >= 0;

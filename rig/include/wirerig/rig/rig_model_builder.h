@@ -37,6 +37,8 @@ struct RigModelReport {
   std::size_t bridged_vertices = 0;   // follow a joint's skin bridge
   std::size_t reowned_vertices = 0;   // beyond their part's end, around a neighbour's bone
   std::size_t unspread_vertices = 0;  // a joint's skin would spread over them: no free slot
+  std::size_t loose_pieces = 0;       // small separate pieces riding rigidly on a part
+  std::size_t loose_vertices = 0;
 };
 
 struct BuiltRigModel {
