@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Configures and builds wirerig. Usage: scripts/build.sh [release|asan]
+# Configures and builds wirerig. Usage: scripts/build.sh [release|asan|nocgal]
 #   release  ->  build/        optimised, with tests, benchmarks and the CLI
 #   asan     ->  build-asan/   AddressSanitizer + UndefinedBehaviorSanitizer, no benchmarks or viewer
+#   nocgal   ->  build-nocgal/ optimised, without CGAL (WIRERIG_WITH_CGAL=OFF): libraries and CLI
 set -euo pipefail
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 kind=${1:-release}
@@ -17,7 +18,10 @@ case "$kind" in
            flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1"
                   -DWIRERIG_SANITIZE=ON -DWIRERIG_BUILD_BENCHMARKS=OFF
                   -DWIRERIG_BUILD_VIEWER=OFF) ;;
-  *) echo "usage: $0 [release|asan]" >&2; exit 2 ;;
+  nocgal)  dir=$repo_root/build-nocgal
+           flags=(-DCMAKE_BUILD_TYPE=Release -DWIRERIG_WITH_CGAL=OFF -DWIRERIG_BUILD_TESTS=OFF
+                  -DWIRERIG_BUILD_BENCHMARKS=OFF -DWIRERIG_BUILD_VIEWER=OFF) ;;
+  *) echo "usage: $0 [release|asan|nocgal]" >&2; exit 2 ;;
 esac
 
 generator=()

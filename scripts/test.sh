@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs every test twice: optimised, then under
-# AddressSanitizer + UndefinedBehaviorSanitizer.
+# AddressSanitizer + UndefinedBehaviorSanitizer; then checks the build without CGAL.
 set -euo pipefail
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$repo_root/scripts/setup.sh"
@@ -15,3 +15,7 @@ echo "== ASan + UBSan build and tests"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 ctest --test-dir "$repo_root/build-asan" --output-on-failure --parallel "$jobs"
+
+echo "== build without CGAL (WIRERIG_WITH_CGAL=OFF)"
+"$repo_root/scripts/build.sh" nocgal
+"$repo_root/scripts/check_without_cgal.sh" "$repo_root/build-nocgal/cli/wirerig"

@@ -1,0 +1,15 @@
+// IsFinite for the rig library's files.
+#pragma once
+
+#include <cmath>
+
+#include "wirerig/runtime/conventions.h"
+
+namespace wirerig {
+
+// Not Eigen's allFinite(): it computes inf - inf, which traps when FE_INVALID is enabled.
+inline bool IsFinite(const Vec3& p) {
+  return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
+}
+
+}  // namespace wirerig
