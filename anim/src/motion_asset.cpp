@@ -13,6 +13,7 @@
 
 #include "motion_rotation.h"
 #include "wirerig/anim/motion_import.h"
+#include "wirerig/rig/floating_point_hold.h"
 
 namespace wirerig {
 namespace {
@@ -21,17 +22,6 @@ using Mat4 = Eigen::Matrix4d;
 
 constexpr double kMaxEntry = 1e9;          // larger transform entries are refused as absurd
 constexpr std::size_t kMaxKeys = 100'000;  // distinct key times of one animation
-
-class FloatingPointHold {
- public:
-  FloatingPointHold() { std::feholdexcept(&saved_); }
-  ~FloatingPointHold() { std::fesetenv(&saved_); }
-  FloatingPointHold(const FloatingPointHold&) = delete;
-  FloatingPointHold& operator=(const FloatingPointHold&) = delete;
-
- private:
-  std::fenv_t saved_;
-};
 
 Mat4 ToMat4(const aiMatrix4x4& m) {
   Mat4 out;
@@ -257,7 +247,7 @@ Result<RawClip> ClipFromAssetAnimation(const std::filesystem::path& file, const 
     importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   const aiScene* scene = nullptr;
   {
-    const FloatingPointHold hold;
+    const ScopedFloatingPointHold hold;
     try {
       scene = importer.ReadFile(name, aiProcess_ValidateDataStructure);
     } catch (const std::exception& e) {

@@ -9,6 +9,7 @@
 #include <unordered_set>
 
 #include "wirerig/anim/motion_capture.h"
+#include "wirerig/rig/floating_point_hold.h"
 
 namespace wirerig {
 namespace {
@@ -16,18 +17,6 @@ namespace {
 constexpr double kMaxValue = 1e9;                // larger values are refused as absurd
 constexpr std::size_t kMaxValues = 100'000'000;  // frames x channels
 constexpr std::size_t kMaxJoints = 10'000;
-
-// Parsers may overflow on huge literals; traps are held while parsing and restored after.
-class FloatingPointHold {
- public:
-  FloatingPointHold() { std::feholdexcept(&saved_); }
-  ~FloatingPointHold() { std::fesetenv(&saved_); }
-  FloatingPointHold(const FloatingPointHold&) = delete;
-  FloatingPointHold& operator=(const FloatingPointHold&) = delete;
-
- private:
-  std::fenv_t saved_;
-};
 
 struct Token {
   std::string_view text;
@@ -378,7 +367,7 @@ std::vector<Vec3> BvhRestPositions(const MotionCapture& motion) {
 }
 
 Result<MotionCapture> ParseBvh(std::string_view text, const std::string& source) {
-  const FloatingPointHold hold;
+  const ScopedFloatingPointHold hold;
   try {
     Parser parser(text);
     MotionCapture motion = parser.Parse();

@@ -8,7 +8,7 @@
 #include "wirerig/rig/curve_skeleton.h"
 
 #include "finite.h"
-#include "floating_point_hold.h"
+#include "wirerig/rig/floating_point_hold.h"
 #include "wirerig/rig/watertight_proxy.h"
 
 #include <fenv.h>

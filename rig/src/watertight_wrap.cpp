@@ -12,7 +12,7 @@
 #include <CGAL/alpha_wrap_3.h>
 
 #include "finite.h"
-#include "floating_point_hold.h"
+#include "wirerig/rig/floating_point_hold.h"
 #include "wirerig/rig/watertight_proxy.h"
 
 namespace wirerig {

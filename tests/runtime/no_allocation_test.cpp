@@ -16,20 +16,9 @@
 #include "wirerig/runtime/rig_evaluation.h"
 #include "wirerig/runtime/rigid_body.h"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}
+#include "support/counting_allocator.h"
 
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+using wirerig::testing::g_allocations;
 
 namespace wirerig {
 namespace {

@@ -1,4 +1,5 @@
-// ScopedFloatingPointHold, for the files that call CGAL.
+// ScopedFloatingPointHold: runs code that may raise floating-point exceptions as a matter of
+// course (CGAL, text parsers overflowing on huge literals) with every trap held.
 #pragma once
 
 #include <fenv.h>
