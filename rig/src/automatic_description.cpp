@@ -35,15 +35,11 @@ std::string FlatnessProblem(const Mesh& mesh) {
 
 }  // namespace
 
-Result<AutomaticDescription> DescribeAutomatically(const Mesh& mesh,
-                                                   const AutomaticOptions& options) {
-  if (!mesh.joints.empty() && !options.ignore_skeleton) {
-    Result<RigDescription> from_skeleton = DescribeFromSkeleton(mesh);
-    if (!from_skeleton) return Error{from_skeleton.error()};
-    return AutomaticDescription{std::move(from_skeleton).value(),
-                                "the skeleton (" + std::to_string(mesh.joints.size()) + " joints)",
-                                std::nullopt};
-  }
+namespace {
+
+// From the surface alone: the curve skeleton of the mesh, or of its alpha wrap.
+Result<AutomaticDescription> DescribeFromSurface(const Mesh& mesh,
+                                                 const AutomaticOptions& options) {
   const std::string problem = WatertightProblem(mesh);
   if (problem.empty()) {
     Result<CurveSkeleton> skeleton = ExtractCurveSkeleton(mesh);
@@ -75,6 +71,29 @@ Result<AutomaticDescription> DescribeAutomatically(const Mesh& mesh,
       std::move(automatic).value(),
       "the curve skeleton of an alpha wrap (" + std::string(size) + "): " + problem,
       std::move(wrap).value().mesh};
+}
+
+}  // namespace
+
+Result<AutomaticDescription> DescribeAutomatically(const Mesh& mesh,
+                                                   const AutomaticOptions& options) {
+  if (mesh.joints.empty() || options.ignore_skeleton) return DescribeFromSurface(mesh, options);
+  Result<RigDescription> from_skeleton = DescribeFromSkeleton(mesh);
+  if (!from_skeleton) return Error{from_skeleton.error()};
+  const std::string joints = std::to_string(mesh.joints.size()) + " joints";
+  // A skeleton of one bone makes one rigid part: the surface's own skeleton, if it has one,
+  // finds the limbs.
+  if (from_skeleton.value().parts.size() < 2) {
+    if (std::string flat = FlatnessProblem(mesh); !flat.empty())
+      return Error{"the skeleton makes a single part, and " + flat};
+    Result<AutomaticDescription> surface = DescribeFromSurface(mesh, options);
+    if (surface && surface.value().description.parts.size() >= 2) {
+      surface.value().source += " (the file's skeleton makes a single part)";
+      return surface;
+    }
+  }
+  return AutomaticDescription{std::move(from_skeleton).value(), "the skeleton (" + joints + ")",
+                              std::nullopt};
 }
 
 }  // namespace wirerig

@@ -90,6 +90,24 @@ TEST(RigCommand, OpenMeshRigsFromItsWrapAndSaysSo) {
   EXPECT_TRUE(LoadRig(options.output).ok());
 }
 
+TEST(RigCommand, OneBoneSkeletonGivesWayToTheSurfacesOwn) {
+  RigCommandOptions options;
+  options.mesh = std::string(WIRERIG_ASSET_DIR) + "/assimp/SMD/WusonSMD.smd";
+  options.output = Output("wuson_smd.rig.json").string();
+  const CommandRun run = RunRig(options);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("(the file's skeleton makes a single part)"), std::string::npos)
+      << run.out;
+  const Result<Rig> rig = LoadRig(options.output);
+  ASSERT_TRUE(rig.ok()) << rig.error();
+  EXPECT_GE(rig.value().parts.size(), 5u);  // torso, head, legs: not one rigid part
+  options.mesh = std::string(WIRERIG_ASSET_DIR) + "/assimp/SMD/triangle.smd";
+  options.output = Output("triangle_smd.rig.json").string();
+  ExpectFailure(options,
+                "triangle.smd: the skeleton makes a single part, and it has fewer than 4 "
+                "vertices");
+}
+
 TEST(RigCommandErrors, StrictRefusesARigWithWarningsAndWritesNothing) {
   RigCommandOptions options;
   options.mesh = std::string(WIRERIG_ASSET_DIR) + "/cow.off";
