@@ -171,6 +171,7 @@ int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostr
   RigBuildOptions build_options;
   build_options.skin_thickness = options.skin_thickness;
   build_options.wrap = wrap ? &*wrap : nullptr;
+  build_options.drop_parts_without_profiles = options.description.empty();
   Result<BuiltRig> built = BuildRig(mesh, description, options.mesh, build_options);
   if (!built) return fail(options.mesh + ": " + built.error());
   PrintRigSummary(out, built.value(), source);

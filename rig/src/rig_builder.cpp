@@ -60,10 +60,30 @@ double SignedVolume6(const Mesh& mesh) {
   return volume;
 }
 
-}  // namespace
+// The description without part `dropped` (not the root): its children hang from its parent, and
+// the vertices given to it go to its parent.
+RigDescription WithoutPart(const RigDescription& description, std::size_t dropped) {
+  RigDescription out = description;
+  const std::string parent = description.parts[dropped].parent;
+  int parent_index = -1;
+  for (std::size_t i = 0; i < description.parts.size(); ++i)
+    if (description.parts[i].name == parent) parent_index = int(i);
+  for (PartDescription& part : out.parts)
+    if (part.parent == description.parts[dropped].name) part.parent = parent;
+  out.parts.erase(out.parts.begin() + std::ptrdiff_t(dropped));
+  for (int& p : out.vertex_part) {
+    if (p == int(dropped))
+      p = parent_index;
+    else if (p > int(dropped))
+      --p;
+  }
+  return out;
+}
 
-Result<BuiltRig> BuildRig(const Mesh& mesh, const RigDescription& description,
-                          const std::string& mesh_path, const RigBuildOptions& options) {
+// One attempt; `failed` gets the part whose profiles missed the surface, if that stopped it.
+Result<BuiltRig> BuildRigOnce(const Mesh& mesh, const RigDescription& description,
+                              const std::string& mesh_path, const RigBuildOptions& options,
+                              int* failed) {
   if (std::string error = ValidateRigDescription(description); !error.empty())
     return Error{"description: " + error};
   if (mesh.welded_triangles.empty()) return Error{"the mesh has no triangles"};
@@ -124,11 +144,13 @@ Result<BuiltRig> BuildRig(const Mesh& mesh, const RigDescription& description,
     part.profiles = std::move(profiles.profiles);
     part.spine_points = SpinePoints(part.profiles, profiles.foreign_points);
     Result<Curve> spine = BuildSpineCurve(part.spine_points);
-    if (!spine)
+    if (!spine) {
+      *failed = int(i);
       return Error{"part '" + d.name + "': " + std::to_string(part.profiles.size()) + " of " +
                    std::to_string(d.profile_count) +
                    " profiles hit its surface; is its central curve inside the mesh? (" +
                    spine.error() + ")"};
+    }
     AssignWires(part, description.material, options.skin_thickness);
     part.joint = d.joint;
     if (!d.parent.empty()) {
@@ -154,6 +176,27 @@ Result<BuiltRig> BuildRig(const Mesh& mesh, const RigDescription& description,
         " vertices are hidden from every central curve by the surface itself (concave "
         "detail) and went to the nearest curve");
   return built;
+}
+
+}  // namespace
+
+Result<BuiltRig> BuildRig(const Mesh& mesh, const RigDescription& description,
+                          const std::string& mesh_path, const RigBuildOptions& options) {
+  RigDescription attempt = description;
+  std::vector<std::string> dropped;
+  for (;;) {
+    int failed = -1;
+    Result<BuiltRig> built = BuildRigOnce(mesh, attempt, mesh_path, options, &failed);
+    const bool droppable = failed > 0 && !attempt.parts[std::size_t(failed)].parent.empty();
+    if (built || !options.drop_parts_without_profiles || !droppable) {
+      if (built)
+        for (const std::string& d : dropped) built.value().report.warnings.push_back(d);
+      return built;
+    }
+    const PartDescription& part = attempt.parts[std::size_t(failed)];
+    dropped.push_back(built.error() + "; dropped: its skin follows '" + part.parent + "'");
+    attempt = WithoutPart(attempt, std::size_t(failed));
+  }
 }
 
 }  // namespace wirerig

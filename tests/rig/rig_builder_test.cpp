@@ -72,6 +72,43 @@ bool HasPart(const Rig& rig, const std::string& name) {
                      [&](const RigPart& p) { return p.name == name; });
 }
 
+// A part whose central curve lies outside the mesh has no profiles: the rig fails naming it,
+// unless such parts may be dropped (automatic descriptions), when its skin and children go to
+// its parent and a warning says so.
+TEST(RigBuilder, PartWithoutProfilesFailsOrIsDroppedToItsParent) {
+  const Mesh mesh = MakeCapsule(0.1, 1.0, 24, 20, 6);
+  RigDescription description;
+  PartDescription body, fin, tip;
+  body.name = "body";
+  body.central_curve = {Vec3(0, 1.05, 0), Vec3(0, -0.05, 0)};
+  fin.name = "fin";  // beside the capsule, outside it
+  fin.parent = "body";
+  fin.central_curve = {Vec3(0.5, 0.3, 0), Vec3(0.9, 0.3, 0)};
+  tip = fin;
+  tip.name = "tip";
+  tip.parent = "fin";
+  tip.central_curve = {Vec3(0.9, 0.3, 0), Vec3(1.2, 0.3, 0)};
+  description.parts = {body, fin, tip};
+  const Result<BuiltRig> strict = BuildRig(mesh, description, "capsule");
+  ASSERT_FALSE(strict.ok());
+  EXPECT_EQ(strict.error().rfind("part 'fin': 0 of 12 profiles hit its surface", 0), 0u)
+      << strict.error();
+  RigBuildOptions options;
+  options.drop_parts_without_profiles = true;
+  const Result<BuiltRig> dropped = BuildRig(mesh, description, "capsule", options);
+  ASSERT_TRUE(dropped.ok()) << dropped.error();
+  ASSERT_EQ(dropped.value().rig.parts.size(), 1u);
+  EXPECT_EQ(dropped.value().rig.parts[0].name, "body");
+  const std::vector<std::string>& warnings = dropped.value().report.warnings;
+  const auto said = [&](const std::string& text) {
+    return std::any_of(warnings.begin(), warnings.end(),
+                       [&](const std::string& w) { return w.find(text) != std::string::npos; });
+  };
+  EXPECT_TRUE(said("part 'fin': 0 of 12 profiles hit its surface"));
+  EXPECT_TRUE(said("dropped: its skin follows 'body'"));
+  EXPECT_TRUE(said("part 'tip': 0 of 12 profiles hit its surface"));  // then its child
+}
+
 TEST(RigBuilder, HumanFromItsDescription) {
   const Mesh mesh = Import(Asset("assimp/Collada/human.zae"));
   const Result<RigDescription> description =
