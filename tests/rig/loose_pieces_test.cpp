@@ -19,7 +19,7 @@ TEST(LoosePieces, ASeparateSphereRidesRigidlyOnTheLimbItSitsOn) {
   Mesh mesh = MakeCapsule(0.1, 1.0, 32, 40, 8);
   const std::size_t body_vertices = mesh.welded_positions.size();
   Mesh sphere = MakeCapsule(0.03, 0.0, 8, 1, 3);  // under 5% of the vertices: loose
-  const Vec3 offset(0.13, 0.25, 0.0);  // beside the lower segment, off its surface
+  const Vec3 offset(0.13, 0.25, 0.0);             // beside the lower segment, off its surface
   for (Vec3& p : sphere.positions) p += offset;
   for (Vec3& p : sphere.welded_positions) p += offset;
   AppendMesh(mesh, sphere);
