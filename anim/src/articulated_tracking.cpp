@@ -107,6 +107,12 @@ Result<ArticulatedTracking> ArticulatedTracking::Make(const RigModel& model, con
     }
   }
   out.targets_.resize(n);
+  std::size_t wrenches = 0;
+  for (std::size_t p = 1; p < n; ++p) {
+    const PartChannels<Track>& channels = clip.parts[p];
+    wrenches += channels.rigid_forces.size() + (channels.rigid_torque.IsEmpty() ? 0 : 1);
+  }
+  out.wrenches_.reserve(wrenches);
   out.keyed_ = MakeClipSample(clip, model);
   // The chain starts at rest in the clip's first keyed pose.
   out.SetTargets(0.0);
@@ -147,6 +153,21 @@ void ArticulatedTracking::SetTargets(double t) {
   }
   const Mat3 root = keyed_.poses[0].rotation.toRotationMatrix();
   effective_gravity_ = root.transpose() * (options_.gravity - acceleration);
+  // Keyed forces (world axes, at a body point given at rest) and torques, into the root's frame.
+  wrenches_.clear();
+  for (std::size_t p = 1; p < clip_->parts.size(); ++p) {
+    const PartChannels<Track>& channels = clip_->parts[p];
+    const BodyMotion& body = state_.bodies[p];
+    const Vec3& joint = model_->parts[p].spine_points.front();
+    for (const RigidForceChannels<Track>& f : channels.rigid_forces) {
+      const Vec3 local = axes_[p].transpose() * (f.at - joint);
+      wrenches_.push_back({int(p), root.transpose() * f.force.Sample(t),
+                           body.translation + body.rotation * local, Vec3::Zero()});
+    }
+    if (!channels.rigid_torque.IsEmpty())
+      wrenches_.push_back({int(p), Vec3::Zero(), body.translation,
+                           root.transpose() * channels.rigid_torque.Sample(t)});
+  }
 }
 
 Status ArticulatedTracking::Step() {
@@ -156,6 +177,7 @@ Status ArticulatedTracking::Step() {
   job.dt = options_.step;
   job.gravity = effective_gravity_;
   job.targets = targets_;
+  job.wrenches = wrenches_;
   job.workspace = &workspace_;
   job.state = &state_;
   if (Status s = job.Run(); !s) return s;

@@ -29,7 +29,8 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
     const RigidPartBody body = MakeRigidPartBody(part, part.parent >= 0);
     playback.bodies_[p] = RestState(body);
     const PartChannels<Track>& c = clip.parts[p];
-    if (part.kind == SpineKind::kRigid &&
+    // With tracking, the chain's articulated dynamics takes the keyed forces instead.
+    if (part.kind == SpineKind::kRigid && options.tracking.frequency <= 0.0 &&
         (!c.rigid_forces.empty() || !c.rigid_torque.IsEmpty() || options.gravity != Vec3::Zero())) {
       if (!(part.mass.mass > 0.0))
         return Error{"part \"" + part.name + "\": a rigid part driven by forces needs a mass"};

@@ -113,6 +113,33 @@ TEST(ArticulatedTracking, ScrubbingGivesTheSameFrames) {
   EXPECT_EQ(played->positions, first);
 }
 
+// A keyed force at the lower segment's tip, fixed in the world across the arm, holds the hinge
+// where the PD spring balances its moment: kp |phi| = F L cos(phi), kp = (2 pi f)^2 I with I
+// the segment's inertia about the hinge (from its mass properties).
+TEST(ArticulatedTracking, KeyedForceBalancesTheTrackingSpring) {
+  constexpr double kFrequency = 2.0, kForce = 4.0;
+  json scene = ArmScene(kFrequency, 1.0);
+  scene["clips"][0]["parts"][0].erase("joint_angles");
+  scene["clips"][0]["parts"][0]["rigid_forces"] = {
+      {{"at", {0, 0.0, 0}}, {"force", {{"keys", {{0, {0, 0, kForce}}}}}}}};
+  std::unique_ptr<Played> played = Play(scene);
+  ASSERT_NE(played, nullptr);
+  const ArticulatedModel& model = played->playback->tracking()->model();
+  const ArticulatedBodyDesc& lower = model.body(1);
+  const Vec3 c = lower.center_of_mass;  // body axes: X is the hinge
+  const double inertia = lower.inertia(0, 0) + lower.mass * (c.y() * c.y() + c.z() * c.z());
+  const double kp = std::pow(2.0 * std::numbers::pi * kFrequency, 2) * inertia;
+  // The joint's world position (the root's frame is the world's axes at its joint) down to the
+  // force's point (0, 0, 0).
+  const double arm = (model.body(0).joint_position + model.body(1).joint_position).y();
+  double phi = 0.0;  // kp phi = F L cos(phi), by fixed-point iteration
+  for (int k = 0; k < 50; ++k) phi = kForce * arm * std::cos(phi) / kp;
+  const double simulated = std::abs(HingeDegrees(*played, 3.0)) * std::numbers::pi / 180.0;
+  std::printf("[ measured ] hinge %.5f rad, balance %.5f rad\n", simulated, phi);
+  EXPECT_GT(phi, 0.05);  // a visible deflection
+  EXPECT_NEAR(simulated, phi, 0.01 * phi);
+}
+
 TEST(ArticulatedTracking, BadOptionsAreRefusedNamingTheField) {
   json scene = ArmScene(2.0, 1.0);
   scene["playback"]["tracking"]["frequency"] = -1;

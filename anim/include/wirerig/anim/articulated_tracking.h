@@ -3,6 +3,7 @@
 // an animator keys poses and the physics adds the lag, overshoot and follow-through of real
 // limbs under gravity and the body's own accelerations.
 //
+// The clip's keyed rigid forces (at a body point) and torques act on the parts' bodies.
 // The root part follows its keyed motion exactly; the chain's dynamics is solved in the root's
 // frame, where gravity and the root's keyed acceleration (finite differences of its translation
 // track) act as one effective gravity, R_root^T (g - a_root) (the root's own turning adds no
@@ -66,7 +67,8 @@ class ArticulatedTracking {
   std::vector<Mat3> axes_;       // per part: its joint's rest axes (identity for the root)
   std::vector<double> inertia_;  // per part: the inertia its joint drives, kg m^2
   std::vector<JointTarget> targets_;
-  ClipSample keyed_;  // scratch: the clip sampled at a step's time
+  std::vector<ExternalWrench> wrenches_;  // the clip's keyed forces and torques, this step
+  ClipSample keyed_;                      // scratch: the clip sampled at a step's time
   std::vector<ArticulatedState> checkpoints_;
   std::size_t checkpoints_done_ = 0;  // valid cached states
   std::size_t steps_ = 0;             // steps taken to reach state_
