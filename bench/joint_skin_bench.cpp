@@ -2,7 +2,8 @@
 // bones, blend region and pose (the quality side of the comparison is `wirerig rig
 // --joint-report`; see docs/benchmarks.md):
 //  * BM_WireRigSkin: EvaluateRigJob on human.zae's bone-chain rig (18 rigid parts, skin bridges
-//    at every joint), positions and normals (doubles), one thread.
+//    at every joint), positions and normals (doubles), one thread; BM_WireRigSkinFloat: the
+//    same into float buffers.
 //  * BM_LinearBlend, BM_DualQuaternion, BM_CentresOfRotation: ReferenceSkinningJob (float, one
 //    array per attribute, 4 influences, positions and normals) with the bone matrices of the
 //    same pose.
@@ -93,6 +94,27 @@ void BM_WireRigSkin(benchmark::State& state) {
   state.counters["bridged"] = double(workspace.layout.joint_vertices.size());
 }
 BENCHMARK(BM_WireRigSkin)->Unit(benchmark::kMicrosecond);
+
+// The same frame into float engine buffers (the float evaluation, four vertices at a time).
+void BM_WireRigSkinFloat(benchmark::State& state) {
+  const Scene& s = Human();
+  RigWorkspace workspace = MakeRigWorkspace(s.model);
+  std::vector<float> positions(3 * s.model.vertices.size()), normals(positions.size());
+  EvaluateRigJob job;
+  job.model = &s.model;
+  job.poses = s.poses;
+  job.workspace = &workspace;
+  job.float_positions = positions;
+  job.float_normals = normals;
+  for (auto _ : state) {
+    if (!job.Run()) state.SkipWithError("evaluation failed");
+    benchmark::DoNotOptimize(positions.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["vertices"] = double(s.model.vertices.size());
+  state.counters["bridged"] = double(workspace.layout.joint_vertices.size());
+}
+BENCHMARK(BM_WireRigSkinFloat)->Unit(benchmark::kMicrosecond);
 
 void RunReference(benchmark::State& state, ReferenceSkinning method) {
   const Scene& s = Human();

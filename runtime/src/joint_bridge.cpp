@@ -96,7 +96,14 @@ RestBridge MakeRestBridge(const BridgeEnds& rest) {
   RestBridge out;
   out.ends = rest;
   const Hermite curve = CurveOf(rest);
-  for (int k = 0; k <= kBridgeSegments; ++k) out.points[k] = curve.At(double(k) / kBridgeSegments);
+  for (int k = 0; k <= kBridgeSegments; ++k) {
+    const double u = double(k) / kBridgeSegments;
+    out.points[k] = curve.At(u);
+    const Vec3 velocity = curve.Derivative(u);
+    out.curvature[k] = Curvature(velocity, curve.SecondDerivative(u));
+    const double simpson = (k == 0 || k == kBridgeSegments) ? 1.0 : (k % 2 ? 4.0 : 2.0);
+    out.length += simpson * velocity.norm();
+  }
   return out;
 }
 
@@ -147,14 +154,15 @@ JointBinding BindToJoint(const JointModel& joint, const RestBridge& rest_bridge,
   return out;
 }
 
-void SampleJointBridge(const JointModel& joint, const BridgeEnds& rest, const BridgeEnds& posed,
-                       const Mat3& parent_rotation, const Mat3& child_rotation,
-                       BridgeSamples* out) {
+void SampleJointBridge(const JointModel& joint, const RestBridge& rest_bridge,
+                       const BridgeEnds& posed, const Mat3& parent_rotation,
+                       const Mat3& child_rotation, BridgeSamples* out) {
+  const BridgeEnds& rest = rest_bridge.ends;
   out->parent_turn = parent_rotation;
   out->parent_offset = posed.start - parent_rotation * rest.start;
   out->child_turn = child_rotation;
   out->child_offset = posed.end - child_rotation * rest.end;
-  const Hermite rest_curve = CurveOf(rest), curve = CurveOf(posed);
+  const Hermite curve = CurveOf(posed);
   const Quat parent(parent_rotation);
   const Quat relative = (parent.conjugate() * Quat(child_rotation)).normalized();
   Quat swing, twist;
@@ -162,57 +170,38 @@ void SampleJointBridge(const JointModel& joint, const BridgeEnds& rest, const Br
   // Area growth 1 + c bump(u), bump = 4u(1 - u): 1 at both ends (the sections meet the rigid
   // sides unscaled) and c chosen so the bridge keeps its rest volume, integral of area x speed
   // (Simpson's rule over the samples; the rest curve is straight, of constant speed).
-  double bent = 0.0, bumped = 0.0, rest_length = 0.0;
+  // The curves' velocities and accelerations at the samples, computed once.
+  std::array<Vec3, kBridgeSegments + 1> velocity, acceleration;
+  double bent = 0.0, bumped = 0.0;
   for (int k = 0; k <= kBridgeSegments; ++k) {
     const double u = double(k) / kBridgeSegments;
+    velocity[k] = curve.Derivative(u);
+    acceleration[k] = curve.SecondDerivative(u);
     const double simpson = (k == 0 || k == kBridgeSegments) ? 1.0 : (k % 2 ? 4.0 : 2.0);
-    const double speed = curve.Derivative(u).norm();
+    const double speed = velocity[k].norm();
     bent += simpson * speed;
     bumped += simpson * 4.0 * u * (1.0 - u) * speed;
-    rest_length += simpson * rest_curve.Derivative(u).norm();
   }
-  const double growth = bumped > 0.0 ? (rest_length - bent) / bumped : 0.0;
+  const double growth = bumped > 0.0 ? (rest_bridge.length - bent) / bumped : 0.0;
+  // swing^u and twist^u at u_k = k / kBridgeSegments as powers of their first step.
+  const Quat swing_step = ScaleRotation(swing, 1.0 / kBridgeSegments);
+  const Quat twist_step = ScaleRotation(twist, 1.0 / kBridgeSegments);
+  Quat swing_u = Quat::Identity(), twist_u = Quat::Identity();
   for (int k = 0; k <= kBridgeSegments; ++k) {
     const double u = double(k) / kBridgeSegments;
-    out->rest_centre[k] = rest_curve.At(u);
-    out->centre[k] = curve.At(u);
-    const Mat3 rotation =
-        (parent * ScaleRotation(swing, u) * ScaleRotation(twist, u)).toRotationMatrix();
+    BridgeSamples::Sample& sample = out->samples[k];
+    const Vec3& rest_centre = rest_bridge.points[k];
+    sample.centre = curve.At(u);
+    const Mat3 rotation = (parent * swing_u * twist_u).toRotationMatrix();
+    swing_u = (swing_u * swing_step).normalized();
+    twist_u = (twist_u * twist_step).normalized();
     const double area = std::clamp(1.0 + growth * 4.0 * u * (1.0 - u), 0.25, 4.0);
-    out->turn[k] = rotation;
-    out->inward[k] = Inward(curve.Derivative(u), curve.SecondDerivative(u),
-                            Curvature(rest_curve.Derivative(u), rest_curve.SecondDerivative(u)));
-    out->map[k] =
-        CrossSectionScale(curve.Derivative(u), curve.SecondDerivative(u), area, joint.radius) *
-        rotation;
+    sample.turn = rotation;
+    sample.turn_offset = sample.centre - rotation * rest_centre;
+    sample.inward = Inward(velocity[k], acceleration[k], rest_bridge.curvature[k]);
+    sample.map = CrossSectionScale(velocity[k], acceleration[k], area, joint.radius) * rotation;
+    sample.map_offset = sample.centre - sample.map * rest_centre;
   }
-}
-
-Vec3 ApplyJointBridge(const BridgeSamples& bridge, double u, double fraction, const Vec3& q,
-                      double section) {
-  const double x = std::clamp(u, 0.0, 1.0) * kBridgeSegments;
-  const int k = std::min(static_cast<int>(x), kBridgeSegments - 1);
-  const double f = x - k;
-  const Vec3 rest_centre = (1.0 - f) * bridge.rest_centre[k] + f * bridge.rest_centre[k + 1];
-  const Vec3 centre = (1.0 - f) * bridge.centre[k] + f * bridge.centre[k + 1];
-  const Mat3 map = (1.0 - f) * bridge.map[k] + f * bridge.map[k + 1];
-  const Vec3 d = q - rest_centre;
-  Vec3 swept = centre + map * d;
-  if (section < 1.0) {
-    const Vec3 turned = ((1.0 - f) * bridge.turn[k] + f * bridge.turn[k + 1]) * d;
-    swept = centre + turned + section * (swept - centre - turned);
-  }
-  // Softly short of the centre of curvature: reach r along the inward normal becomes
-  // limit s / sqrt(1 + s^2), s = r / limit (1:1 near the centre line, never past the limit).
-  const Vec3 inward = (1.0 - f) * bridge.inward[k] + f * bridge.inward[k + 1];
-  const double reach = inward.dot(swept - centre);  // in units of the limit
-  if (reach > 0.0)
-    swept += (reach / std::sqrt(1.0 + reach * reach) - reach) / inward.squaredNorm() * inward;
-  if (fraction >= 1.0) return swept;
-  const double child = SmoothStep(0.0, 1.0, u);
-  const Vec3 blended = (1.0 - child) * (bridge.parent_turn * q + bridge.parent_offset) +
-                       child * (bridge.child_turn * q + bridge.child_offset);
-  return fraction * swept + (1.0 - fraction) * blended;
 }
 
 }  // namespace wirerig

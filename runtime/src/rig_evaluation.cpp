@@ -4,120 +4,11 @@
 #include <cmath>
 #include <cstdint>
 
+#include "vertex_stage.h"
 #include "wirerig/runtime/spine_interpolation.h"
 
 namespace wirerig {
 namespace {
-
-// Vertices, triangles and vertex normals per parallel task: large enough that claiming a task
-// costs nothing next to it, small enough that two threads share out a mesh evenly.
-constexpr std::size_t kTaskSize = 2048;
-
-// The fast path of ApplyPairBinding is used while squared lengths stay within these bounds:
-// then no product below can overflow or underflow into the subnormals that matter.
-constexpr double kMinSquared = 1e-140;
-constexpr double kMaxSquared = 1e140;
-// ApplyPairBinding's kDegenerateSine, squared.
-constexpr double kDegenerateSine2 = 1e-16;
-
-// PHYSICS.md section 6, step "apply", for a regular frame: with e = p2 - p1, d = c - p1 and
-// n = e x d, the unit normal is n / |n|, |e| m_hat = n_hat x e, and the point is
-// p1 + alpha e + beta (n_hat x e) + gamma |e| n_hat. Equal to ApplyPairBinding up to rounding
-// (one square root and one division fewer: no normalisation of e or d). Returns false, writing
-// nothing, where ApplyPairBinding's degenerate-frame handling (or its overflow-safe scaling)
-// is needed.
-inline bool ApplyPairFast(const RigEvaluationLayout::Pair& b, const Vec3* points,
-                          const Vec3* centres, Vec3* out) {
-  const Vec3 p1 = (1.0 - b.lambda1) * points[b.a0] + b.lambda1 * points[b.a1];
-  const Vec3 p2 = (1.0 - b.lambda2) * points[b.b0] + b.lambda2 * points[b.b1];
-  const Vec3 e = p2 - p1;
-  const Vec3 d = centres[b.profile] - p1;
-  const double ee = e.squaredNorm(), dd = d.squaredNorm();
-  if (!(ee >= kMinSquared && ee <= kMaxSquared && dd >= kMinSquared && dd <= kMaxSquared))
-    return false;
-  const Vec3 n = e.cross(d);
-  const double nn = n.squaredNorm();
-  if (!(nn > kDegenerateSine2 * ee * dd)) return false;
-  const Vec3 n_hat = n * (1.0 / std::sqrt(nn));
-  *out = p1 + b.alpha * e + b.beta * n_hat.cross(e) + (b.gamma * std::sqrt(ee)) * n_hat;
-  return true;
-}
-
-// The vertex and normal passes, as tasks over ranges of kTaskSize items.
-struct VertexPass {
-  const EvaluateRigJob* job;
-  RigWorkspace* w;
-
-  static std::size_t Tasks(std::size_t items) { return (items + kTaskSize - 1) / kTaskSize; }
-
-  // Pair vertices [k kTaskSize, (k + 1) kTaskSize), then the caps in the same way.
-  static void Vertices(const void* context, std::size_t k) {
-    const auto& self = *static_cast<const VertexPass*>(context);
-    const RigEvaluationLayout& layout = self.w->layout;
-    const std::size_t pair_tasks = Tasks(layout.pairs.size());
-    Vec3* positions = self.job->positions.data();
-    if (k >= pair_tasks) {
-      const std::size_t end = std::min(layout.caps.size(), (k - pair_tasks + 1) * kTaskSize);
-      for (std::size_t c = (k - pair_tasks) * kTaskSize; c < end; ++c) {
-        const RigEvaluationLayout::Cap& cap = layout.caps[c];
-        positions[cap.vertex] =
-            self.w->cap_origins[cap.profile] + self.w->cap_axes[cap.profile] * cap.local;
-      }
-      return;
-    }
-    const Vec3* points = self.w->wire_points.data();
-    const Vec3* centres = self.w->pair_centres.data();
-    const std::size_t end = std::min(layout.pairs.size(), (k + 1) * kTaskSize);
-    for (std::size_t i = k * kTaskSize; i < end; ++i) {
-      const RigEvaluationLayout::Pair& pair = layout.pairs[i];
-      if (!ApplyPairFast(pair, points, centres, &positions[pair.vertex])) self.Slow(pair);
-    }
-  }
-
-  // ApplyPairBinding itself, on the wires as spans.
-  void Slow(const RigEvaluationLayout::Pair& pair) const {
-    const VertexAttachment& a = job->model->vertices[pair.vertex];
-    const PartModel& part = job->model->parts[a.part];
-    const WirePolyline wire_i{w->profile_points[a.part][a.profile],
-                              part.profiles[a.profile].closed};
-    const WirePolyline wire_j{w->profile_points[a.part][a.profile + 1],
-                              part.profiles[a.profile + 1].closed};
-    job->positions[pair.vertex] =
-        ApplyPairBinding(a.pair, wire_i, wire_j, w->profile_origins[a.part][a.profile],
-                         w->profile_origins[a.part][a.profile + 1]);
-  }
-
-  static void TriangleNormals(const void* context, std::size_t k) {
-    const auto& self = *static_cast<const VertexPass*>(context);
-    const std::vector<Triangle>& triangles = self.job->model->triangles;
-    const Vec3* p = self.job->positions.data();
-    Vec3* out = self.w->triangle_normals.data();
-    const std::size_t end = std::min(triangles.size(), (k + 1) * kTaskSize);
-    for (std::size_t f = k * kTaskSize; f < end; ++f) {
-      const Triangle& t = triangles[f];
-      out[f] = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
-    }
-  }
-
-  // Sums each vertex's triangle normals in increasing triangle order (as accumulating over the
-  // triangles in order would) and normalises.
-  static void VertexNormals(const void* context, std::size_t k) {
-    const auto& self = *static_cast<const VertexPass*>(context);
-    const RigEvaluationLayout& layout = self.w->layout;
-    const std::uint32_t* offsets = layout.vertex_triangle_offsets.data();
-    const std::uint32_t* triangles = layout.vertex_triangles.data();
-    const Vec3* face = self.w->triangle_normals.data();
-    Vec3* normals = self.job->normals.data();
-    const std::uint32_t* order = layout.normal_order.data();
-    const std::size_t end = std::min(self.job->normals.size(), (k + 1) * kTaskSize);
-    for (std::size_t i = k * kTaskSize; i < end; ++i) {
-      Vec3 sum = Vec3::Zero();
-      for (std::uint32_t t = offsets[i]; t < offsets[i + 1]; ++t) sum += face[triangles[t]];
-      const double length = sum.norm();
-      normals[order[i]] = length > 0.0 ? Vec3(sum * (1.0 / length)) : Vec3::UnitY();
-    }
-  }
-};
 
 Frame RotateFrame(const Mat3& r, const Frame& f) {
   return {r * f.tangent, r * f.normal, r * f.binormal};
@@ -133,42 +24,9 @@ Mat3 SpineTurn(const PartModel& part, const RigWorkspace& w, std::size_t i, doub
   return FrameAxes(moved) * FrameAxes(rest).transpose();
 }
 
-// Step 7 of Run(): each bridged joint's bridge for this frame, then every vertex on a bridge
-// moved from where its own part put it towards the bridge's image of its rest-space point.
-// The per-vertex part of step 7, over the entries of task k (whole vertices; see
-// RigEvaluationLayout::joint_task_starts).
-struct BridgePass {
-  const RigModel* model;
-  const RigWorkspace* w;
-  Vec3* positions;
-
-  static void Entries(const void* context, std::size_t k) {
-    const auto& self = *static_cast<const BridgePass*>(context);
-    const RigEvaluationLayout& layout = self.w->layout;
-    const std::size_t end = layout.joint_task_starts[k + 1];
-    for (std::size_t e = layout.joint_task_starts[k]; e < end;) {
-      const std::uint32_t vertex = layout.joint_vertices[e].vertex;
-      const Vec3 own = self.positions[vertex];
-      // Every entry of a vertex undoes through its own part's same spine sample.
-      const RigEvaluationLayout::JointVertex& first = layout.joint_vertices[e];
-      const Vec3 rest = self.model->parts[first.part].spine_points[first.sample] +
-                        self.w->spine_undo[first.part][first.sample] *
-                            (own - self.w->spine_points[first.part][first.sample]);
-      Vec3 sum = Vec3::Zero();
-      for (; e < end && layout.joint_vertices[e].vertex == vertex; ++e) {
-        const RigEvaluationLayout::JointVertex& j = layout.joint_vertices[e];
-        const BridgeSamples& bridge = self.w->bridges[j.joint];
-        const Vec3 base =
-            j.child_side ? own : Vec3(bridge.parent_turn * rest + bridge.parent_offset);
-        sum += j.weight * (ApplyJointBridge(bridge, j.u, j.bridge, rest, j.section) - base);
-      }
-      self.positions[vertex] = own + sum;
-    }
-  }
-};
-
-void FollowJointBridges(const RigModel& model, RigWorkspace& w, std::span<Vec3> positions,
-                        const ParallelFor* parallel) {
+// Each bridged joint's skin bridge for this frame, and the spine samples' undo matrices the
+// vertices on bridges go back to rest space through.
+void SampleBridges(const RigModel& model, RigWorkspace& w) {
   const RigEvaluationLayout& layout = w.layout;
   if (layout.joint_vertices.empty()) return;
   for (std::uint32_t c : layout.bridged_parts) {
@@ -178,7 +36,6 @@ void FollowJointBridges(const RigModel& model, RigWorkspace& w, std::span<Vec3> 
     Vec3 unused;
     const Mat3 parent_turn =
         SpineTurn(parent, w, child.parent, child.attachment, &unused, &unused, nullptr, nullptr);
-    const BridgeEnds rest = RestBridgeEnds(child);
     BridgeEnds posed;
     const double end_v = std::min(h / std::max(child.spine_length, 1e-12), 1.0);
     Vec3 rest_end, rest_end_tangent;
@@ -186,13 +43,12 @@ void FollowJointBridges(const RigModel& model, RigWorkspace& w, std::span<Vec3> 
         SpineTurn(child, w, c, end_v, &rest_end, &posed.end, &rest_end_tangent, &posed.end_tangent);
     posed.start_tangent = parent_turn * child.joint.parent_axis;
     posed.start = w.spine_points[c].front() - h * posed.start_tangent;
-    SampleJointBridge(child.joint, rest, posed, parent_turn, child_turn, &w.bridges[c]);
+    SampleJointBridge(child.joint, w.rest_bridges[c], posed, parent_turn, child_turn,
+                      &w.bridges[c]);
   }
   for (const auto& [part, sample] : layout.undo_samples)
     w.spine_undo[part][sample] = FrameAxes(model.parts[part].spine_frames[sample]) *
                                  FrameAxes(w.spine_frames[part][sample]).transpose();
-  const BridgePass pass{&model, &w, positions.data()};
-  RunTasks(parallel, layout.joint_task_starts.size() - 1, &BridgePass::Entries, &pass);
 }
 
 Status ValidateLoads(const SpineLoads& loads) {
@@ -224,7 +80,6 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
   w.bending.resize(longest);
   w.slope.resize(longest);
   w.axial.resize(longest);
-  w.normal_accumulator.resize(model.vertices.size());
   std::size_t widest = 1;
   for (const PartModel& part : model.parts)
     for (const ProfileModel& profile : part.profiles)
@@ -233,7 +88,7 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
   w.profile_displacement.resize(widest + 1);
 
   RigEvaluationLayout& layout = w.layout;
-  std::uint32_t profiles = 0, points = 0;
+  std::uint32_t profiles = 0, points = 0;  // global profiles, wire points
   for (const PartModel& part : model.parts) {
     layout.profile_base.push_back(profiles);
     for (const ProfileModel& profile : part.profiles) {
@@ -242,37 +97,7 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
       ++profiles;
     }
   }
-  w.wire_points.resize(points);
-  w.pair_centres.resize(profiles);
-  w.cap_origins.resize(profiles);
   w.cap_axes.resize(profiles, Mat3::Identity());
-  // PointOnWire's indices: segment k clamped to the wire, wrapping to point 0 after the last.
-  auto ends = [&](std::uint32_t g, std::size_t count, std::uint32_t k, std::uint32_t* i0,
-                  std::uint32_t* i1) {
-    const std::size_t first = std::min<std::size_t>(k, count - 1);
-    *i0 = layout.point_base[g] + static_cast<std::uint32_t>(first);
-    *i1 = layout.point_base[g] + static_cast<std::uint32_t>(first + 1 < count ? first + 1 : 0);
-  };
-  for (std::size_t v = 0; v < model.vertices.size(); ++v) {
-    const VertexAttachment& a = model.vertices[v];
-    const std::uint32_t g = layout.profile_base[a.part] + a.profile;
-    if (a.cap) {
-      layout.caps.push_back({static_cast<std::uint32_t>(v), g, a.cap_local});
-      continue;
-    }
-    const PartModel& part = model.parts[a.part];
-    RigEvaluationLayout::Pair pair;
-    pair.vertex = static_cast<std::uint32_t>(v);
-    pair.profile = g;
-    ends(g, part.profiles[a.profile].local_points.size(), a.pair.k1, &pair.a0, &pair.a1);
-    ends(g + 1, part.profiles[a.profile + 1].local_points.size(), a.pair.k2, &pair.b0, &pair.b1);
-    pair.lambda1 = a.pair.lambda1;
-    pair.lambda2 = a.pair.lambda2;
-    pair.alpha = a.pair.alpha;
-    pair.beta = a.pair.beta;
-    pair.gamma = a.pair.gamma;
-    layout.pairs.push_back(pair);
-  }
   for (std::size_t v = 0; v < model.vertices.size(); ++v)
     for (const JointInfluence& j : model.vertices[v].joints)
       if (j.joint >= 0)
@@ -285,51 +110,20 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
     if (part.parent >= 0 && part.joint.blend_length > 0.0)
       layout.bridged_parts.push_back(static_cast<std::uint32_t>(i));
   }
-  // Tasks of about kTaskSize entries, each ending with a whole vertex; the spine samples the
-  // entries undo through.
-  layout.joint_task_starts = {0};
-  for (std::size_t e = 0; e < layout.joint_vertices.size(); ++e) {
-    const bool full = e - layout.joint_task_starts.back() >= kTaskSize;
-    if (full && layout.joint_vertices[e].vertex != layout.joint_vertices[e - 1].vertex)
-      layout.joint_task_starts.push_back(static_cast<std::uint32_t>(e));
-  }
-  layout.joint_task_starts.push_back(static_cast<std::uint32_t>(layout.joint_vertices.size()));
+  // The spine samples the entries undo through.
   for (const RigEvaluationLayout::JointVertex& j : layout.joint_vertices)
     layout.undo_samples.emplace_back(j.part, j.sample);
   std::sort(layout.undo_samples.begin(), layout.undo_samples.end());
   layout.undo_samples.erase(std::unique(layout.undo_samples.begin(), layout.undo_samples.end()),
                             layout.undo_samples.end());
   w.bridges.resize(model.parts.size());
+  w.rest_bridges.resize(model.parts.size());
+  for (std::uint32_t c : layout.bridged_parts)
+    w.rest_bridges[c] = MakeRestBridge(RestBridgeEnds(model.parts[c]));
   for (const PartModel& part : model.parts)
     w.spine_undo.emplace_back(part.spine_points.size(), Mat3::Identity());
-  // Normals: vertices in the order of their first triangle, so the pass reads the triangle
-  // normals almost sequentially; each vertex's triangles in increasing order.
-  const std::size_t vertex_count = model.vertices.size();
-  std::vector<std::uint32_t> count(vertex_count, 0), first(vertex_count, UINT32_MAX);
-  for (std::size_t f = 0; f < model.triangles.size(); ++f)
-    for (std::uint32_t index : model.triangles[f]) {
-      ++count[index];
-      first[index] = std::min(first[index], static_cast<std::uint32_t>(f));
-    }
-  layout.normal_order.resize(vertex_count);
-  for (std::size_t v = 0; v < vertex_count; ++v)
-    layout.normal_order[v] = static_cast<std::uint32_t>(v);
-  std::sort(layout.normal_order.begin(), layout.normal_order.end(),
-            [&](std::uint32_t a, std::uint32_t b) {
-              return first[a] < first[b] || (first[a] == first[b] && a < b);
-            });
-  layout.vertex_triangle_offsets.assign(vertex_count + 1, 0);
-  std::vector<std::uint32_t> fill(vertex_count);
-  for (std::size_t i = 0; i < vertex_count; ++i) {
-    fill[layout.normal_order[i]] = layout.vertex_triangle_offsets[i];
-    layout.vertex_triangle_offsets[i + 1] =
-        layout.vertex_triangle_offsets[i] + count[layout.normal_order[i]];
-  }
-  layout.vertex_triangles.resize(layout.vertex_triangle_offsets.back());
-  for (std::size_t f = 0; f < model.triangles.size(); ++f)
-    for (std::uint32_t index : model.triangles[f])
-      layout.vertex_triangles[fill[index]++] = static_cast<std::uint32_t>(f);
-  w.triangle_normals.resize(model.triangles.size());
+  MakeVertexStage(model, layout, &w.stage64);
+  MakeVertexStage(model, layout, &w.stage32);
   return w;
 }
 
@@ -366,17 +160,39 @@ Status EvaluateRigJob::Validate() const {
   if (!workspace) return Status::Invalid("workspace", "is required");
   if (poses.size() != model->parts.size())
     return Status::Invalid("poses", "needs one pose per part");
-  if (positions.size() != model->vertices.size())
-    return Status::Invalid("positions", "needs one element per vertex");
+  const std::size_t vertex_count = model->vertices.size();
+  const bool doubles = !positions.empty();
+  if (doubles == !float_positions.empty())
+    return Status::Invalid("positions", "give either positions or float_positions");
+  if (doubles) {
+    if (positions.size() != vertex_count)
+      return Status::Invalid("positions", "needs one element per vertex");
+    if (!normals.empty() && normals.size() != vertex_count)
+      return Status::Invalid("normals", "must be empty or have one element per vertex");
+    if (!float_normals.empty())
+      return Status::Invalid("float_normals", "go with float_positions, not positions");
+  } else {
+    // A strided buffer holds vertex v's three floats at [v * stride, v * stride + 3).
+    auto fits = [&](std::span<float> buffer, std::size_t stride) {
+      return stride >= 3 && buffer.size() >= (vertex_count - 1) * stride + 3;
+    };
+    if (vertex_count > 0 && !fits(float_positions, float_position_stride))
+      return Status::Invalid("float_positions",
+                             "needs a stride of at least 3 and room for every vertex");
+    if (vertex_count > 0 && !float_normals.empty() && !fits(float_normals, float_normal_stride))
+      return Status::Invalid(
+          "float_normals",
+          "must be empty, or have a stride of at least 3 and room for every vertex");
+    if (!normals.empty())
+      return Status::Invalid("normals", "go with positions, not float_positions");
+  }
   if (!warnings.empty() && warnings.size() != model->parts.size())
     return Status::Invalid("warnings", "must be empty or have one element per part");
-  if (!normals.empty() && normals.size() != model->vertices.size())
-    return Status::Invalid("normals", "must be empty or have one element per vertex");
   if (workspace->spine_points.size() != model->parts.size() ||
-      workspace->normal_accumulator.size() != model->vertices.size() ||
-      workspace->layout.pairs.size() + workspace->layout.caps.size() != model->vertices.size() ||
+      workspace->stage64.slot_of_vertex.size() != vertex_count ||
+      workspace->stage32.slot_of_vertex.size() != vertex_count ||
       workspace->layout.profile_base.size() != model->parts.size() ||
-      workspace->triangle_normals.size() != model->triangles.size())
+      workspace->stage64.t0.size() != model->triangles.size())
     return Status::Invalid("workspace", "was made for another model");
   for (const PartPose& pose : poses) {
     const Eigen::Vector4d q = pose.rotation.coeffs();
@@ -506,7 +322,6 @@ Status EvaluateRigJob::Run() const {
       // The end caps' frame: in-plane like the profile, and 1/scale^2 along the tangent, so a
       // cap keeps its volume and meets the profile's plane continuously.
       const std::size_t g = w.layout.profile_base[i] + p;
-      w.cap_origins[g] = origin;
       w.cap_axes[g] = axes;
       w.cap_axes[g].col(2) /= w.profile_scale[i][p] * w.profile_scale[i][p];
       std::vector<Vec3>& out = w.profile_points[i][p];
@@ -574,46 +389,18 @@ Status EvaluateRigJob::Run() const {
     }
   }
 
-  // 6. Vertices follow the profiles: the world wire points and pair centres laid out flat, then
-  // every vertex from its flat binding.
-  for (std::size_t i = 0; i < model->parts.size(); ++i) {
-    const std::size_t profiles = model->parts[i].profiles.size();
-    for (std::size_t p = 0; p < profiles; ++p) {
-      const std::size_t g = w.layout.profile_base[i] + p;
-      std::copy(w.profile_points[i][p].begin(), w.profile_points[i][p].end(),
-                w.wire_points.begin() + w.layout.point_base[g]);
-      if (p + 1 < profiles)
-        w.pair_centres[g] = 0.5 * (w.profile_origins[i][p] + w.profile_origins[i][p + 1]);
-    }
+  // 6-8. Vertices follow the profiles, then the skin bridges near joints; normals.
+  SampleBridges(*model, w);
+  if (!positions.empty()) {
+    const StageOutput<double> out{positions.data()->data(), 3,
+                                  normals.empty() ? nullptr : normals.data()->data(), 3};
+    RunVertexStage(*model, w, w.stage64, out, parallel);
+  } else {
+    const StageOutput<float> out{float_positions.data(), float_position_stride,
+                                 float_normals.empty() ? nullptr : float_normals.data(),
+                                 float_normal_stride};
+    RunVertexStage(*model, w, w.stage32, out, parallel);
   }
-  const VertexPass pass{this, workspace};
-  RunTasks(parallel,
-           VertexPass::Tasks(w.layout.pairs.size()) + VertexPass::Tasks(w.layout.caps.size()),
-           &VertexPass::Vertices, &pass);
-
-  // 7. Vertices near joints follow the skin bridges.
-  FollowJointBridges(*model, w, positions, parallel);
-
-  // 8. Area-weighted vertex normals.
-  if (normals.empty()) return Status::Ok();
-  // One thread: accumulate every triangle's normal into its vertices in one pass (the fewest
-  // memory passes). Threads: every triangle's normal, then per vertex the sum of its triangles'
-  // in increasing triangle order. Both add the same terms in the same order: identical sums.
-  if (parallel == nullptr || parallel->concurrency() <= 1) {
-    std::fill(w.normal_accumulator.begin(), w.normal_accumulator.end(), Vec3::Zero());
-    for (const Triangle& t : model->triangles) {
-      const Vec3 n = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
-      for (std::uint32_t index : t) w.normal_accumulator[index] += n;
-    }
-    for (std::size_t v = 0; v < normals.size(); ++v) {
-      const double length = w.normal_accumulator[v].norm();
-      normals[v] = length > 0.0 ? Vec3(w.normal_accumulator[v] * (1.0 / length)) : Vec3::UnitY();
-    }
-    return Status::Ok();
-  }
-  RunTasks(parallel, VertexPass::Tasks(model->triangles.size()), &VertexPass::TriangleNormals,
-           &pass);
-  RunTasks(parallel, VertexPass::Tasks(normals.size()), &VertexPass::VertexNormals, &pass);
   return Status::Ok();
 }
 

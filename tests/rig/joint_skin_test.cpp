@@ -205,7 +205,8 @@ TEST(JointSkin, BridgeIsTheIdentityAtRestAndACircularArcWhenBent) {
   joint.axes.col(1) = axis.cross(Vec3::UnitX());
   BridgeEnds rest{root - 0.2 * axis, axis, root + 0.2 * axis, axis};
   BridgeSamples samples;
-  SampleJointBridge(joint, rest, rest, Mat3::Identity(), Mat3::Identity(), &samples);
+  SampleJointBridge(joint, MakeRestBridge(rest), rest, Mat3::Identity(), Mat3::Identity(),
+                    &samples);
   for (double u : {0.0, 0.13, 0.5, 0.77, 1.0}) {
     const Vec3 q = root + (2 * u - 1) * 0.2 * axis + Vec3(0.03, 0, -0.02);
     EXPECT_LT((ApplyJointBridge(samples, u, 1.0, q) - q).norm(), 1e-15);
@@ -216,15 +217,15 @@ TEST(JointSkin, BridgeIsTheIdentityAtRestAndACircularArcWhenBent) {
     const double theta = degrees * std::numbers::pi / 180.0;
     const Mat3 turn = Eigen::AngleAxisd(theta, Vec3::UnitX()).toRotationMatrix();
     BridgeEnds posed{root - 0.2 * axis, axis, root + 0.2 * (turn * axis), turn * axis};
-    SampleJointBridge(joint, rest, posed, Mat3::Identity(), turn, &samples);
+    SampleJointBridge(joint, MakeRestBridge(rest), posed, Mat3::Identity(), turn, &samples);
     // The arc's centre: from the start, R along the normal towards the turn.
     const double radius = 0.2 / std::tan(0.5 * theta);
     const Vec3 inward = (turn * axis - std::cos(theta) * axis).normalized();
     const Vec3 arc_centre = posed.start + radius * inward;
-    for (const Vec3& c : samples.centre)
-      EXPECT_NEAR((c - arc_centre).norm(), radius, 2e-3 * radius);
+    for (const BridgeSamples::Sample& sample : samples.samples)
+      EXPECT_NEAR((sample.centre - arc_centre).norm(), radius, 2e-3 * radius);
     // The cross-section at the middle turned by half the bend.
-    const Mat3 middle = samples.map[kBridgeSegments / 2];
+    const Mat3 middle = samples.samples[kBridgeSegments / 2].map;
     const Vec3 expected_tangent =
         Eigen::AngleAxisd(0.5 * theta, Vec3::UnitX()).toRotationMatrix() * axis;
     EXPECT_NEAR((middle * axis).normalized().dot(expected_tangent), 1.0, 1e-9);

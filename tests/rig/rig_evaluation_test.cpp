@@ -601,6 +601,103 @@ TEST(RigEvaluation, ParallelEvaluationIsBitIdenticalToSequential) {
   }
 }
 
+// The float evaluation (engine buffers, four vertices at a time) computes what the double one
+// does, whose vertices the test above checks against ApplyPairBinding and ApplyJointBridge:
+// the same positions and normals to float precision, into an interleaved buffer (position and
+// normal of a vertex side by side, stride 6), bit-identical on any number of threads.
+std::vector<float> EvaluateBusyFloat(const Scene& scene, const BusyPose& pose,
+                                     const ParallelFor* parallel) {
+  RigWorkspace workspace = MakeRigWorkspace(scene.model);
+  std::vector<float> buffer(6 * scene.model.vertices.size(), -7.0f);
+  EvaluateRigJob job;
+  job.model = &scene.model;
+  job.poses = pose.poses;
+  job.profile_loads = pose.profile_loads;
+  job.workspace = &workspace;
+  job.float_positions = buffer;
+  job.float_position_stride = 6;
+  job.float_normals = std::span<float>(buffer).subspan(3);
+  job.float_normal_stride = 6;
+  job.preserve_volume = true;
+  job.parallel = parallel;
+  const Status status = job.Run();
+  EXPECT_TRUE(status.ok()) << ToString(status);
+  return buffer;
+}
+
+TEST(RigEvaluation, FloatEngineBuffersHoldTheDoubleEvaluationToFloatPrecision) {
+  const Scene& human = Human();
+  const BusyPose pose = MakeBusyPose(human);
+  const Evaluated exact = EvaluateBusy(human, pose, nullptr);
+  const std::vector<float> buffer = EvaluateBusyFloat(human, pose, nullptr);
+  double worst_position = 0.0, worst_normal = 0.0, sum_normal = 0.0;
+  for (std::size_t v = 0; v < exact.positions.size(); ++v) {
+    const Vec3 p(buffer[6 * v], buffer[6 * v + 1], buffer[6 * v + 2]);
+    const Vec3 n(buffer[6 * v + 3], buffer[6 * v + 4], buffer[6 * v + 5]);
+    worst_position = std::max(worst_position, (p - exact.positions[v]).norm());
+    EXPECT_NEAR(n.norm(), 1.0, 1e-6) << "vertex " << v;
+    const double angle = std::acos(std::clamp(n.dot(exact.normals[v]), -1.0, 1.0));
+    worst_normal = std::max(worst_normal, angle);
+    sum_normal += angle;
+  }
+  // float carries 24 bits: positions to a few units of 6e-8 of the body's size; a normal from
+  // edges of a few mm whose ends are that far off turns by ~1e-4 rad (a wrong triangle or sum
+  // would turn it by far more than 0.3 degrees).
+  EXPECT_LT(worst_position, 1e-6 * human.diagonal);
+  EXPECT_LT(worst_normal, 5e-3);  // rad
+  EXPECT_LT(sum_normal / double(exact.positions.size()), 5e-4);
+  for (std::size_t threads : {2u, 3u}) {
+    const ThreadPool pool(threads);
+    EXPECT_EQ(EvaluateBusyFloat(human, pose, &pool), buffer) << threads << " threads";
+  }
+}
+
+TEST(RigEvaluation, FloatOutputsAreCheckedBeforeAnythingIsWritten) {
+  const Scene& human = Human();
+  const std::size_t n = human.model.vertices.size();
+  RigWorkspace workspace = MakeRigWorkspace(human.model);
+  std::vector<PartPose> poses(human.model.parts.size());
+  std::vector<Vec3> positions(n, Vec3::Constant(5.0));
+  std::vector<float> buffer(6 * n, 5.0f);
+  auto job = [&] {
+    EvaluateRigJob j;
+    j.model = &human.model;
+    j.poses = poses;
+    j.workspace = &workspace;
+    return j;
+  };
+  auto expect_invalid = [&](const EvaluateRigJob& j, const std::string& field) {
+    const Status status = j.Run();
+    EXPECT_FALSE(status.ok());
+    EXPECT_EQ(status.field, field) << ToString(status);
+    EXPECT_TRUE(std::all_of(buffer.begin(), buffer.end(), [](float x) { return x == 5.0f; }));
+    EXPECT_TRUE(std::all_of(positions.begin(), positions.end(),
+                            [](const Vec3& p) { return p == Vec3::Constant(5.0); }));
+  };
+  EvaluateRigJob both = job();
+  both.positions = positions;
+  both.float_positions = buffer;
+  expect_invalid(both, "positions");
+  expect_invalid(job(), "positions");  // neither
+  EvaluateRigJob narrow = job();
+  narrow.float_positions = buffer;
+  narrow.float_position_stride = 2;
+  expect_invalid(narrow, "float_positions");
+  EvaluateRigJob short_buffer = job();
+  short_buffer.float_positions = std::span<float>(buffer).first(3 * n - 1);
+  expect_invalid(short_buffer, "float_positions");
+  EvaluateRigJob short_normals = job();
+  short_normals.float_positions = buffer;
+  short_normals.float_normals = std::span<float>(buffer).subspan(3);
+  short_normals.float_normal_stride = 6;  // the last vertex's normal would run past the end
+  short_normals.float_normals = short_normals.float_normals.first(6 * (n - 1) + 2);
+  expect_invalid(short_normals, "float_normals");
+  EvaluateRigJob mixed = job();
+  mixed.positions = positions;
+  mixed.float_normals = buffer;
+  expect_invalid(mixed, "float_normals");
+}
+
 TEST(ThreadPool, RunsEveryTaskOnceAndReturnsAfterAll) {
   const ThreadPool pool(2);
   for (std::size_t count : {0u, 1u, 2u, 7u, 1000u}) {

@@ -2,9 +2,12 @@
 // each frame, sampled so the per-vertex work is two interpolations and a matrix product.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "wirerig/runtime/joint.h"
+#include "wirerig/runtime/simd_pack.h"
 
 namespace wirerig {
 
@@ -42,10 +45,13 @@ struct BridgeEnds {
   Vec3 end_tangent = Vec3::UnitZ();    // unit
 };
 
-// The rest bridge's curve sampled at u_k = k / kBridgeSegments, made once per joint for binding.
+// The rest bridge's curve sampled at u_k = k / kBridgeSegments, made once per joint (for
+// binding, and for sampling the posed bridge against it).
 struct RestBridge {
   BridgeEnds ends;
   std::array<Vec3, kBridgeSegments + 1> points;
+  std::array<double, kBridgeSegments + 1> curvature;  // 1/m
+  double length = 0.0;  // Simpson's rule over the samples, times 3 kBridgeSegments
 };
 RestBridge MakeRestBridge(const BridgeEnds& rest);
 
@@ -55,21 +61,34 @@ RestBridge MakeRestBridge(const BridgeEnds& rest);
 JointBinding BindToJoint(const JointModel& joint, const RestBridge& rest, const Vec3& p,
                          JointSide side, double reach);
 
-// The bridge sampled at u_k = k / kBridgeSegments: each sample maps a rest point q at
-// bridge coordinate u_k to q' = centre + map * (q - rest_centre).
-struct BridgeSamples {
+// The bridge sampled at u_k = k / kBridgeSegments, for a pose, as affine images of rest points:
+// a rest point q at bridge coordinate u_k goes to map q + map_offset (the section's turn, then
+// its growth) and, turned alone, to turn q + turn_offset; between samples the two samples'
+// images are blended linearly. Scalar is double, or float for the float evaluation.
+template <class Scalar>
+struct BasicBridgeSamples {
+  using V = Eigen::Matrix<Scalar, 3, 1>;
+  using M = Eigen::Matrix<Scalar, 3, 3>;
+  struct Sample {
+    M map = M::Identity();
+    V map_offset = V::Zero();
+    M turn = M::Identity();
+    V turn_offset = V::Zero();
+    V centre = V::Zero();
+    // Towards the bend's centre of curvature, over the distance the section may reach towards
+    // it (1/m; zero where the bridge runs straight): the inside of a bend is squeezed softly
+    // short of the centre, so sections never cross.
+    V inward = V::Zero();
+  };
   // The two sides' rigid motions: x -> turn * x + offset.
-  Mat3 parent_turn = Mat3::Identity(), child_turn = Mat3::Identity();
-  Vec3 parent_offset = Vec3::Zero(), child_offset = Vec3::Zero();
-  std::array<Vec3, kBridgeSegments + 1> rest_centre;
-  std::array<Vec3, kBridgeSegments + 1> centre;
-  std::array<Mat3, kBridgeSegments + 1> map;   // the section's turn, then its growth
-  std::array<Mat3, kBridgeSegments + 1> turn;  // the section's turn alone
-  // Towards the bend's centre of curvature, over the distance the section may reach towards
-  // it (1/m; zero where the bridge runs straight): the inside of a bend is squeezed softly
-  // short of the centre, so sections never cross.
-  std::array<Vec3, kBridgeSegments + 1> inward;
+  M parent_turn = M::Identity(), child_turn = M::Identity();
+  V parent_offset = V::Zero(), child_offset = V::Zero();
+  std::array<Sample, kBridgeSegments + 1> samples;
+
+  template <class Other>
+  BasicBridgeSamples<Other> Cast() const;
 };
+using BridgeSamples = BasicBridgeSamples<double>;
 
 // Samples the bridge for a pose: `rest` and `posed` ends, and the rotations the parent's and
 // the child's sides have turned by (rest world axes -> world). The rotation field spreads the
@@ -78,13 +97,108 @@ struct BridgeSamples {
 // volume (area x length), evenly or, where that would reach within joint.radius of the bend's
 // centre of curvature, across the bend. At
 // rest (posed == rest, rotations identity) every map is the identity. Allocation-free.
-void SampleJointBridge(const JointModel& joint, const BridgeEnds& rest, const BridgeEnds& posed,
+void SampleJointBridge(const JointModel& joint, const RestBridge& rest, const BridgeEnds& posed,
                        const Mat3& parent_rotation, const Mat3& child_rotation, BridgeSamples* out);
+
+// One segment [u_k, u_k+1] of a bridge, its samples broadcast into packs (simd_pack.h), for the
+// images of many rest points at once.
+template <class P>
+struct BridgeSegment {
+  using Real = typename P::Real;
+  using Value = typename P::Value;
+  using V = simd::V3<Value>;
+  simd::M3<P> map[2], turn[2], parent_turn, child_turn;
+  V map_offset[2], turn_offset[2], centre[2], inward[2], parent_offset, child_offset;
+
+  BridgeSegment(const BasicBridgeSamples<Real>& bridge, int k) {
+    for (int i = 0; i < 2; ++i) {
+      const auto& s = bridge.samples[k + i];
+      map[i] = simd::M3<P>::Splat(s.map);
+      turn[i] = simd::M3<P>::Splat(s.turn);
+      map_offset[i] = simd::Splat<P>(s.map_offset);
+      turn_offset[i] = simd::Splat<P>(s.turn_offset);
+      centre[i] = simd::Splat<P>(s.centre);
+      inward[i] = simd::Splat<P>(s.inward);
+    }
+    parent_turn = simd::M3<P>::Splat(bridge.parent_turn);
+    child_turn = simd::M3<P>::Splat(bridge.child_turn);
+    parent_offset = simd::Splat<P>(bridge.parent_offset);
+    child_offset = simd::Splat<P>(bridge.child_offset);
+  }
+
+  // The image of rest points q at f in [0, 1] along the segment and t = u in [0, 1] along the
+  // bridge: `fraction` of the swept cross-section's motion (taking `section` of its growth), the
+  // rest the two sides' motions blended by smoothstep(t); *parent_image: the parent side's
+  // rigid motion of q.
+  V Image(Value f, Value t, Value fraction, Value section, const V& q, V* parent_image) const {
+    const Value one = P::Broadcast(Real(1)), zero = P::Broadcast(Real(0));
+    const Value g = one - f;
+    V swept = g * (map[0] * q + map_offset[0]) + f * (map[1] * q + map_offset[1]);
+    const V turned = g * (turn[0] * q + turn_offset[0]) + f * (turn[1] * q + turn_offset[1]);
+    swept = turned + section * (swept - turned);
+    // Softly short of the centre of curvature: reach r along the inward normal becomes
+    // limit s / sqrt(1 + s^2), s = r / limit (1:1 near the centre line, never past the limit).
+    const V in = g * inward[0] + f * inward[1];
+    const Value reach = simd::Dot(in, swept - (g * centre[0] + f * centre[1]));
+    const Value in2 = simd::Dot(in, in);
+    const auto squeeze =
+        P::And(P::Greater(reach, zero), P::Greater(in2, P::Broadcast(Real(1e-30))));
+    const Value pull =
+        (reach / P::Sqrt(one + reach * reach) - reach) / P::Select(squeeze, in2, one);
+    swept = swept + P::Select(squeeze, pull, zero) * in;
+    const V parent = parent_turn * q + parent_offset;
+    const V child = child_turn * q + child_offset;
+    const Value blend = t * t * (P::Broadcast(Real(3)) - P::Broadcast(Real(2)) * t);
+    *parent_image = parent;
+    return fraction * swept + (one - fraction) * (parent + blend * (child - parent));
+  }
+};
+
+// Where u lies among the samples: segment k and the fraction f within it (u clamped to [0, 1]).
+template <class Real>
+void BridgeSegmentOf(Real u, int* k, Real* f) {
+  const Real x = std::clamp(u, Real(0), Real(1)) * Real(kBridgeSegments);
+  *k = std::min(static_cast<int>(x), kBridgeSegments - 1);
+  *f = x - Real(*k);
+}
 
 // The image of the rest-space point q at coordinate u (clamped to [0, 1]): `fraction` of the
 // swept cross-section's motion (taking `section` of its growth; JointBinding::section), the
-// rest the two sides' motions blended by smoothstep(u).
-Vec3 ApplyJointBridge(const BridgeSamples& bridge, double u, double fraction, const Vec3& q,
-                      double section = 1.0);
+// rest the two sides' motions blended by smoothstep(u). The evaluation computes the same per
+// vertex with BridgeSegment.
+template <class Scalar>
+Eigen::Matrix<Scalar, 3, 1> ApplyJointBridge(const BasicBridgeSamples<Scalar>& bridge, Scalar u,
+                                             Scalar fraction, const Eigen::Matrix<Scalar, 3, 1>& q,
+                                             Scalar section = Scalar(1)) {
+  int k = 0;
+  Scalar f = 0;
+  BridgeSegmentOf(u, &k, &f);
+  const BridgeSegment<simd::OneLane<Scalar>> segment(bridge, k);
+  simd::V3<Scalar> parent;
+  const simd::V3<Scalar> image = segment.Image(f, std::clamp(u, Scalar(0), Scalar(1)), fraction,
+                                               section, {q.x(), q.y(), q.z()}, &parent);
+  return {image.x, image.y, image.z};
+}
+
+template <class Scalar>
+template <class Other>
+BasicBridgeSamples<Other> BasicBridgeSamples<Scalar>::Cast() const {
+  BasicBridgeSamples<Other> out;
+  out.parent_turn = parent_turn.template cast<Other>();
+  out.child_turn = child_turn.template cast<Other>();
+  out.parent_offset = parent_offset.template cast<Other>();
+  out.child_offset = child_offset.template cast<Other>();
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const Sample& s = samples[k];
+    auto& o = out.samples[k];
+    o.map = s.map.template cast<Other>();
+    o.map_offset = s.map_offset.template cast<Other>();
+    o.turn = s.turn.template cast<Other>();
+    o.turn_offset = s.turn_offset.template cast<Other>();
+    o.centre = s.centre.template cast<Other>();
+    o.inward = s.inward.template cast<Other>();
+  }
+  return out;
+}
 
 }  // namespace wirerig

@@ -22,6 +22,7 @@
 #include "wirerig/runtime/joint_bridge.h"
 #include "wirerig/runtime/parallel.h"
 #include "wirerig/runtime/rig_model.h"
+#include "wirerig/runtime/vertex_stage.h"
 
 namespace wirerig {
 
@@ -86,28 +87,12 @@ struct PartWarnings {
   bool any() const { return beyond_small_deflection || tight_bends > 0 || crossing_profiles > 0; }
 };
 
-// The model's vertex bindings in the flat layout the per-frame vertex and normal passes read
-// (made by MakeRigWorkspace; internal to the evaluation). Profiles are numbered globally, part
-// by part ("global profile" g = profile_base[part] + profile).
+// What the evaluation lays out once per model (made by MakeRigWorkspace; internal to the
+// evaluation). Profiles are numbered globally, part by part ("global profile"
+// g = profile_base[part] + profile).
 struct RigEvaluationLayout {
-  // A vertex between profiles g and g + 1: PHYSICS.md section 6 with the wire points p1, p2
-  // resolved to indices into wire_points, as ApplyPairBinding's PointOnWire resolves them.
-  struct Pair {
-    std::uint32_t vertex = 0;
-    std::uint32_t a0 = 0, a1 = 0;  // p1 = (1 - lambda1) wire_points[a0] + lambda1 wire_points[a1]
-    std::uint32_t b0 = 0, b1 = 0;  // p2, likewise on the next profile
-    std::uint32_t profile = 0;     // global profile g: the centre is pair_centres[g]
-    double lambda1 = 0.0, lambda2 = 0.0, alpha = 0.0, beta = 0.0, gamma = 0.0;
-  };
-  struct Cap {
-    std::uint32_t vertex = 0;
-    std::uint32_t profile = 0;  // global profile
-    Vec3 local = Vec3::Zero();
-  };
   std::vector<std::uint32_t> profile_base;  // per part: its first global profile
-  std::vector<std::uint32_t> point_base;    // per global profile: its first point in wire_points
-  std::vector<Pair> pairs;                  // in vertex order
-  std::vector<Cap> caps;                    // in vertex order
+  std::vector<std::uint32_t> point_base;    // per global profile: its first wire point
   // A vertex on a joint's skin bridge: its own part's spine sample (to undo the own part's
   // motion into rest space) and where it lies on the bridge. A vertex's entries are adjacent and
   // share its own part's spine sample.
@@ -121,16 +106,8 @@ struct RigEvaluationLayout {
   };
   std::vector<JointVertex> joint_vertices;   // in vertex order
   std::vector<std::uint32_t> bridged_parts;  // parts whose joint has a skin bridge
-  // The bridge pass's tasks: entries [joint_task_starts[k], joint_task_starts[k + 1]), each
-  // ending with a whole vertex; and the (part, spine sample) pairs its entries undo through.
-  std::vector<std::uint32_t> joint_task_starts;
+  // The (part, spine sample) pairs the entries undo through, sorted.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> undo_samples;
-  // Normals: the vertices in the order of their first triangle (so the triangle normals are
-  // read almost in order), and for the i-th of them its triangles in increasing order,
-  // vertex_triangles[vertex_triangle_offsets[i] .. vertex_triangle_offsets[i + 1]).
-  std::vector<std::uint32_t> normal_order;             // #W
-  std::vector<std::uint32_t> vertex_triangle_offsets;  // #W + 1
-  std::vector<std::uint32_t> vertex_triangles;
 };
 
 // Scratch buffers sized for one model; make once, reuse every frame.
@@ -146,21 +123,17 @@ struct RigWorkspace {
   std::vector<double> axial;                       // scratch for the axial job
   std::vector<std::vector<double>> strain;         // per part, per spine sample: N / EA
   std::vector<std::vector<double>> profile_scale;  // per part, per profile: in-plane scale
-  std::vector<Vec3> normal_accumulator;            // per vertex (normals on one thread)
   std::vector<double> profile_samples;             // per point of the longest profile
   std::vector<Vec3> profile_displacement;          // likewise
-  // The vertex pass's inputs: the model's bindings laid out flat, and per frame every profile's
-  // world points, each adjacent pair's centre (c_i + c_{i+1}) / 2 and each profile's cap frame
-  // (origin and axes, scaled like the profile), by global profile.
   RigEvaluationLayout layout;
-  std::vector<Vec3> wire_points;
-  std::vector<Vec3> pair_centres;
-  std::vector<Vec3> cap_origins;
-  std::vector<Mat3> cap_axes;
-  std::vector<Vec3> triangle_normals;  // per triangle: (p1 - p0) x (p2 - p0); threaded normals
-  std::vector<BridgeSamples> bridges;  // per part: its joint's skin bridge this frame
+  std::vector<Mat3> cap_axes;  // by global profile: its cap frame's axes, scaled like the profile
+  std::vector<RestBridge> rest_bridges;  // per part: its joint's skin bridge at rest
+  std::vector<BridgeSamples> bridges;    // per part: its joint's skin bridge this frame
   // Per part, per spine sample: rest axes times the transposed deformed axes (world -> rest).
   std::vector<std::vector<Mat3>> spine_undo;
+  // The vertex, bridge and normal passes, in double (positions) and float (float_positions).
+  VertexStage<double> stage64;
+  VertexStage<float> stage32;
 };
 RigWorkspace MakeRigWorkspace(const RigModel& model);
 
@@ -169,8 +142,17 @@ struct EvaluateRigJob {
   std::span<const PartPose> poses;              // one per part
   std::span<const ProfileLoads> profile_loads;  // any number
   RigWorkspace* workspace = nullptr;
-  std::span<Vec3> positions;  // #W welded vertices, m
-  std::span<Vec3> normals;    // #W, unit (area-weighted); may be empty
+  // The output, one of two kinds. Doubles: positions of the #W welded vertices (m) and their
+  // unit, area-weighted normals (may be empty).
+  std::span<Vec3> positions;
+  std::span<Vec3> normals;
+  // Or floats, for engine buffers (the evaluation then runs in float, four vertices at a time):
+  // vertex v's position at float_positions[v * float_position_stride .. + 3), its normal likewise
+  // (may be empty). Strides in floats, at least 3 (e.g. 6 for interleaved position and normal).
+  std::span<float> float_positions;
+  std::size_t float_position_stride = 3;
+  std::span<float> float_normals;
+  std::size_t float_normal_stride = 3;
   // Keep the volume between adjacent profiles when spines stretch or compress (paper section 7):
   // each profile scales in its plane by 1 / sqrt(1 + strain), strain = N / EA of the closed
   // form at the profile.

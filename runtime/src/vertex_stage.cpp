@@ -1,0 +1,530 @@
+#include "vertex_stage.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "wirerig/runtime/simd_pack.h"
+
+namespace wirerig {
+namespace {
+
+// Vertices, entries and triangles per parallel task: large enough that claiming a task costs
+// nothing next to it, small enough that two threads share out a mesh evenly. A multiple of
+// every pack width (kBucketMultiple).
+constexpr std::size_t kTaskSize = 2048;
+constexpr std::uint32_t kBucketMultiple = 4;
+
+// The widest pack for a lane type: four floats with SSE2, one double.
+template <class Real>
+struct Widest {
+  using type = simd::OneLane<Real>;
+};
+#if WIRERIG_HAVE_SSE2
+template <>
+struct Widest<float> {
+  using type = simd::Float4;
+};
+#endif
+
+// ApplyPairFast's bounds, per lane type: while squared lengths stay within them no product
+// below overflows or underflows, and the frame is regular enough for the lane's precision
+// (sine of the angle between e and d above 1e-8 in double, 1e-3 in float); outside them the
+// vertex goes through ApplyPairBinding in double.
+template <class Real>
+struct PairBounds;
+template <>
+struct PairBounds<double> {
+  static constexpr double kMinSquared = 1e-140, kMaxSquared = 1e140, kSine2 = 1e-16;
+};
+template <>
+struct PairBounds<float> {
+  static constexpr float kMinSquared = 1e-30f, kMaxSquared = 1e30f, kSine2 = 1e-6f;
+};
+
+std::size_t Tasks(std::size_t items) { return (items + kTaskSize - 1) / kTaskSize; }
+
+template <class Real>
+struct StagePasses {
+  using S = VertexStage<Real>;
+  using Wide = typename Widest<Real>::type;
+  using One = simd::OneLane<Real>;
+
+  const RigModel* model;
+  const RigWorkspace* w;
+  S* s;
+  const BasicBridgeSamples<Real>* bridges;  // by part
+  StageOutput<Real> out;
+
+  // PHYSICS.md section 6, step "apply", for regular frames: with e = p2 - p1, d = c - p1 and
+  // n = e x d, the point is p1 + alpha e + beta (n_hat x e) + gamma |e| n_hat (ApplyPairBinding
+  // up to rounding). Returns the lanes (bits) whose frame needs ApplyPairBinding itself.
+  template <class P>
+  int PairPack(std::size_t i) const {
+    using Value = typename P::Value;
+    using V = simd::V3<Value>;
+    const S& st = *s;
+    auto gather = [&](const typename S::Coordinates& c, const std::uint32_t* index) {
+      return V{P::Gather(c.x.data(), index), P::Gather(c.y.data(), index),
+               P::Gather(c.z.data(), index)};
+    };
+    const Value one = P::Broadcast(Real(1));
+    const Value l1 = P::Load(&st.lambda1[i]), l2 = P::Load(&st.lambda2[i]);
+    const V p1 = (one - l1) * gather(st.wire, &st.a0[i]) + l1 * gather(st.wire, &st.a1[i]);
+    const V p2 = (one - l2) * gather(st.wire, &st.b0[i]) + l2 * gather(st.wire, &st.b1[i]);
+    const V e = p2 - p1;
+    const V d = gather(st.pair_centre, &st.profile[i]) - p1;
+    const Value ee = simd::Dot(e, e), dd = simd::Dot(d, d);
+    const V n = simd::Cross(e, d);
+    const Value nn = simd::Dot(n, n);
+    using B = PairBounds<Real>;
+    const Value lo = P::Broadcast(B::kMinSquared), hi = P::Broadcast(B::kMaxSquared);
+    const auto ok = P::And(P::And(P::And(P::Greater(ee, lo), P::Greater(hi, ee)),
+                                  P::And(P::Greater(dd, lo), P::Greater(hi, dd))),
+                           P::Greater(nn, P::Broadcast(B::kSine2) * ee * dd));
+    const Value safe_nn = P::Select(ok, nn, one), safe_ee = P::Select(ok, ee, one);
+    const V n_hat = (one / P::Sqrt(safe_nn)) * n;
+    const V p = p1 + P::Load(&st.alpha[i]) * e + P::Load(&st.beta[i]) * simd::Cross(n_hat, e) +
+                (P::Load(&st.gamma[i]) * P::Sqrt(safe_ee)) * n_hat;
+    P::Store(&s->position.x[i], p.x);
+    P::Store(&s->position.y[i], p.y);
+    P::Store(&s->position.z[i], p.z);
+    return ~P::Bits(ok) & ((1 << P::kWidth) - 1);
+  }
+
+  // ApplyPairBinding itself (double), on the wires as spans.
+  void SlowPair(std::size_t slot) const {
+    const std::uint32_t vertex = s->vertex_of_slot[slot];
+    const VertexAttachment& a = model->vertices[vertex];
+    const PartModel& part = model->parts[a.part];
+    const WirePolyline wire_i{w->profile_points[a.part][a.profile],
+                              part.profiles[a.profile].closed};
+    const WirePolyline wire_j{w->profile_points[a.part][a.profile + 1],
+                              part.profiles[a.profile + 1].closed};
+    const Vec3 p = ApplyPairBinding(a.pair, wire_i, wire_j, w->profile_origins[a.part][a.profile],
+                                    w->profile_origins[a.part][a.profile + 1]);
+    s->position.x[slot] = Real(p.x()), s->position.y[slot] = Real(p.y());
+    s->position.z[slot] = Real(p.z());
+  }
+
+  template <class P>
+  void Pairs(std::size_t begin, std::size_t end) const {
+    std::size_t i = begin;
+    for (; i + P::kWidth <= end; i += P::kWidth)
+      if (const int failed = PairPack<P>(i))
+        for (int l = 0; l < P::kWidth; ++l)
+          if (failed & (1 << l)) SlowPair(i + std::size_t(l));
+    for (; i < end; ++i)
+      if (PairPack<One>(i)) SlowPair(i);
+  }
+
+  // Task k: pair slots [k kTaskSize, (k + 1) kTaskSize), then the cap slots likewise.
+  static void Vertices(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    S& st = *self.s;
+    const std::size_t pair_tasks = Tasks(st.pair_count);
+    if (k < pair_tasks) {
+      self.template Pairs<Wide>(k * kTaskSize, std::min(st.pair_count, (k + 1) * kTaskSize));
+      return;
+    }
+    const std::size_t caps = st.cap_profile.size();
+    const std::size_t end = std::min(caps, (k - pair_tasks + 1) * kTaskSize);
+    for (std::size_t c = (k - pair_tasks) * kTaskSize; c < end; ++c) {
+      const std::uint32_t g = st.cap_profile[c];
+      const typename S::V local(st.cap_local.x[c], st.cap_local.y[c], st.cap_local.z[c]);
+      const typename S::V p =
+          typename S::V(st.cap_origin.x[g], st.cap_origin.y[g], st.cap_origin.z[g]) +
+          st.cap_axes[g] * local;
+      const std::size_t slot = st.pair_count + c;
+      st.position.x[slot] = p.x(), st.position.y[slot] = p.y(), st.position.z[slot] = p.z();
+    }
+  }
+
+  // Bridged vertices [k kTaskSize, ...): where their own part put them, undone into rest space.
+  static void Undo(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    S& st = *self.s;
+    const std::size_t end = std::min(st.bridged_slot.size(), (k + 1) * kTaskSize);
+    for (std::size_t b = k * kTaskSize; b < end; ++b) {
+      const std::uint32_t slot = st.bridged_slot[b], u = st.bridged_undo[b];
+      const typename S::V own(st.position.x[slot], st.position.y[slot], st.position.z[slot]);
+      const typename S::V rest = st.undo_rest_point[u] + st.undo[u] * (own - st.undo_point[u]);
+      st.rest.x[b] = rest.x(), st.rest.y[b] = rest.y(), st.rest.z[b] = rest.z();
+    }
+  }
+
+  // The buckets of task k: each entry's correction, weight * (the bridge's image of its rest
+  // point - the rigid motion of its own side: its own position for the child's skin, the
+  // parent's motion of its rest point otherwise).
+  template <class P>
+  void Bucket(const typename S::Bucket& bucket) const {
+    using Value = typename P::Value;
+    using V = simd::V3<Value>;
+    S& st = *s;
+    const BridgeSegment<P> segment(bridges[bucket.joint], bucket.segment);
+    for (std::size_t e = bucket.begin; e < bucket.end; e += P::kWidth) {
+      const std::uint32_t* bridged = &st.entry_bridged[e];
+      const std::uint32_t* slot = &st.entry_slot[e];
+      const V q{P::Gather(st.rest.x.data(), bridged), P::Gather(st.rest.y.data(), bridged),
+                P::Gather(st.rest.z.data(), bridged)};
+      V parent;
+      const V image =
+          segment.Image(P::Load(&st.entry_f[e]), P::Load(&st.entry_u[e]),
+                        P::Load(&st.entry_fraction[e]), P::Load(&st.entry_section[e]), q, &parent);
+      const auto child = P::Greater(P::Load(&st.entry_child[e]), P::Broadcast(Real(0.5)));
+      const V own{P::Gather(st.position.x.data(), slot), P::Gather(st.position.y.data(), slot),
+                  P::Gather(st.position.z.data(), slot)};
+      const V base{P::Select(child, own.x, parent.x), P::Select(child, own.y, parent.y),
+                   P::Select(child, own.z, parent.z)};
+      const V correction = P::Load(&st.entry_weight[e]) * (image - base);
+      P::Store(&st.correction.x[e], correction.x);
+      P::Store(&st.correction.y[e], correction.y);
+      P::Store(&st.correction.z[e], correction.z);
+    }
+  }
+
+  static void Buckets(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    const S& st = *self.s;
+    for (std::uint32_t b = st.bucket_task_starts[k]; b < st.bucket_task_starts[k + 1]; ++b)
+      self.template Bucket<Wide>(st.buckets[b]);
+  }
+
+  // Bridged vertices: their own position plus their entries' corrections, in entry order.
+  static void Sums(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    S& st = *self.s;
+    const std::size_t end = std::min(st.bridged_slot.size(), (k + 1) * kTaskSize);
+    for (std::size_t b = k * kTaskSize; b < end; ++b) {
+      Real x = 0, y = 0, z = 0;
+      for (std::uint32_t j = st.entry_offsets[b]; j < st.entry_offsets[b + 1]; ++j) {
+        const std::uint32_t e = st.entry_of[j];
+        x += st.correction.x[e], y += st.correction.y[e], z += st.correction.z[e];
+      }
+      const std::uint32_t slot = st.bridged_slot[b];
+      st.position.x[slot] += x, st.position.y[slot] += y, st.position.z[slot] += z;
+    }
+  }
+
+  template <class P>
+  void FaceNormal(std::size_t f) const {
+    using V = simd::V3<typename P::Value>;
+    S& st = *s;
+    auto at = [&](const std::uint32_t* index) {
+      return V{P::Gather(st.position.x.data(), index), P::Gather(st.position.y.data(), index),
+               P::Gather(st.position.z.data(), index)};
+    };
+    const V p0 = at(&st.t0[f]);
+    const V n = simd::Cross(at(&st.t1[f]) - p0, at(&st.t2[f]) - p0);
+    P::Store(&st.face_normal.x[f], n.x);
+    P::Store(&st.face_normal.y[f], n.y);
+    P::Store(&st.face_normal.z[f], n.z);
+  }
+
+  static void FaceNormals(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    const std::size_t end = std::min(self.s->t0.size(), (k + 1) * kTaskSize);
+    std::size_t f = k * kTaskSize;
+    for (; f + Wide::kWidth <= end; f += Wide::kWidth) self.template FaceNormal<Wide>(f);
+    for (; f < end; ++f) self.template FaceNormal<One>(f);
+  }
+
+  // One thread: every triangle's normal added into its vertices' sums in triangle order.
+  void ScatterNormals() const {
+    S& st = *s;
+    std::fill(st.normal.x.begin(), st.normal.x.end(), Real(0));
+    std::fill(st.normal.y.begin(), st.normal.y.end(), Real(0));
+    std::fill(st.normal.z.begin(), st.normal.z.end(), Real(0));
+    const std::size_t triangles = st.t0.size();
+    for (std::size_t f = 0; f < triangles; ++f) {
+      const Real x = st.face_normal.x[f], y = st.face_normal.y[f], z = st.face_normal.z[f];
+      for (const std::uint32_t slot : {st.t0[f], st.t1[f], st.t2[f]})
+        st.normal.x[slot] += x, st.normal.y[slot] += y, st.normal.z[slot] += z;
+    }
+  }
+
+  // Threads: slots [k kTaskSize, ...) each sum their triangles' normals in increasing triangle
+  // order (the same terms in the same order as ScatterNormals: identical sums).
+  static void GatherNormals(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    S& st = *self.s;
+    const std::size_t end = std::min(st.slot_of_vertex.size(), (k + 1) * kTaskSize);
+    for (std::size_t slot = k * kTaskSize; slot < end; ++slot) {
+      Real x = 0, y = 0, z = 0;
+      for (std::uint32_t t = st.slot_triangle_offsets[slot]; t < st.slot_triangle_offsets[slot + 1];
+           ++t) {
+        const std::uint32_t f = st.slot_triangles[t];
+        x += st.face_normal.x[f], y += st.face_normal.y[f], z += st.face_normal.z[f];
+      }
+      st.normal.x[slot] = x, st.normal.y[slot] = y, st.normal.z[slot] = z;
+    }
+  }
+
+  // Slots [k kTaskSize, ...): the sums normalised (+Y where a sum vanishes), packs at a time
+  // (the arrays are padded to whole packs).
+  static void Normalise(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    S& st = *self.s;
+    using P = Wide;
+    using Value = typename P::Value;
+    const std::size_t end = std::min(st.normal.x.size(), (k + 1) * kTaskSize);
+    const Value zero = P::Broadcast(Real(0)), one = P::Broadcast(Real(1));
+    for (std::size_t i = k * kTaskSize; i < end; i += P::kWidth) {
+      const simd::V3<Value> n{P::Load(&st.normal.x[i]), P::Load(&st.normal.y[i]),
+                              P::Load(&st.normal.z[i])};
+      const Value length = P::Sqrt(simd::Dot(n, n));
+      const auto regular = P::Greater(length, zero);
+      const Value inverse = one / P::Select(regular, length, one);
+      P::Store(&st.normal.x[i], P::Select(regular, inverse * n.x, zero));
+      P::Store(&st.normal.y[i], P::Select(regular, inverse * n.y, one));
+      P::Store(&st.normal.z[i], P::Select(regular, inverse * n.z, zero));
+    }
+  }
+
+  // Vertices [k kTaskSize, ...) in vertex order: position and normal into the output.
+  static void Output(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    const S& st = *self.s;
+    const StageOutput<Real>& out = self.out;
+    const std::size_t end = std::min(st.slot_of_vertex.size(), (k + 1) * kTaskSize);
+    for (std::size_t v = k * kTaskSize; v < end; ++v) {
+      const std::uint32_t slot = st.slot_of_vertex[v];
+      Real* p = out.positions + v * out.position_stride;
+      p[0] = st.position.x[slot], p[1] = st.position.y[slot], p[2] = st.position.z[slot];
+      if (!out.normals) continue;
+      Real* n = out.normals + v * out.normal_stride;
+      n[0] = st.normal.x[slot], n[1] = st.normal.y[slot], n[2] = st.normal.z[slot];
+    }
+  }
+};
+
+// The layout's undo samples, as an index: (part, sample) -> position in the sorted list.
+std::uint32_t UndoIndex(const RigEvaluationLayout& layout, std::uint32_t part,
+                        std::uint32_t sample) {
+  const auto it = std::lower_bound(layout.undo_samples.begin(), layout.undo_samples.end(),
+                                   std::make_pair(part, sample));
+  return static_cast<std::uint32_t>(it - layout.undo_samples.begin());
+}
+
+template <class Real>
+const BasicBridgeSamples<Real>* StageBridges(RigWorkspace& w, VertexStage<Real>& stage) {
+  if constexpr (std::is_same_v<Real, double>) {
+    (void)stage;
+    return w.bridges.data();
+  } else {
+    for (std::uint32_t part : w.layout.bridged_parts)
+      stage.bridges[part] = w.bridges[part].template Cast<Real>();
+    return stage.bridges.data();
+  }
+}
+
+}  // namespace
+
+template <class Real>
+void MakeVertexStage(const RigModel& model, const RigEvaluationLayout& layout,
+                     VertexStage<Real>* stage) {
+  VertexStage<Real>& s = *stage;
+  const std::size_t n = model.vertices.size();
+  s.slot_of_vertex.assign(n, 0);
+  s.vertex_of_slot.clear();
+  for (int caps = 0; caps < 2; ++caps)
+    for (std::size_t v = 0; v < n; ++v)
+      if (model.vertices[v].cap == (caps == 1)) {
+        s.slot_of_vertex[v] = static_cast<std::uint32_t>(s.vertex_of_slot.size());
+        s.vertex_of_slot.push_back(static_cast<std::uint32_t>(v));
+      }
+  // PointOnWire's indices: segment k clamped to the wire, wrapping to point 0 after the last.
+  auto ends = [&](std::uint32_t g, std::size_t count, std::uint32_t k,
+                  std::vector<std::uint32_t>* i0, std::vector<std::uint32_t>* i1) {
+    const std::size_t first = std::min<std::size_t>(k, count - 1);
+    i0->push_back(layout.point_base[g] + static_cast<std::uint32_t>(first));
+    i1->push_back(layout.point_base[g] +
+                  static_cast<std::uint32_t>(first + 1 < count ? first + 1 : 0));
+  };
+  for (std::uint32_t v : s.vertex_of_slot) {
+    const VertexAttachment& a = model.vertices[v];
+    const std::uint32_t g = layout.profile_base[a.part] + a.profile;
+    if (a.cap) {
+      s.cap_profile.push_back(g);
+      s.cap_local.x.push_back(Real(a.cap_local.x()));
+      s.cap_local.y.push_back(Real(a.cap_local.y()));
+      s.cap_local.z.push_back(Real(a.cap_local.z()));
+      continue;
+    }
+    const PartModel& part = model.parts[a.part];
+    s.profile.push_back(g);
+    ends(g, part.profiles[a.profile].local_points.size(), a.pair.k1, &s.a0, &s.a1);
+    ends(g + 1, part.profiles[a.profile + 1].local_points.size(), a.pair.k2, &s.b0, &s.b1);
+    s.lambda1.push_back(Real(a.pair.lambda1));
+    s.lambda2.push_back(Real(a.pair.lambda2));
+    s.alpha.push_back(Real(a.pair.alpha));
+    s.beta.push_back(Real(a.pair.beta));
+    s.gamma.push_back(Real(a.pair.gamma));
+  }
+  s.pair_count = s.profile.size();
+
+  // Bridged vertices and their entries; the entries sorted into (joint, segment) buckets.
+  const std::vector<RigEvaluationLayout::JointVertex>& entries = layout.joint_vertices;
+  std::vector<std::uint32_t> entry_bridged(entries.size());
+  std::vector<int> segment(entries.size());
+  std::vector<double> fraction_in(entries.size());
+  for (std::size_t e = 0; e < entries.size(); ++e) {
+    const RigEvaluationLayout::JointVertex& j = entries[e];
+    if (e == 0 || entries[e - 1].vertex != j.vertex) {
+      s.bridged_slot.push_back(s.slot_of_vertex[j.vertex]);
+      s.bridged_undo.push_back(UndoIndex(layout, j.part, j.sample));
+    }
+    entry_bridged[e] = static_cast<std::uint32_t>(s.bridged_slot.size() - 1);
+    BridgeSegmentOf(j.u, &segment[e], &fraction_in[e]);
+  }
+  std::vector<std::uint32_t> order(entries.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return entries[a].joint != entries[b].joint ? entries[a].joint < entries[b].joint
+                                                : segment[a] < segment[b];
+  });
+  std::vector<std::uint32_t> sorted_position(entries.size());
+  auto push_entry = [&](std::uint32_t bridged, std::uint32_t slot, double f, double u,
+                        double fraction, double section, double weight, bool child) {
+    s.entry_bridged.push_back(bridged);
+    s.entry_slot.push_back(slot);
+    s.entry_f.push_back(Real(f));
+    s.entry_u.push_back(Real(std::clamp(u, 0.0, 1.0)));
+    s.entry_fraction.push_back(Real(fraction));
+    s.entry_section.push_back(Real(section));
+    s.entry_weight.push_back(Real(weight));
+    s.entry_child.push_back(child ? Real(1) : Real(0));
+  };
+  for (std::size_t i = 0; i < order.size();) {
+    typename VertexStage<Real>::Bucket bucket;
+    bucket.joint = entries[order[i]].joint;
+    bucket.segment = segment[order[i]];
+    bucket.begin = static_cast<std::uint32_t>(s.entry_bridged.size());
+    for (; i < order.size() && entries[order[i]].joint == bucket.joint &&
+           segment[order[i]] == bucket.segment;
+         ++i) {
+      const std::uint32_t e = order[i];
+      const RigEvaluationLayout::JointVertex& j = entries[e];
+      sorted_position[e] = static_cast<std::uint32_t>(s.entry_bridged.size());
+      push_entry(entry_bridged[e], s.bridged_slot[entry_bridged[e]], fraction_in[e], j.u, j.bridge,
+                 j.section, j.weight, j.child_side);
+    }
+    while (s.entry_bridged.size() % kBucketMultiple != 0)
+      push_entry(0, s.bridged_slot[0], 0.0, 0.0, 1.0, 1.0, 0.0, false);
+    bucket.end = static_cast<std::uint32_t>(s.entry_bridged.size());
+    s.buckets.push_back(bucket);
+  }
+  s.entry_offsets = {0};
+  for (std::size_t e = 0; e < entries.size(); ++e) {
+    s.entry_of.push_back(sorted_position[e]);
+    if (e + 1 == entries.size() || entries[e + 1].vertex != entries[e].vertex)
+      s.entry_offsets.push_back(static_cast<std::uint32_t>(s.entry_of.size()));
+  }
+  s.bucket_task_starts = {0};
+  std::uint32_t in_task = 0;
+  for (std::size_t b = 0; b < s.buckets.size(); ++b) {
+    in_task += s.buckets[b].end - s.buckets[b].begin;
+    if (in_task >= kTaskSize && b + 1 < s.buckets.size()) {
+      s.bucket_task_starts.push_back(static_cast<std::uint32_t>(b + 1));
+      in_task = 0;
+    }
+  }
+  s.bucket_task_starts.push_back(static_cast<std::uint32_t>(s.buckets.size()));
+
+  // Triangles by slot; each slot's triangles in increasing order.
+  std::vector<std::uint32_t> count(n, 0);
+  for (const Triangle& t : model.triangles) {
+    s.t0.push_back(s.slot_of_vertex[t[0]]);
+    s.t1.push_back(s.slot_of_vertex[t[1]]);
+    s.t2.push_back(s.slot_of_vertex[t[2]]);
+    for (std::uint32_t index : t) ++count[s.slot_of_vertex[index]];
+  }
+  s.slot_triangle_offsets.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    s.slot_triangle_offsets[i + 1] = s.slot_triangle_offsets[i] + count[i];
+  s.slot_triangles.resize(s.slot_triangle_offsets.back());
+  std::vector<std::uint32_t> fill(s.slot_triangle_offsets.begin(),
+                                  s.slot_triangle_offsets.end() - 1);
+  for (std::size_t f = 0; f < model.triangles.size(); ++f)
+    for (std::uint32_t index : model.triangles[f])
+      s.slot_triangles[fill[s.slot_of_vertex[index]]++] = static_cast<std::uint32_t>(f);
+
+  // Per-frame buffers.
+  const std::size_t profiles = layout.point_base.size();
+  std::size_t points = 0;
+  for (const PartModel& part : model.parts)
+    for (const ProfileModel& profile : part.profiles) points += profile.local_points.size();
+  s.position.resize(n);
+  s.wire.resize(points);
+  s.pair_centre.resize(profiles);
+  s.cap_origin.resize(profiles);
+  s.cap_axes.assign(profiles, VertexStage<Real>::M::Identity());
+  s.rest.resize(s.bridged_slot.size());
+  s.correction.resize(s.entry_bridged.size());
+  s.face_normal.resize(model.triangles.size());
+  s.normal.resize((n + kBucketMultiple - 1) / kBucketMultiple * kBucketMultiple);
+  s.undo.assign(layout.undo_samples.size(), VertexStage<Real>::M::Identity());
+  s.undo_rest_point.assign(layout.undo_samples.size(), VertexStage<Real>::V::Zero());
+  s.undo_point.assign(layout.undo_samples.size(), VertexStage<Real>::V::Zero());
+  if constexpr (!std::is_same_v<Real, double>) s.bridges.resize(model.parts.size());
+}
+
+template <class Real>
+void RunVertexStage(const RigModel& model, RigWorkspace& w, VertexStage<Real>& s,
+                    const StageOutput<Real>& output, const ParallelFor* parallel) {
+  const RigEvaluationLayout& layout = w.layout;
+  // The frame's wires, pair centres and cap frames, in Real.
+  for (std::size_t i = 0; i < model.parts.size(); ++i) {
+    const std::size_t profiles = model.parts[i].profiles.size();
+    for (std::size_t p = 0; p < profiles; ++p) {
+      const std::size_t g = layout.profile_base[i] + p;
+      std::size_t point = layout.point_base[g];
+      for (const Vec3& q : w.profile_points[i][p]) {
+        s.wire.x[point] = Real(q.x()), s.wire.y[point] = Real(q.y());
+        s.wire.z[point] = Real(q.z());
+        ++point;
+      }
+      const Vec3& origin = w.profile_origins[i][p];
+      if (p + 1 < profiles) {
+        const Vec3 centre = 0.5 * (origin + w.profile_origins[i][p + 1]);
+        s.pair_centre.x[g] = Real(centre.x()), s.pair_centre.y[g] = Real(centre.y());
+        s.pair_centre.z[g] = Real(centre.z());
+      }
+      s.cap_origin.x[g] = Real(origin.x()), s.cap_origin.y[g] = Real(origin.y());
+      s.cap_origin.z[g] = Real(origin.z());
+      s.cap_axes[g] = w.cap_axes[g].template cast<Real>();
+    }
+  }
+  for (std::size_t u = 0; u < layout.undo_samples.size(); ++u) {
+    const auto [part, sample] = layout.undo_samples[u];
+    s.undo[u] = w.spine_undo[part][sample].template cast<Real>();
+    s.undo_rest_point[u] = model.parts[part].spine_points[sample].template cast<Real>();
+    s.undo_point[u] = w.spine_points[part][sample].template cast<Real>();
+  }
+  const StagePasses<Real> passes{&model, &w, &s, StageBridges(w, s), output};
+  using Passes = StagePasses<Real>;
+  RunTasks(parallel, Tasks(s.pair_count) + Tasks(s.cap_profile.size()), &Passes::Vertices, &passes);
+  if (!s.bridged_slot.empty()) {
+    RunTasks(parallel, Tasks(s.bridged_slot.size()), &Passes::Undo, &passes);
+    RunTasks(parallel, s.bucket_task_starts.size() - 1, &Passes::Buckets, &passes);
+    RunTasks(parallel, Tasks(s.bridged_slot.size()), &Passes::Sums, &passes);
+  }
+  if (output.normals) {
+    RunTasks(parallel, Tasks(s.t0.size()), &Passes::FaceNormals, &passes);
+    if (parallel == nullptr || parallel->concurrency() <= 1)
+      passes.ScatterNormals();
+    else
+      RunTasks(parallel, Tasks(s.slot_of_vertex.size()), &Passes::GatherNormals, &passes);
+    RunTasks(parallel, Tasks(s.normal.x.size()), &Passes::Normalise, &passes);
+  }
+  RunTasks(parallel, Tasks(s.slot_of_vertex.size()), &Passes::Output, &passes);
+}
+
+template void MakeVertexStage(const RigModel&, const RigEvaluationLayout&, VertexStage<double>*);
+template void MakeVertexStage(const RigModel&, const RigEvaluationLayout&, VertexStage<float>*);
+template void RunVertexStage(const RigModel&, RigWorkspace&, VertexStage<double>&,
+                             const StageOutput<double>&, const ParallelFor*);
+template void RunVertexStage(const RigModel&, RigWorkspace&, VertexStage<float>&,
+                             const StageOutput<float>&, const ParallelFor*);
+
+}  // namespace wirerig

@@ -1,0 +1,32 @@
+// Making and running the per-vertex stage (wirerig/runtime/vertex_stage.h) of EvaluateRigJob.
+#pragma once
+
+#include <cstddef>
+
+#include "wirerig/runtime/rig_evaluation.h"
+#include "wirerig/runtime/vertex_stage.h"
+
+namespace wirerig {
+
+// Where the stage writes: vertex v's position at positions[v * position_stride .. + 3) and,
+// when normals is not null, its unit normal likewise (elements of Real, welded vertex order).
+template <class Real>
+struct StageOutput {
+  Real* positions = nullptr;
+  std::size_t position_stride = 3;
+  Real* normals = nullptr;
+  std::size_t normal_stride = 3;
+};
+
+// The stage's layout for `model`; `layout` holds the joint entries and undo samples.
+template <class Real>
+void MakeVertexStage(const RigModel& model, const RigEvaluationLayout& layout,
+                     VertexStage<Real>* stage);
+
+// Steps 6-8 of EvaluateRigJob::Run, after the spines and profiles of `w` are evaluated (and
+// w.bridges and w.spine_undo made for this frame).
+template <class Real>
+void RunVertexStage(const RigModel& model, RigWorkspace& w, VertexStage<Real>& stage,
+                    const StageOutput<Real>& output, const ParallelFor* parallel);
+
+}  // namespace wirerig
