@@ -229,22 +229,32 @@ struct StagePasses {
     for (; f < end; ++f) self.template FaceNormal<One>(f);
   }
 
+  template <class P>
+  void FaceNormalAndScatter(std::size_t f) const {
+    using V = simd::V3<typename P::Value>;
+    S& st = *s;
+    auto at = [&](const std::uint32_t* index) {
+      return V{P::Gather(st.position.x.data(), index), P::Gather(st.position.y.data(), index),
+               P::Gather(st.position.z.data(), index)};
+    };
+    const V p0 = at(&st.t0[f]);
+    const V n = simd::Cross(at(&st.t1[f]) - p0, at(&st.t2[f]) - p0);
+    P::ScatterAdd4(st.normal_sum.data(), n.x, n.y, n.z, &st.t0[f], &st.t1[f], &st.t2[f]);
+  }
+
   // One thread: every triangle's normal added into its vertices' sums in triangle order.
   void ScatterNormals() const {
     S& st = *s;
-    std::fill(st.normal.x.begin(), st.normal.x.end(), Real(0));
-    std::fill(st.normal.y.begin(), st.normal.y.end(), Real(0));
-    std::fill(st.normal.z.begin(), st.normal.z.end(), Real(0));
+    std::fill(st.normal_sum.begin(), st.normal_sum.end(), Real(0));
     const std::size_t triangles = st.t0.size();
-    for (std::size_t f = 0; f < triangles; ++f) {
-      const Real x = st.face_normal.x[f], y = st.face_normal.y[f], z = st.face_normal.z[f];
-      for (const std::uint32_t slot : {st.t0[f], st.t1[f], st.t2[f]})
-        st.normal.x[slot] += x, st.normal.y[slot] += y, st.normal.z[slot] += z;
-    }
+    std::size_t f = 0;
+    for (; f + Wide::kWidth <= triangles; f += Wide::kWidth) FaceNormalAndScatter<Wide>(f);
+    for (; f < triangles; ++f) FaceNormalAndScatter<One>(f);
   }
 
-  // Threads: slots [k kTaskSize, ...) each sum their triangles' normals in increasing triangle
-  // order (the same terms in the same order as ScatterNormals: identical sums).
+  // Threads, after FaceNormals: slots [k kTaskSize, ...) each sum their triangles' normals in
+  // increasing triangle order (the same terms in the same order as ScatterNormals: identical
+  // sums).
   static void GatherNormals(const void* context, std::size_t k) {
     const auto& self = *static_cast<const StagePasses*>(context);
     S& st = *self.s;
@@ -256,44 +266,41 @@ struct StagePasses {
         const std::uint32_t f = st.slot_triangles[t];
         x += st.face_normal.x[f], y += st.face_normal.y[f], z += st.face_normal.z[f];
       }
-      st.normal.x[slot] = x, st.normal.y[slot] = y, st.normal.z[slot] = z;
+      Real* sum = &st.normal_sum[4 * slot];
+      sum[0] = x, sum[1] = y, sum[2] = z;
     }
   }
 
-  // Slots [k kTaskSize, ...): the sums normalised (+Y where a sum vanishes), packs at a time
-  // (the arrays are padded to whole packs).
-  static void Normalise(const void* context, std::size_t k) {
-    const auto& self = *static_cast<const StagePasses*>(context);
-    S& st = *self.s;
-    using P = Wide;
-    using Value = typename P::Value;
-    const std::size_t end = std::min(st.normal.x.size(), (k + 1) * kTaskSize);
-    const Value zero = P::Broadcast(Real(0)), one = P::Broadcast(Real(1));
-    for (std::size_t i = k * kTaskSize; i < end; i += P::kWidth) {
-      const simd::V3<Value> n{P::Load(&st.normal.x[i]), P::Load(&st.normal.y[i]),
-                              P::Load(&st.normal.z[i])};
-      const Value length = P::Sqrt(simd::Dot(n, n));
-      const auto regular = P::Greater(length, zero);
-      const Value inverse = one / P::Select(regular, length, one);
-      P::Store(&st.normal.x[i], P::Select(regular, inverse * n.x, zero));
-      P::Store(&st.normal.y[i], P::Select(regular, inverse * n.y, one));
-      P::Store(&st.normal.z[i], P::Select(regular, inverse * n.z, zero));
-    }
-  }
-
-  // Vertices [k kTaskSize, ...) in vertex order: position and normal into the output.
+  // Slots [k kTaskSize, ...) into the output: positions, and the normal sums normalised (+Y
+  // where a sum vanishes), packs at a time (the sums are padded to whole packs).
   static void Output(const void* context, std::size_t k) {
     const auto& self = *static_cast<const StagePasses*>(context);
     const S& st = *self.s;
     const StageOutput<Real>& out = self.out;
-    const std::size_t end = std::min(st.slot_of_vertex.size(), (k + 1) * kTaskSize);
-    for (std::size_t v = k * kTaskSize; v < end; ++v) {
-      const std::uint32_t slot = st.slot_of_vertex[v];
-      Real* p = out.positions + v * out.position_stride;
-      p[0] = st.position.x[slot], p[1] = st.position.y[slot], p[2] = st.position.z[slot];
-      if (!out.normals) continue;
-      Real* n = out.normals + v * out.normal_stride;
-      n[0] = st.normal.x[slot], n[1] = st.normal.y[slot], n[2] = st.normal.z[slot];
+    const std::size_t slots = st.vertex_of_slot.size();
+    const std::size_t begin = k * kTaskSize, end = std::min(slots, (k + 1) * kTaskSize);
+    for (std::size_t i = begin; i < end; ++i) {
+      Real* p = out.positions + st.vertex_of_slot[i] * out.position_stride;
+      p[0] = st.position.x[i], p[1] = st.position.y[i], p[2] = st.position.z[i];
+    }
+    if (!out.normals) return;
+    using P = Wide;
+    using Value = typename P::Value;
+    const Value zero = P::Broadcast(Real(0)), one = P::Broadcast(Real(1));
+    alignas(16) Real unit[3][P::kWidth];
+    for (std::size_t i = begin; i < end; i += P::kWidth) {
+      simd::V3<Value> n;
+      P::Load4(&st.normal_sum[4 * i], &n.x, &n.y, &n.z);
+      const Value length = P::Sqrt(simd::Dot(n, n));
+      const auto regular = P::Greater(length, zero);
+      const Value inverse = one / P::Select(regular, length, one);
+      P::Store(unit[0], P::Select(regular, inverse * n.x, zero));
+      P::Store(unit[1], P::Select(regular, inverse * n.y, one));
+      P::Store(unit[2], P::Select(regular, inverse * n.z, zero));
+      for (std::size_t l = 0; l < std::size_t(P::kWidth) && i + l < end; ++l) {
+        Real* o = out.normals + st.vertex_of_slot[i + l] * out.normal_stride;
+        o[0] = unit[0][l], o[1] = unit[1][l], o[2] = unit[2][l];
+      }
     }
   }
 };
@@ -462,7 +469,7 @@ void MakeVertexStage(const RigModel& model, const RigEvaluationLayout& layout,
   s.rest.resize(s.bridged_slot.size());
   s.correction.resize(s.entry_bridged.size());
   s.face_normal.resize(model.triangles.size());
-  s.normal.resize((n + kBucketMultiple - 1) / kBucketMultiple * kBucketMultiple);
+  s.normal_sum.assign(4 * ((n + kBucketMultiple - 1) / kBucketMultiple * kBucketMultiple), Real(0));
   s.undo.assign(layout.undo_samples.size(), VertexStage<Real>::M::Identity());
   s.undo_rest_point.assign(layout.undo_samples.size(), VertexStage<Real>::V::Zero());
   s.undo_point.assign(layout.undo_samples.size(), VertexStage<Real>::V::Zero());
@@ -510,14 +517,14 @@ void RunVertexStage(const RigModel& model, RigWorkspace& w, VertexStage<Real>& s
     RunTasks(parallel, Tasks(s.bridged_slot.size()), &Passes::Sums, &passes);
   }
   if (output.normals) {
-    RunTasks(parallel, Tasks(s.t0.size()), &Passes::FaceNormals, &passes);
-    if (parallel == nullptr || parallel->concurrency() <= 1)
+    if (parallel == nullptr || parallel->concurrency() <= 1) {
       passes.ScatterNormals();
-    else
+    } else {
+      RunTasks(parallel, Tasks(s.t0.size()), &Passes::FaceNormals, &passes);
       RunTasks(parallel, Tasks(s.slot_of_vertex.size()), &Passes::GatherNormals, &passes);
-    RunTasks(parallel, Tasks(s.normal.x.size()), &Passes::Normalise, &passes);
+    }
   }
-  RunTasks(parallel, Tasks(s.slot_of_vertex.size()), &Passes::Output, &passes);
+  RunTasks(parallel, Tasks(s.vertex_of_slot.size()), &Passes::Output, &passes);
 }
 
 template void MakeVertexStage(const RigModel&, const RigEvaluationLayout&, VertexStage<double>*);

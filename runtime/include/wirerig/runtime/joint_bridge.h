@@ -34,7 +34,7 @@ struct JointBinding {
   double section = 1.0;
 };
 inline constexpr double kBridgeInner = 1.25;
-inline constexpr int kBridgeSegments = 32;  // a bridge's samples: kBridgeSegments + 1
+inline constexpr int kBridgeSegments = 16;  // a bridge's samples: kBridgeSegments + 1
 inline constexpr double kBridgeOuter = 2.0;
 
 // The bridge's two clamped ends for one configuration (rest or posed), world axes.

@@ -5,12 +5,14 @@
 //
 // A pack type P provides: Real (the lane type), Value (the pack), Mask, kWidth, and static
 // Load/Store (contiguous lanes), Gather (lanes from base[index[l]]), Broadcast, Sqrt, Select
-// (mask ? a : b), Greater, Bits (one bit per lane of a mask) and Clamp01. Value supports
+// (mask ? a : b), Greater, And, Bits (one bit per lane of a mask), and ScatterAdd4/Load4 on
+// (x, y, z, w) quadruples. Value supports
 // +, -, * and / with other Values.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 #if defined(__SSE2__)
@@ -35,6 +37,14 @@ struct OneLane {
   static bool Greater(T a, T b) { return a > b; }
   static bool And(bool a, bool b) { return a && b; }
   static int Bits(bool m) { return m ? 1 : 0; }
+  // (x, y, z, 0) added into sums[4 i .. 4 i + 3] for i = i0[0], i1[0], i2[0] in that order.
+  static void ScatterAdd4(T* sums, T x, T y, T z, const std::uint32_t* i0, const std::uint32_t* i1,
+                          const std::uint32_t* i2) {
+    for (const std::uint32_t i : {i0[0], i1[0], i2[0]})
+      sums[4 * i] += x, sums[4 * i + 1] += y, sums[4 * i + 2] += z;
+  }
+  // x, y, z of the (x, y, z, w) quadruple at `sums`.
+  static void Load4(const T* sums, T* x, T* y, T* z) { *x = sums[0], *y = sums[1], *z = sums[2]; }
 };
 
 #if WIRERIG_HAVE_SSE2
@@ -65,6 +75,25 @@ struct Float4 {
   static F4 Greater(F4 a, F4 b) { return {_mm_cmpgt_ps(a.v, b.v)}; }
   static F4 And(F4 a, F4 b) { return {_mm_and_ps(a.v, b.v)}; }
   static int Bits(F4 m) { return _mm_movemask_ps(m.v); }
+  // Lane l's (x, y, z, 0) added into sums[4 i .. 4 i + 3] for i = i0[l], i1[l], i2[l], lanes in
+  // order: per element the same additions, in the same order, as OneLane's.
+  static void ScatterAdd4(float* sums, F4 x, F4 y, F4 z, const std::uint32_t* i0,
+                          const std::uint32_t* i1, const std::uint32_t* i2) {
+    __m128 lane[4] = {x.v, y.v, z.v, _mm_setzero_ps()};
+    _MM_TRANSPOSE4_PS(lane[0], lane[1], lane[2], lane[3]);
+    for (int l = 0; l < 4; ++l)
+      for (const std::uint32_t i : {i0[l], i1[l], i2[l]}) {
+        float* sum = sums + 4 * std::size_t(i);
+        _mm_storeu_ps(sum, _mm_add_ps(_mm_loadu_ps(sum), lane[l]));
+      }
+  }
+  // Lanes x, y, z of the four (x, y, z, w) quadruples from `sums`.
+  static void Load4(const float* sums, F4* x, F4* y, F4* z) {
+    __m128 a = _mm_loadu_ps(sums), b = _mm_loadu_ps(sums + 4), c = _mm_loadu_ps(sums + 8),
+           d = _mm_loadu_ps(sums + 12);
+    _MM_TRANSPOSE4_PS(a, b, c, d);
+    x->v = a, y->v = b, z->v = c;
+  }
 };
 #endif
 

@@ -67,8 +67,9 @@ struct VertexStage {
   Coordinates rest;         // by bridged vertex: its point undone into rest space
   Coordinates correction;   // by entry: weight * (bridge image - own side's motion)
   Coordinates face_normal;  // by triangle: (p1 - p0) x (p2 - p0)
-  Coordinates normal;       // by slot (padded to whole packs): summed, then unit
-  std::vector<M> undo;      // by undo sample: rest axes times transposed deformed axes
+  // By slot (padded to whole packs): (x, y, z, 0), the sum of its triangles' normals.
+  std::vector<Real> normal_sum;
+  std::vector<M> undo;  // by undo sample: rest axes times transposed deformed axes
   std::vector<V> undo_rest_point, undo_point;
   std::vector<BasicBridgeSamples<Real>> bridges;  // by part (float stage only)
 };
