@@ -156,6 +156,47 @@ TEST(NoAllocation, RigEvaluationOnAThreadPool) {
   EXPECT_EQ(after, before);
 }
 
+TEST(NoAllocation, JointedRigIntoFloatBuffers) {
+  // Two rigid segments of a capsule with a skin bridge at their joint, bent, evaluated into an
+  // interleaved float buffer: the float stage, the bridge pass and the normals.
+  RigDescription description;
+  PartDescription upper, lower;
+  upper.name = "upper";
+  upper.central_curve = {Vec3(0, 0.95, 0), Vec3(0, 0.5, 0)};
+  upper.profile_count = 10;
+  lower = upper;
+  lower.name = "lower";
+  lower.parent = "upper";
+  lower.central_curve = {Vec3(0, 0.5, 0), Vec3(0, 0.05, 0)};
+  lower.joint.axis = Vec3::UnitX();
+  description.parts = {upper, lower};
+  const Mesh mesh = MakeCapsule(0.08, 1.0, 48, 80, 8);
+  const Result<BuiltRig> rig = BuildRig(mesh, description, "capsule");
+  ASSERT_TRUE(rig.ok()) << rig.error();
+  RigModelOptions options;
+  options.spine_kind = SpineKind::kRigid;
+  const Result<BuiltRigModel> model = BuildRigModel(mesh, rig.value().rig, options);
+  ASSERT_TRUE(model.ok()) << model.error();
+  RigWorkspace workspace = MakeRigWorkspace(model.value().model);
+  ASSERT_FALSE(workspace.layout.joint_vertices.empty());
+  std::vector<float> buffer(6 * model.value().model.vertices.size());
+  std::vector<PartPose> poses(2);
+  poses[1].rotation = Quat(Eigen::AngleAxisd(1.2, Vec3::UnitX()));
+  EvaluateRigJob job;
+  job.model = &model.value().model;
+  job.poses = poses;
+  job.workspace = &workspace;
+  job.float_positions = buffer;
+  job.float_position_stride = 6;
+  job.float_normals = std::span<float>(buffer).subspan(3);
+  job.float_normal_stride = 6;
+  const long before = g_allocations;
+  const Status status = job.Run();
+  const long after = g_allocations;
+  ASSERT_TRUE(status.ok()) << ToString(status);
+  EXPECT_EQ(after, before);
+}
+
 TEST(NoAllocation, RigidBodyStepsWithBothIntegrators) {
   for (RigidIntegrator integrator : {RigidIntegrator::kRk4, RigidIntegrator::kMomentum}) {
     RigidBodyState state;
