@@ -171,15 +171,22 @@ Status EvaluateRigJob::Validate() const {
       return Status::Invalid("normals", "must be empty or have one element per vertex");
     if (!float_normals.empty())
       return Status::Invalid("float_normals", "go with float_positions, not positions");
+    if (!float_vertex_order.empty())
+      return Status::Invalid("float_vertex_order", "goes with float_positions, not positions");
   } else {
-    // A strided buffer holds vertex v's three floats at [v * stride, v * stride + 3).
+    // A strided buffer holds output vertex i's three floats at [i * stride, i * stride + 3).
+    const std::size_t outputs =
+        float_vertex_order.empty() ? vertex_count : float_vertex_order.size();
     auto fits = [&](std::span<float> buffer, std::size_t stride) {
-      return stride >= 3 && buffer.size() >= (vertex_count - 1) * stride + 3;
+      return stride >= 3 && buffer.size() >= (outputs - 1) * stride + 3;
     };
-    if (vertex_count > 0 && !fits(float_positions, float_position_stride))
+    for (const std::uint32_t w : float_vertex_order)
+      if (w >= vertex_count)
+        return Status::Invalid("float_vertex_order", "names a vertex the model does not have");
+    if (outputs > 0 && !fits(float_positions, float_position_stride))
       return Status::Invalid("float_positions",
                              "needs a stride of at least 3 and room for every vertex");
-    if (vertex_count > 0 && !float_normals.empty() && !fits(float_normals, float_normal_stride))
+    if (outputs > 0 && !float_normals.empty() && !fits(float_normals, float_normal_stride))
       return Status::Invalid(
           "float_normals",
           "must be empty, or have a stride of at least 3 and room for every vertex");
@@ -396,9 +403,12 @@ Status EvaluateRigJob::Run() const {
                                   normals.empty() ? nullptr : normals.data()->data(), 3};
     RunVertexStage(*model, w, w.stage64, out, parallel);
   } else {
-    const StageOutput<float> out{float_positions.data(), float_position_stride,
+    const StageOutput<float> out{float_positions.data(),
+                                 float_position_stride,
                                  float_normals.empty() ? nullptr : float_normals.data(),
-                                 float_normal_stride};
+                                 float_normal_stride,
+                                 float_vertex_order.empty() ? nullptr : float_vertex_order.data(),
+                                 float_vertex_order.size()};
     RunVertexStage(*model, w, w.stage32, out, parallel);
   }
   return Status::Ok();

@@ -272,14 +272,16 @@ struct StagePasses {
   }
 
   // Slots [k kTaskSize, ...) into the output: positions, and the normal sums normalised (+Y
-  // where a sum vanishes), packs at a time (the sums are padded to whole packs).
+  // where a sum vanishes), packs at a time (the sums are padded to whole packs). With an output
+  // order, the unit normals go to the stage (OrderedOutput copies them out).
   static void Output(const void* context, std::size_t k) {
     const auto& self = *static_cast<const StagePasses*>(context);
-    const S& st = *self.s;
+    S& st = *self.s;
     const StageOutput<Real>& out = self.out;
+    const bool direct = out.order == nullptr;
     const std::size_t slots = st.vertex_of_slot.size();
     const std::size_t begin = k * kTaskSize, end = std::min(slots, (k + 1) * kTaskSize);
-    for (std::size_t i = begin; i < end; ++i) {
+    for (std::size_t i = begin; i < end && direct; ++i) {
       Real* p = out.positions + st.vertex_of_slot[i] * out.position_stride;
       p[0] = st.position.x[i], p[1] = st.position.y[i], p[2] = st.position.z[i];
     }
@@ -294,13 +296,38 @@ struct StagePasses {
       const Value length = P::Sqrt(simd::Dot(n, n));
       const auto regular = P::Greater(length, zero);
       const Value inverse = one / P::Select(regular, length, one);
-      P::Store(unit[0], P::Select(regular, inverse * n.x, zero));
-      P::Store(unit[1], P::Select(regular, inverse * n.y, one));
-      P::Store(unit[2], P::Select(regular, inverse * n.z, zero));
+      const Value x = P::Select(regular, inverse * n.x, zero);
+      const Value y = P::Select(regular, inverse * n.y, one);
+      const Value z = P::Select(regular, inverse * n.z, zero);
+      if (!direct) {
+        P::Store(&st.unit_normal.x[i], x);
+        P::Store(&st.unit_normal.y[i], y);
+        P::Store(&st.unit_normal.z[i], z);
+        continue;
+      }
+      P::Store(unit[0], x);
+      P::Store(unit[1], y);
+      P::Store(unit[2], z);
       for (std::size_t l = 0; l < std::size_t(P::kWidth) && i + l < end; ++l) {
         Real* o = out.normals + st.vertex_of_slot[i + l] * out.normal_stride;
         o[0] = unit[0][l], o[1] = unit[1][l], o[2] = unit[2][l];
       }
+    }
+  }
+
+  // Output vertices [k kTaskSize, ...) of an output order: each a copy of its welded vertex.
+  static void OrderedOutput(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    const S& st = *self.s;
+    const StageOutput<Real>& out = self.out;
+    const std::size_t end = std::min(out.order_size, (k + 1) * kTaskSize);
+    for (std::size_t i = k * kTaskSize; i < end; ++i) {
+      const std::uint32_t slot = st.slot_of_vertex[out.order[i]];
+      Real* p = out.positions + i * out.position_stride;
+      p[0] = st.position.x[slot], p[1] = st.position.y[slot], p[2] = st.position.z[slot];
+      if (!out.normals) continue;
+      Real* n = out.normals + i * out.normal_stride;
+      n[0] = st.unit_normal.x[slot], n[1] = st.unit_normal.y[slot], n[2] = st.unit_normal.z[slot];
     }
   }
 };
@@ -469,7 +496,9 @@ void MakeVertexStage(const RigModel& model, const RigEvaluationLayout& layout,
   s.rest.resize(s.bridged_slot.size());
   s.correction.resize(s.entry_bridged.size());
   s.face_normal.resize(model.triangles.size());
-  s.normal_sum.assign(4 * ((n + kBucketMultiple - 1) / kBucketMultiple * kBucketMultiple), Real(0));
+  const std::size_t padded = (n + kBucketMultiple - 1) / kBucketMultiple * kBucketMultiple;
+  s.normal_sum.assign(4 * padded, Real(0));
+  s.unit_normal.resize(padded);
   s.undo.assign(layout.undo_samples.size(), VertexStage<Real>::M::Identity());
   s.undo_rest_point.assign(layout.undo_samples.size(), VertexStage<Real>::V::Zero());
   s.undo_point.assign(layout.undo_samples.size(), VertexStage<Real>::V::Zero());
@@ -525,6 +554,7 @@ void RunVertexStage(const RigModel& model, RigWorkspace& w, VertexStage<Real>& s
     }
   }
   RunTasks(parallel, Tasks(s.vertex_of_slot.size()), &Passes::Output, &passes);
+  if (output.order) RunTasks(parallel, Tasks(output.order_size), &Passes::OrderedOutput, &passes);
 }
 
 template void MakeVertexStage(const RigModel&, const RigEvaluationLayout&, VertexStage<double>*);

@@ -2,20 +2,24 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include "wirerig/runtime/rig_evaluation.h"
 #include "wirerig/runtime/vertex_stage.h"
 
 namespace wirerig {
 
-// Where the stage writes: vertex v's position at positions[v * position_stride .. + 3) and,
-// when normals is not null, its unit normal likewise (elements of Real, welded vertex order).
+// Where the stage writes: output vertex i's position at positions[i * position_stride .. + 3)
+// and, when normals is not null, its unit normal likewise (elements of Real). Output vertex i
+// is welded vertex order[i], or welded vertex i when order is null.
 template <class Real>
 struct StageOutput {
   Real* positions = nullptr;
   std::size_t position_stride = 3;
   Real* normals = nullptr;
   std::size_t normal_stride = 3;
+  const std::uint32_t* order = nullptr;
+  std::size_t order_size = 0;
 };
 
 // The stage's layout for `model`; `layout` holds the joint entries and undo samples.

@@ -652,6 +652,37 @@ TEST(RigEvaluation, FloatEngineBuffersHoldTheDoubleEvaluationToFloatPrecision) {
   }
 }
 
+// Into the source asset's vertex order (the mesh's unwelded vertices, through its weld map):
+// each output vertex holds exactly what the welded order holds for its welded vertex.
+TEST(RigEvaluation, FloatBuffersInTheSourceAssetsVertexOrder) {
+  const Scene& human = Human();
+  const BusyPose pose = MakeBusyPose(human);
+  const std::vector<float> welded = EvaluateBusyFloat(human, pose, nullptr);
+  const std::vector<std::uint32_t>& order = human.mesh.weld_map;
+  ASSERT_GT(order.size(), human.model.vertices.size());  // seams split some vertices
+  RigWorkspace workspace = MakeRigWorkspace(human.model);
+  std::vector<float> positions(3 * order.size()), normals(3 * order.size());
+  EvaluateRigJob job;
+  job.model = &human.model;
+  job.poses = pose.poses;
+  job.profile_loads = pose.profile_loads;
+  job.workspace = &workspace;
+  job.float_positions = positions;
+  job.float_normals = normals;
+  job.float_vertex_order = order;
+  job.preserve_volume = true;
+  ASSERT_TRUE(job.Run().ok());
+  for (std::size_t i = 0; i < order.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(positions[3 * i + c], welded[6 * order[i] + c]) << "vertex " << i;
+      ASSERT_EQ(normals[3 * i + c], welded[6 * order[i] + 3 + c]) << "vertex " << i;
+    }
+  std::vector<std::uint32_t> bad = order;
+  bad.back() = std::uint32_t(human.model.vertices.size());
+  job.float_vertex_order = bad;
+  EXPECT_EQ(job.Run().field, "float_vertex_order");
+}
+
 TEST(RigEvaluation, FloatOutputsAreCheckedBeforeAnythingIsWritten) {
   const Scene& human = Human();
   const std::size_t n = human.model.vertices.size();

@@ -153,6 +153,9 @@ struct EvaluateRigJob {
   std::size_t float_position_stride = 3;
   std::span<float> float_normals;
   std::size_t float_normal_stride = 3;
+  // Optional: the float buffers in another vertex order, e.g. the source asset's unwelded one
+  // (Mesh::weld_map): output vertex i is welded vertex float_vertex_order[i]. Empty: welded order.
+  std::span<const std::uint32_t> float_vertex_order;
   // Keep the volume between adjacent profiles when spines stretch or compress (paper section 7):
   // each profile scales in its plane by 1 / sqrt(1 + strain), strain = N / EA of the closed
   // form at the profile.

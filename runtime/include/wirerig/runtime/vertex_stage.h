@@ -69,7 +69,8 @@ struct VertexStage {
   Coordinates face_normal;  // by triangle: (p1 - p0) x (p2 - p0)
   // By slot (padded to whole packs): (x, y, z, 0), the sum of its triangles' normals.
   std::vector<Real> normal_sum;
-  std::vector<M> undo;  // by undo sample: rest axes times transposed deformed axes
+  Coordinates unit_normal;  // by slot (padded): unit normals, for an output order
+  std::vector<M> undo;      // by undo sample: rest axes times transposed deformed axes
   std::vector<V> undo_rest_point, undo_point;
   std::vector<BasicBridgeSamples<Real>> bridges;  // by part (float stage only)
 };
