@@ -44,6 +44,12 @@ struct PairBounds<float> {
 
 std::size_t Tasks(std::size_t items) { return (items + kTaskSize - 1) / kTaskSize; }
 
+// Lanes of a 3-vector from one array per coordinate, at c[index[l]].
+template <class P, class Coordinates>
+simd::V3<typename P::Value> GatherV3(const Coordinates& c, const std::uint32_t* index) {
+  return {P::Gather(c.x.data(), index), P::Gather(c.y.data(), index), P::Gather(c.z.data(), index)};
+}
+
 template <class Real>
 struct StagePasses {
   using S = VertexStage<Real>;
@@ -64,9 +70,8 @@ struct StagePasses {
     using Value = typename P::Value;
     using V = simd::V3<Value>;
     const S& st = *s;
-    auto gather = [&](const typename S::Coordinates& c, const std::uint32_t* index) {
-      return V{P::Gather(c.x.data(), index), P::Gather(c.y.data(), index),
-               P::Gather(c.z.data(), index)};
+    auto gather = [](const typename S::Coordinates& c, const std::uint32_t* index) {
+      return GatherV3<P>(c, index);
     };
     const Value one = P::Broadcast(Real(1));
     const Value l1 = P::Load(&st.lambda1[i]), l2 = P::Load(&st.lambda2[i]);
@@ -165,15 +170,13 @@ struct StagePasses {
     for (std::size_t e = bucket.begin; e < bucket.end; e += P::kWidth) {
       const std::uint32_t* bridged = &st.entry_bridged[e];
       const std::uint32_t* slot = &st.entry_slot[e];
-      const V q{P::Gather(st.rest.x.data(), bridged), P::Gather(st.rest.y.data(), bridged),
-                P::Gather(st.rest.z.data(), bridged)};
+      const V q = GatherV3<P>(st.rest, bridged);
       V parent;
       const V image =
           segment.Image(P::Load(&st.entry_f[e]), P::Load(&st.entry_u[e]),
                         P::Load(&st.entry_fraction[e]), P::Load(&st.entry_section[e]), q, &parent);
       const auto child = P::Greater(P::Load(&st.entry_child[e]), P::Broadcast(Real(0.5)));
-      const V own{P::Gather(st.position.x.data(), slot), P::Gather(st.position.y.data(), slot),
-                  P::Gather(st.position.z.data(), slot)};
+      const V own = GatherV3<P>(st.position, slot);
       const V base{P::Select(child, own.x, parent.x), P::Select(child, own.y, parent.y),
                    P::Select(child, own.z, parent.z)};
       const V correction = P::Load(&st.entry_weight[e]) * (image - base);
@@ -206,19 +209,21 @@ struct StagePasses {
     }
   }
 
+  // Triangles [f, f + P::kWidth): (p1 - p0) x (p2 - p0).
+  template <class P>
+  simd::V3<typename P::Value> FaceNormalOf(std::size_t f) const {
+    const S& st = *s;
+    const auto p0 = GatherV3<P>(st.position, &st.t0[f]);
+    return simd::Cross(GatherV3<P>(st.position, &st.t1[f]) - p0,
+                       GatherV3<P>(st.position, &st.t2[f]) - p0);
+  }
+
   template <class P>
   void FaceNormal(std::size_t f) const {
-    using V = simd::V3<typename P::Value>;
-    S& st = *s;
-    auto at = [&](const std::uint32_t* index) {
-      return V{P::Gather(st.position.x.data(), index), P::Gather(st.position.y.data(), index),
-               P::Gather(st.position.z.data(), index)};
-    };
-    const V p0 = at(&st.t0[f]);
-    const V n = simd::Cross(at(&st.t1[f]) - p0, at(&st.t2[f]) - p0);
-    P::Store(&st.face_normal.x[f], n.x);
-    P::Store(&st.face_normal.y[f], n.y);
-    P::Store(&st.face_normal.z[f], n.z);
+    const auto n = FaceNormalOf<P>(f);
+    P::Store(&s->face_normal.x[f], n.x);
+    P::Store(&s->face_normal.y[f], n.y);
+    P::Store(&s->face_normal.z[f], n.z);
   }
 
   static void FaceNormals(const void* context, std::size_t k) {
@@ -231,14 +236,8 @@ struct StagePasses {
 
   template <class P>
   void FaceNormalAndScatter(std::size_t f) const {
-    using V = simd::V3<typename P::Value>;
+    const auto n = FaceNormalOf<P>(f);
     S& st = *s;
-    auto at = [&](const std::uint32_t* index) {
-      return V{P::Gather(st.position.x.data(), index), P::Gather(st.position.y.data(), index),
-               P::Gather(st.position.z.data(), index)};
-    };
-    const V p0 = at(&st.t0[f]);
-    const V n = simd::Cross(at(&st.t1[f]) - p0, at(&st.t2[f]) - p0);
     P::ScatterAdd4(st.normal_sum.data(), n.x, n.y, n.z, &st.t0[f], &st.t1[f], &st.t2[f]);
   }
 

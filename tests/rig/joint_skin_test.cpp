@@ -23,6 +23,8 @@
 #include "wirerig/runtime/joint_bridge.h"
 #include "wirerig/runtime/rig_evaluation.h"
 
+#include "support/two_segment_limb.h"
+
 #ifndef WIRERIG_SAMPLES_DIR
 #error "the tests need WIRERIG_SAMPLES_DIR"
 #endif
@@ -54,18 +56,7 @@ const Limb& MakeLimb() {
   static const Limb limb = [] {
     Limb out;
     out.mesh = MakeCapsule(kRadius, 1.0, 48, 80, 8);
-    RigDescription description;
-    PartDescription upper, lower;
-    upper.name = "upper";
-    upper.central_curve = {Vec3(0, 0.95, 0), Vec3(0, 0.5, 0)};
-    upper.profile_count = 10;
-    lower = upper;
-    lower.name = "lower";
-    lower.parent = "upper";
-    lower.central_curve = {Vec3(0, 0.5, 0), Vec3(0, 0.05, 0)};
-    lower.joint.axis = Vec3::UnitX();
-    description.parts = {upper, lower};
-    out.model = RigidModel(out.mesh, description, "capsule");
+    out.model = RigidModel(out.mesh, testing::TwoSegmentLimb(), "capsule");
     return out;
   }();
   return limb;

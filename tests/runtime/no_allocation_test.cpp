@@ -17,6 +17,7 @@
 #include "wirerig/runtime/rigid_body.h"
 
 #include "support/counting_allocator.h"
+#include "support/two_segment_limb.h"
 
 using wirerig::testing::g_allocations;
 
@@ -159,19 +160,8 @@ TEST(NoAllocation, RigEvaluationOnAThreadPool) {
 TEST(NoAllocation, JointedRigIntoFloatBuffers) {
   // Two rigid segments of a capsule with a skin bridge at their joint, bent, evaluated into an
   // interleaved float buffer: the float stage, the bridge pass and the normals.
-  RigDescription description;
-  PartDescription upper, lower;
-  upper.name = "upper";
-  upper.central_curve = {Vec3(0, 0.95, 0), Vec3(0, 0.5, 0)};
-  upper.profile_count = 10;
-  lower = upper;
-  lower.name = "lower";
-  lower.parent = "upper";
-  lower.central_curve = {Vec3(0, 0.5, 0), Vec3(0, 0.05, 0)};
-  lower.joint.axis = Vec3::UnitX();
-  description.parts = {upper, lower};
   const Mesh mesh = MakeCapsule(0.08, 1.0, 48, 80, 8);
-  const Result<BuiltRig> rig = BuildRig(mesh, description, "capsule");
+  const Result<BuiltRig> rig = BuildRig(mesh, testing::TwoSegmentLimb(), "capsule");
   ASSERT_TRUE(rig.ok()) << rig.error();
   RigModelOptions options;
   options.spine_kind = SpineKind::kRigid;
