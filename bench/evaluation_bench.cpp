@@ -11,6 +11,9 @@
 //    midpoint 1-to-4 split of every triangle, then the longest edges split once more).
 //  * /2_threads: the wire evaluation with its vertex and normal passes on a 2-thread pool
 //    (EvaluateRigJob::parallel); wall time.
+//  * BM_WireEvaluationFloat: the same into float engine buffers (the float evaluation);
+//    BM_ReferenceLinearBlend: linear blend skinning as engines write it (float, one array per
+//    attribute, 4 influences; rig/reference_skinning.h), one bone per part, same pose.
 //  * BM_BindingPrecompute: BuildRigModel alone on the subdivided mesh. Target: under 200 ms
 //    for 100k vertices. BM_MakeWorkspace: MakeRigWorkspace on it (flat binding layout).
 // One thread each unless named; meshes, rigs, models and skins are built once, outside the timed
@@ -33,6 +36,7 @@
 
 #include "bench_setup.h"
 #include "wirerig/rig/mesh_import.h"
+#include "wirerig/rig/reference_skinning.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_description.h"
 #include "wirerig/rig/rig_model_builder.h"
@@ -417,6 +421,77 @@ void BM_WireEvaluation(benchmark::State& state, const Scene& (*get)()) {
   SetVertexCounters(state, positions.size());
 }
 
+// The same frame into float engine buffers (interleaved position and normal, stride 6): the
+// float evaluation, four vertices at a time. state.range(0): threads, as above.
+void BM_WireEvaluationFloat(benchmark::State& state, const Scene& (*get)()) {
+  const Scene& scene = get();
+  const auto threads = static_cast<std::size_t>(state.range(0));
+  const ThreadPool* pool = threads > 1 ? &Pool(threads) : nullptr;
+  RigWorkspace workspace = MakeRigWorkspace(scene.model);
+  std::vector<float> buffer(6 * scene.model.vertices.size());
+  EvaluateRigJob job;
+  job.model = &scene.model;
+  job.poses = scene.poses;
+  job.workspace = &workspace;
+  job.float_positions = buffer;
+  job.float_position_stride = 6;
+  job.float_normals = std::span<float>(buffer).subspan(3);
+  job.float_normal_stride = 6;
+  job.parallel = pool;
+  for (auto _ : state) {
+    const Status status = job.Run();
+    if (!status) {
+      state.SkipWithError(ToString(status).c_str());
+      break;
+    }
+    benchmark::DoNotOptimize(buffer.data());
+    benchmark::ClobberMemory();
+  }
+  SetVertexCounters(state, scene.model.vertices.size());
+}
+
+// Linear blend skinning as engines write it (ReferenceSkinningJob: float, one array per
+// attribute, 4 influences, positions and rest normals skinned), one bone per part, with the
+// parts' rigid motions of the same pose.
+struct ReferenceScene {
+  ReferenceSkin skin;
+  std::vector<BoneMatrix> bones;
+};
+const ReferenceScene& Reference(const Scene& scene) {
+  static std::unordered_map<const Scene*, std::unique_ptr<ReferenceScene>> made;
+  std::unique_ptr<ReferenceScene>& out = made[&scene];
+  if (!out) {
+    out = std::make_unique<ReferenceScene>();
+    out->skin = MakeReferenceSkin(scene.model, scene.mesh.welded_positions);
+    RigWorkspace workspace = MakeRigWorkspace(scene.model);
+    std::vector<Vec3> positions(scene.model.vertices.size());
+    EvaluateRigJob job;
+    job.model = &scene.model;
+    job.poses = scene.poses;
+    job.workspace = &workspace;
+    job.positions = positions;
+    if (!job.Run()) std::exit(1);
+    out->bones.resize(scene.model.parts.size());
+    BoneMatricesFromWorkspace(scene.model, workspace, out->bones);
+  }
+  return *out;
+}
+
+void BM_ReferenceLinearBlend(benchmark::State& state, const Scene& (*get)()) {
+  const Scene& scene = get();
+  const ReferenceScene& reference = Reference(scene);
+  const std::size_t n = scene.model.vertices.size();
+  std::vector<float> x(n), y(n), z(n), nx(n), ny(n), nz(n);
+  const ReferenceSkinningJob job{
+      ReferenceSkinning::kLinearBlend, &reference.skin, reference.bones, x, y, z, nx, ny, nz};
+  for (auto _ : state) {
+    job.Run();
+    benchmark::DoNotOptimize(x.data());
+    benchmark::ClobberMemory();
+  }
+  SetVertexCounters(state, n);
+}
+
 void BM_LinearBlendSkinning(benchmark::State& state, const Scene& (*get)()) {
   const Scene& scene = get();
   const std::size_t joints = scene.skin.joint_parent.size();
@@ -481,6 +556,25 @@ BENCHMARK_CAPTURE(BM_WireEvaluation, human_2_threads, &Human)
     ->ComputeStatistics("min", Minimum)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_WireEvaluation, subdivided_2_threads, &Subdivided)
+    ->Arg(2)
+    ->UseRealTime()
+    ->ComputeStatistics("min", Minimum)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_WireEvaluationFloat, human, &Human)
+    ->Arg(1)
+    ->ComputeStatistics("min", Minimum)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_ReferenceLinearBlend, human, &Human)
+    ->ComputeStatistics("min", Minimum)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_WireEvaluationFloat, subdivided, &Subdivided)
+    ->Arg(1)
+    ->ComputeStatistics("min", Minimum)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_ReferenceLinearBlend, subdivided, &Subdivided)
+    ->ComputeStatistics("min", Minimum)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_WireEvaluationFloat, subdivided_2_threads, &Subdivided)
     ->Arg(2)
     ->UseRealTime()
     ->ComputeStatistics("min", Minimum)

@@ -412,9 +412,11 @@ void MakeVertexStage(const RigModel& model, const RigEvaluationLayout& layout,
   }
   std::vector<std::uint32_t> order(entries.size());
   std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return entries[a].joint != entries[b].joint ? entries[a].joint < entries[b].joint
-                                                : segment[a] < segment[b];
+  // By joint, then segment, then entry (a total order: no temporary buffer, as stable_sort takes).
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    if (entries[a].joint != entries[b].joint) return entries[a].joint < entries[b].joint;
+    if (segment[a] != segment[b]) return segment[a] < segment[b];
+    return a < b;
   });
   std::vector<std::uint32_t> sorted_position(entries.size());
   auto push_entry = [&](std::uint32_t bridged, std::uint32_t slot, double f, double u,
