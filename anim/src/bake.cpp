@@ -72,19 +72,21 @@ Result<BakedAnimation> BakeClip(const Mesh& mesh, const RigModel& model, const C
   bake.skin_joints = std::move(skin.joints);
   bake.skin_weights = std::move(skin.weights);
 
-  std::vector<Vec3> positions(model.vertices.size()), normals(model.vertices.size());
   for (std::size_t k = 0; k < keys; ++k) {
     const double t = bake.times[k];
+    // The key's vertices straight into the bake, in the mesh's own (unwelded) order.
+    auto key = [&](std::vector<Vec3f>& all) {
+      return all.empty() ? std::span<float>()
+                         : std::span<float>(all.data()->data() + 3 * k * render, 3 * render);
+    };
+    Playback::FloatOutput output;
+    output.positions = key(bake.positions);
+    if (options.normals) output.normals = key(bake.normals);
+    output.vertex_order = mesh.weld_map;
     // Clip-local time of the key: a baked clip covers [0, duration] once, whatever its loop.
-    if (Status s = player.Evaluate(std::min(t, clip.duration - 1e-12 * clip.duration), positions,
-                                   options.normals ? std::span<Vec3>(normals) : std::span<Vec3>());
+    if (Status s = player.Evaluate(std::min(t, clip.duration - 1e-12 * clip.duration), output);
         !s) {
       return Error{"key at t = " + std::to_string(t) + " s: " + ToString(s)};
-    }
-    for (std::size_t v = 0; v < render; ++v) {
-      const std::uint32_t w = mesh.weld_map[v];
-      bake.positions[k * render + v] = positions[w].cast<float>();
-      if (options.normals) bake.normals[k * render + v] = normals[w].cast<float>();
     }
     for (std::size_t p = 0; p < model.parts.size(); ++p) {
       BakedSpine& spine = bake.spines[p];

@@ -182,6 +182,25 @@ void Playback::ApplyInteractiveLoad() {
 
 Status Playback::Evaluate(double t, std::span<Vec3> positions, std::span<Vec3> normals,
                           std::span<PartWarnings> warnings) {
+  EvaluateRigJob job;
+  job.positions = positions;
+  job.normals = normals;
+  job.warnings = warnings;
+  return Run(t, job);
+}
+
+Status Playback::Evaluate(double t, const FloatOutput& output, std::span<PartWarnings> warnings) {
+  EvaluateRigJob job;
+  job.float_positions = output.positions;
+  job.float_position_stride = output.position_stride;
+  job.float_normals = output.normals;
+  job.float_normal_stride = output.normal_stride;
+  job.float_vertex_order = output.vertex_order;
+  job.warnings = warnings;
+  return Run(t, job);
+}
+
+Status Playback::Run(double t, EvaluateRigJob& job) {
   if (!std::isfinite(t)) return Status::Invalid("t", "must be finite");
   const double local = clip_->LocalTime(t);
   SampleClip(*clip_, local, &sample_);
@@ -206,15 +225,11 @@ Status Playback::Evaluate(double t, std::span<Vec3> positions, std::span<Vec3> n
     ApplyInteractiveLoad();
     if (interactive_->profile >= 0) profile_loads = interactive_profiles_;
   }
-  EvaluateRigJob job;
   job.model = model_;
   job.poses = sample_.poses;
   job.profile_loads = profile_loads;
   job.workspace = &workspace_;
-  job.positions = positions;
-  job.normals = normals;
   job.preserve_volume = options_.preserve_volume;
-  job.warnings = warnings;
   const Status status = job.Run();
   evaluated_ = evaluated_ || status.ok();
   return status;

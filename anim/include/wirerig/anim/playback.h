@@ -55,6 +55,18 @@ class Playback {
   // clip's loop mode maps t to clip time. `warnings`, if not empty, gets one entry per part.
   Status Evaluate(double t, std::span<Vec3> positions, std::span<Vec3> normals,
                   std::span<PartWarnings> warnings = {});
+  // The same into float buffers (EvaluateRigJob's float outputs): vertex i's position at
+  // positions[i * position_stride .. + 3), its normal likewise (normals may be empty); output
+  // vertex i is welded vertex vertex_order[i] (e.g. the mesh's weld map: the source asset's
+  // vertices), or welded vertex i when vertex_order is empty.
+  struct FloatOutput {
+    std::span<float> positions;
+    std::size_t position_stride = 3;
+    std::span<float> normals;
+    std::size_t normal_stride = 3;
+    std::span<const std::uint32_t> vertex_order;
+  };
+  Status Evaluate(double t, const FloatOutput& output, std::span<PartWarnings> warnings = {});
 
   // Adds `load` to every following Evaluate until cleared with nullopt. Errors name the field
   // (part or profile out of range, `at` outside [0, 1], a force that is not finite).
@@ -79,6 +91,8 @@ class Playback {
 
  private:
   Playback() = default;
+  // Poses the clip at playback time t and runs `job` (its outputs set by the caller).
+  Status Run(double t, EvaluateRigJob& job);
   Status AdvanceBodies(double local_time);
   Status StepBodies(double dt);
   void ApplyInteractiveLoad();
