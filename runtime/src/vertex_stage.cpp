@@ -47,7 +47,8 @@ std::size_t Tasks(std::size_t items) { return (items + kTaskSize - 1) / kTaskSiz
 // Lanes of a 3-vector from one array per coordinate, at c[index[l]]. Always inlined: called
 // per vertex in every pass (a call per gather cost a quarter of a frame).
 template <class P, class Coordinates>
-[[gnu::always_inline]] inline simd::V3<typename P::Value> GatherV3(const Coordinates& c, const std::uint32_t* index) {
+[[gnu::always_inline]] inline simd::V3<typename P::Value> GatherV3(const Coordinates& c,
+                                                                   const std::uint32_t* index) {
   return {P::Gather(c.x.data(), index), P::Gather(c.y.data(), index), P::Gather(c.z.data(), index)};
 }
 
