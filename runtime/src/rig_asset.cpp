@@ -1,0 +1,196 @@
+#include "wirerig/runtime/rig_asset.h"
+
+#include <array>
+#include <cstring>
+
+#include "byte_codec.h"
+
+namespace wirerig {
+namespace {
+
+constexpr std::array<std::uint8_t, 4> kMagic = {'W', 'R', 'I', 'G'};
+
+// The smallest encoding of one element of each array, for bounding counts before allocating.
+constexpr std::size_t kVec3Bytes = 24, kFrameBytes = 72, kTriangleBytes = 12, kIndexBytes = 4;
+constexpr std::size_t kProfileBytes = 29, kPartBytes = 438, kVertexBytes = 250;
+
+void WriteProfile(bytes::Writer& w, const ProfileModel& p) {
+  w.F64(p.spine_v);
+  w.U8(p.closed ? 1 : 0);
+  w.Count(p.local_points.size());
+  for (const Vec3& q : p.local_points) w.V3(q);
+  w.F64(p.stiffness.axial), w.F64(p.stiffness.bending);
+}
+
+void WriteJoint(bytes::Writer& w, const JointModel& j) {
+  w.U8(std::uint8_t(j.type));
+  w.M3(j.axes);
+  w.V3(j.min_degrees), w.V3(j.max_degrees), w.V3(j.parent_axis);
+  w.F64(j.blend_length), w.F64(j.radius), w.F64(j.parent_radius);
+}
+
+void WritePart(bytes::Writer& w, const PartModel& p) {
+  w.String(p.name);
+  w.I32(p.parent);
+  w.F64(p.attachment);
+  w.U8(std::uint8_t(p.kind));
+  w.Count(p.spine_points.size());
+  for (const Vec3& q : p.spine_points) w.V3(q);
+  w.Count(p.spine_frames.size());
+  for (const Frame& f : p.spine_frames) w.V3(f.tangent), w.V3(f.normal), w.V3(f.binormal);
+  w.F64(p.spine_length);
+  w.F64(p.spine_stiffness.axial), w.F64(p.spine_stiffness.bending);
+  w.F64(p.mass.volume), w.F64(p.mass.mass), w.V3(p.mass.center), w.M3(p.mass.inertia);
+  w.M3(p.mass.principal_axes), w.V3(p.mass.principal_moments);
+  w.Count(p.profiles.size());
+  for (const ProfileModel& profile : p.profiles) WriteProfile(w, profile);
+  w.F64(p.max_radius);
+  WriteJoint(w, p.joint);
+}
+
+void WriteVertex(bytes::Writer& w, const VertexAttachment& a) {
+  w.U32(a.part), w.U32(a.profile), w.U8(a.cap ? 1 : 0);
+  const PairBinding& b = a.pair;
+  w.U32(b.k1), w.F64(b.lambda1), w.U32(b.k2), w.F64(b.lambda2);
+  w.F64(b.alpha), w.F64(b.beta), w.F64(b.gamma), w.V3(b.rest_normal), w.V3(b.rest_edge);
+  w.U8(b.flags);
+  w.V3(a.cap_local);
+  for (const JointInfluence& j : a.joints) {
+    w.I32(j.joint), w.U32(j.sample);
+    w.F64(j.u), w.F64(j.weight), w.F64(j.bridge), w.F64(j.section);
+  }
+}
+
+ProfileModel ReadProfile(bytes::Reader& r) {
+  ProfileModel p;
+  p.spine_v = r.F64();
+  p.closed = r.U8() != 0;
+  p.local_points.resize(r.Count(kVec3Bytes));
+  for (Vec3& q : p.local_points) q = r.V3();
+  p.stiffness.axial = r.F64(), p.stiffness.bending = r.F64();
+  return p;
+}
+
+JointModel ReadJoint(bytes::Reader& r) {
+  JointModel j;
+  j.type = JointType(r.U8());
+  j.axes = r.M3();
+  j.min_degrees = r.V3(), j.max_degrees = r.V3(), j.parent_axis = r.V3();
+  j.blend_length = r.F64(), j.radius = r.F64(), j.parent_radius = r.F64();
+  return j;
+}
+
+PartModel ReadPart(bytes::Reader& r) {
+  PartModel p;
+  p.name = r.String();
+  p.parent = r.I32();
+  p.attachment = r.F64();
+  p.kind = SpineKind(r.U8());
+  p.spine_points.resize(r.Count(kVec3Bytes));
+  for (Vec3& q : p.spine_points) q = r.V3();
+  p.spine_frames.resize(r.Count(kFrameBytes));
+  for (Frame& f : p.spine_frames) f.tangent = r.V3(), f.normal = r.V3(), f.binormal = r.V3();
+  p.spine_length = r.F64();
+  p.spine_stiffness.axial = r.F64(), p.spine_stiffness.bending = r.F64();
+  p.mass.volume = r.F64(), p.mass.mass = r.F64(), p.mass.center = r.V3();
+  p.mass.inertia = r.M3(), p.mass.principal_axes = r.M3(), p.mass.principal_moments = r.V3();
+  p.profiles.resize(r.Count(kProfileBytes));
+  for (ProfileModel& profile : p.profiles) profile = ReadProfile(r);
+  p.max_radius = r.F64();
+  p.joint = ReadJoint(r);
+  return p;
+}
+
+VertexAttachment ReadVertex(bytes::Reader& r) {
+  VertexAttachment a;
+  a.part = r.U32(), a.profile = r.U32(), a.cap = r.U8() != 0;
+  PairBinding& b = a.pair;
+  b.k1 = r.U32(), b.lambda1 = r.F64(), b.k2 = r.U32(), b.lambda2 = r.F64();
+  b.alpha = r.F64(), b.beta = r.F64(), b.gamma = r.F64();
+  b.rest_normal = r.V3(), b.rest_edge = r.V3();
+  b.flags = r.U8();
+  a.cap_local = r.V3();
+  for (JointInfluence& j : a.joints) {
+    j.joint = r.I32(), j.sample = r.U32();
+    j.u = r.F64(), j.weight = r.F64(), j.bridge = r.F64(), j.section = r.F64();
+  }
+  return a;
+}
+
+}  // namespace
+
+std::uint32_t Crc32(std::span<const std::uint8_t> data) {
+  static const std::array<std::uint32_t, 256> table = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (std::uint32_t i = 0; i < 256; ++i) {
+      std::uint32_t c = i;
+      for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+      t[i] = c;
+    }
+    return t;
+  }();
+  std::uint32_t crc = 0xFFFFFFFFu;
+  for (std::uint8_t byte : data) crc = table[(crc ^ byte) & 0xFFu] ^ (crc >> 8);
+  return crc ^ 0xFFFFFFFFu;
+}
+
+std::vector<std::uint8_t> SerializeRigAsset(const RigAsset& asset) {
+  bytes::Writer payload;
+  const RigModel& model = asset.model;
+  payload.Count(model.parts.size());
+  for (const PartModel& part : model.parts) WritePart(payload, part);
+  payload.Count(model.vertices.size());
+  for (const VertexAttachment& a : model.vertices) WriteVertex(payload, a);
+  payload.Count(model.triangles.size());
+  for (const Triangle& t : model.triangles) payload.U32(t[0]), payload.U32(t[1]), payload.U32(t[2]);
+  payload.Count(asset.vertex_order.size());
+  for (std::uint32_t v : asset.vertex_order) payload.U32(v);
+
+  bytes::Writer out;
+  for (std::uint8_t c : kMagic) out.U8(c);
+  out.U32(kRigAssetVersion);
+  out.U64(payload.bytes().size());
+  out.U32(Crc32(payload.bytes()));
+  out.bytes().insert(out.bytes().end(), payload.bytes().begin(), payload.bytes().end());
+  return std::move(out.bytes());
+}
+
+Status ParseRigAsset(std::span<const std::uint8_t> bytes, RigAsset* out) {
+  if (out == nullptr) return Status::Invalid("out", "is required");
+  if (bytes.size() < kRigAssetHeaderSize ||
+      std::memcmp(bytes.data(), kMagic.data(), kMagic.size()) != 0)
+    return Status::Invalid("header", "is not a wirerig rig asset (.wrig): wrong magic");
+  bytes::Reader header(bytes.subspan(4, kRigAssetHeaderSize - 4));
+  const std::uint32_t version = header.U32();
+  const std::uint64_t size = header.U64();
+  const std::uint32_t checksum = header.U32();
+  if (version != kRigAssetVersion)
+    return Status::Invalid("version", "is not one this runtime reads (it reads version 1)");
+  if (size != bytes.size() - kRigAssetHeaderSize)
+    return Status::Invalid("size", "does not match the file: truncated or padded");
+  const std::span<const std::uint8_t> payload = bytes.subspan(kRigAssetHeaderSize);
+  if (Crc32(payload) != checksum)
+    return Status::Invalid("checksum", "does not match the contents: the file is corrupt");
+
+  bytes::Reader r(payload);
+  RigAsset asset;
+  RigModel& model = asset.model;
+  model.parts.resize(r.Count(kPartBytes));
+  for (PartModel& part : model.parts) part = ReadPart(r);
+  model.vertices.resize(r.Count(kVertexBytes));
+  for (VertexAttachment& a : model.vertices) a = ReadVertex(r);
+  model.triangles.resize(r.Count(kTriangleBytes));
+  for (Triangle& t : model.triangles) t = {r.U32(), r.U32(), r.U32()};
+  asset.vertex_order.resize(r.Count(kIndexBytes));
+  for (std::uint32_t& v : asset.vertex_order) v = r.U32();
+  if (!r.ok()) return Status::Invalid("payload", "ends before its contents do");
+  if (r.left() != 0) return Status::Invalid("payload", "has bytes after its contents");
+  if (Status s = ValidateRigModel(model); !s) return s;
+  for (std::uint32_t v : asset.vertex_order)
+    if (v >= model.vertices.size())
+      return Status::Invalid("vertex_order", "names a vertex the model does not have");
+  *out = std::move(asset);
+  return Status::Ok();
+}
+
+}  // namespace wirerig
