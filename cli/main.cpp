@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bake_command.h"
+#include "build_command.h"
 #include "rig_command.h"
 #ifdef WIRERIG_HAS_VIEWER
 #include "demo_command.h"
@@ -29,6 +30,9 @@ int main(int argc, char** argv) {
   wirerig::cli::BakeCommandOptions bake_options;
   CLI::App* bake = wirerig::cli::AddBakeCommand(app, bake_options);
 
+  wirerig::cli::BuildCommandOptions build_options;
+  CLI::App* build = wirerig::cli::AddBuildCommand(app, build_options);
+
 #ifdef WIRERIG_HAS_VIEWER
   wirerig::cli::RenderCommandOptions render_options;
   CLI::App* render = wirerig::cli::AddRenderCommand(app, render_options);
@@ -45,6 +49,7 @@ int main(int argc, char** argv) {
   if (wire->parsed())
     return wirerig::cli::RunWireCommand(wire_options, std::cin, std::cout, std::cerr);
   if (rig->parsed()) return wirerig::cli::RunRigCommand(rig_options, std::cout, std::cerr);
+  if (build->parsed()) return wirerig::cli::RunBuildCommand(build_options, std::cout, std::cerr);
   if (bake->parsed()) {
     bake_options.progress = isatty(STDERR_FILENO) != 0;
     return wirerig::cli::RunBakeCommand(bake_options, std::cout, std::cerr);

@@ -1,0 +1,23 @@
+// `wirerig build SCENE -o OUT.wrig`: builds a scene's rig (mesh import, profiles, binding) once
+// and writes it as a runtime asset (runtime/rig_asset.h) that an engine loads with the runtime
+// alone, with the source asset's vertex order so it can evaluate straight into its own vertex
+// buffer. On failure a message naming the file and field, exit 1, and no output file.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+
+#include <CLI/App.hpp>
+
+namespace wirerig::cli {
+
+struct BuildCommandOptions {
+  std::string scene;
+  std::string output;
+};
+
+CLI::App* AddBuildCommand(CLI::App& app, BuildCommandOptions& options);
+
+int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace wirerig::cli
