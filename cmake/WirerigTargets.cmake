@@ -15,9 +15,14 @@ endfunction()
 
 # wirerig_add_library(<name> <sources>...): the library wirerig_<name> with its alias
 # wirerig::<name>, its public include/ folder, per-target options, and install rules into the
-# exported package.
+# exported package: the runtime and the C API into wirerigRuntimeTargets (what an engine needs:
+# Eigen only), everything else into wirerigTargets.
 function(wirerig_add_library name)
   set(target wirerig_${name})
+  set(export_set wirerigTargets)
+  if(name STREQUAL "runtime" OR name STREQUAL "capi")
+    set(export_set wirerigRuntimeTargets)
+  endif()
   add_library(${target} ${ARGN})
   add_library(wirerig::${name} ALIAS ${target})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${name})
@@ -26,7 +31,7 @@ function(wirerig_add_library name)
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_compile_features(${target} PUBLIC cxx_std_20)
   wirerig_target_options(${target})
-  install(TARGETS ${target} EXPORT wirerigTargets
+  install(TARGETS ${target} EXPORT ${export_set}
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
   install(DIRECTORY include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

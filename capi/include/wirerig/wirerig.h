@@ -1,0 +1,92 @@
+/* wirerig.h: the C API of the wirerig runtime, for engines and language bindings (C#, Rust,
+ * Python, Lua, ...). It loads a built rig asset (.wrig, made by `wirerig build`), poses its
+ * joints, sets spine loads and evaluates the deformed mesh into the caller's float vertex
+ * buffers. It links only the runtime (Eigen inside; no Assimp, CGAL, JSON or glTF).
+ *
+ * Conventions: SI units (metres, newtons), glTF axes (right-handed, +Y up), angles of joints in
+ * degrees about the joint's own axes (X the hinge or first bend, Y the second bend, Z the twist
+ * along the bone; clamped to the joint's type and limits), quaternions as (x, y, z, w).
+ *
+ * Errors: every function that can fail returns a wr_status; WR_OK is 0. On failure the output
+ * arguments are untouched and wr_last_error() returns a message for the calling thread naming the
+ * argument or the asset's field at fault. No C++ exception crosses this API.
+ *
+ * Threads: a wr_rig is immutable once loaded and may be shared by any number of threads; each
+ * thread evaluates through its own wr_context. wr_context_evaluate allocates nothing.
+ */
+#ifndef WIRERIG_WIRERIG_H_
+#define WIRERIG_WIRERIG_H_
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum wr_status {
+  WR_OK = 0,
+  WR_INVALID_ARGUMENT = 1, /* a null pointer, an index out of range, a non-finite number */
+  WR_BAD_ASSET = 2,        /* the bytes are not a valid rig asset (wrong magic, corrupt, ...) */
+  WR_IO_ERROR = 3,         /* the file cannot be read */
+  WR_OUT_OF_MEMORY = 4
+} wr_status;
+
+/* The vertex order of evaluated buffers: the source asset's (as the engine imported the mesh,
+ * with vertices split at seams), or the rig's welded one (one vertex per position). */
+typedef enum wr_vertex_order { WR_ORDER_SOURCE = 0, WR_ORDER_WELDED = 1 } wr_vertex_order;
+
+typedef struct wr_rig wr_rig;
+typedef struct wr_context wr_context;
+
+/* The message of the calling thread's last failure ("" if none). Valid until its next call. */
+const char* wr_last_error(void);
+
+/* Loads a rig asset from memory (the bytes are copied as needed) or from a file. */
+wr_status wr_rig_load_memory(const void* bytes, size_t size, wr_rig** out);
+wr_status wr_rig_load_file(const char* path, wr_rig** out);
+void wr_rig_free(wr_rig* rig); /* null is allowed */
+
+uint32_t wr_rig_part_count(const wr_rig* rig);
+/* The part's name, or null when part is out of range. Owned by the rig. */
+const char* wr_rig_part_name(const wr_rig* rig, uint32_t part);
+/* The part's index, or -1 when no part has this name. */
+int32_t wr_rig_find_part(const wr_rig* rig, const char* name);
+/* The part's parent, or -1 for a root or an index out of range. */
+int32_t wr_rig_part_parent(const wr_rig* rig, uint32_t part);
+/* Output vertices in an order (0 when the order is unknown). */
+uint32_t wr_rig_vertex_count(const wr_rig* rig, wr_vertex_order order);
+uint32_t wr_rig_triangle_count(const wr_rig* rig);
+/* Writes 3 x wr_rig_triangle_count indices into WR_ORDER_WELDED vertices. */
+wr_status wr_rig_welded_triangles(const wr_rig* rig, uint32_t* indices, size_t capacity);
+
+/* A per-thread evaluation context: every part at rest, no loads. */
+wr_status wr_context_create(const wr_rig* rig, wr_context** out);
+void wr_context_free(wr_context* context); /* null is allowed */
+/* Every part back to rest, every load removed. */
+void wr_context_reset(wr_context* context);
+/* A part's joint angles in degrees (clamped to the joint's type and limits); refused on a root. */
+wr_status wr_context_set_joint_angles(wr_context* context, uint32_t part, float x_degrees,
+                                      float y_degrees, float z_degrees);
+/* A part's rigid pose: rotation (x, y, z, w; normalised here) about its spine's root point,
+ * then translation in metres, world axes. Joint angles set later compose after it. */
+wr_status wr_context_set_part_transform(wr_context* context, uint32_t part,
+                                        const float rotation_xyzw[4], const float translation[3]);
+/* Bending point loads on a part's spine (deformable parts): `count` loads at spine parameters
+ * at[i] in [0, 1] with forces forces[3 i .. 3 i + 2] in newtons, in the spine's local axes (x
+ * along the rest normal, y along the rest binormal). Replaces the part's previous loads; count
+ * 0 removes them. Allocates (call it when loads change, not per vertex). */
+wr_status wr_context_set_point_loads(wr_context* context, uint32_t part, const float* at,
+                                     const float* forces, uint32_t count);
+/* Evaluates the pose into float buffers: vertex i's position at positions[i * position_stride
+ * .. + 2] and its unit normal likewise (normals may be null). Strides in floats, at least 3.
+ * `capacity` counts floats in each buffer. Writes nothing on failure. */
+wr_status wr_context_evaluate(wr_context* context, wr_vertex_order order, float* positions,
+                              size_t position_stride, float* normals, size_t normal_stride,
+                              size_t capacity);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* WIRERIG_WIRERIG_H_ */
