@@ -13,8 +13,10 @@
 #include "wirerig/runtime/axial_job.h"
 #include "wirerig/runtime/bending_job.h"
 #include "wirerig/runtime/curve.h"
+#include "wirerig/runtime/rig_asset.h"
 #include "wirerig/runtime/rig_evaluation.h"
 #include "wirerig/runtime/rigid_body.h"
+#include "wirerig/wirerig.h"
 
 #include "support/counting_allocator.h"
 #include "support/two_segment_limb.h"
@@ -185,6 +187,36 @@ TEST(NoAllocation, JointedRigIntoFloatBuffers) {
   const long after = g_allocations;
   ASSERT_TRUE(status.ok()) << ToString(status);
   EXPECT_EQ(after, before);
+}
+
+// An engine's frame through the C API: a context from a loaded .wrig, a joint bent and a spine
+// load set beforehand; evaluating into an interleaved buffer in the source order allocates
+// nothing.
+TEST(NoAllocation, CApiEvaluation) {
+  const Mesh mesh = MakeCapsule(0.08, 1.0, 32, 48, 4);
+  const Result<BuiltRig> rig = BuildRig(mesh, testing::TwoSegmentLimb(), "capsule");
+  ASSERT_TRUE(rig.ok()) << rig.error();
+  Result<BuiltRigModel> model = BuildRigModel(mesh, rig.value().rig);
+  ASSERT_TRUE(model.ok()) << model.error();
+  RigAsset asset{std::move(model).value().model, mesh.weld_map};
+  const std::vector<std::uint8_t> bytes = SerializeRigAsset(asset);
+  wr_rig* loaded = nullptr;
+  ASSERT_EQ(wr_rig_load_memory(bytes.data(), bytes.size(), &loaded), WR_OK) << wr_last_error();
+  wr_context* context = nullptr;
+  ASSERT_EQ(wr_context_create(loaded, &context), WR_OK) << wr_last_error();
+  ASSERT_EQ(wr_context_set_joint_angles(context, 1, 70.0f, 10.0f, 0.0f), WR_OK);
+  const float at[1] = {0.6f}, force[3] = {20.0f, 0.0f, 0.0f};
+  ASSERT_EQ(wr_context_set_point_loads(context, 0, at, force, 1), WR_OK);
+  const std::size_t outputs = wr_rig_vertex_count(loaded, WR_ORDER_SOURCE);
+  std::vector<float> buffer(6 * outputs);
+  const long before = g_allocations;
+  const wr_status status = wr_context_evaluate(context, WR_ORDER_SOURCE, buffer.data(), 6,
+                                               buffer.data() + 3, 6, buffer.size());
+  const long after = g_allocations;
+  ASSERT_EQ(status, WR_OK) << wr_last_error();
+  EXPECT_EQ(after, before);
+  wr_context_free(context);
+  wr_rig_free(loaded);
 }
 
 TEST(NoAllocation, RigidBodyStepsWithBothIntegrators) {

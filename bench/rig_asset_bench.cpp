@@ -1,0 +1,76 @@
+// Loading the human's built rig asset (.wrig): parsing and validating its bytes (what an engine
+// pays at load; target under 5 ms), and making a per-thread evaluation context from it.
+//   build/bench/wirerig_rig_asset_bench --benchmark_repetitions=9
+//   --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "wirerig/rig/mesh_import.h"
+#include "wirerig/rig/rig_builder.h"
+#include "wirerig/rig/rig_description.h"
+#include "wirerig/rig/rig_model_builder.h"
+#include "wirerig/runtime/rig_asset.h"
+#include "wirerig/runtime/rig_evaluation.h"
+
+namespace {
+using namespace wirerig;
+
+template <class T>
+T Check(Result<T> result, const char* what) {
+  if (!result) {
+    std::fprintf(stderr, "%s: %s\n", what, result.error().c_str());
+    std::exit(1);
+  }
+  return std::move(result).value();
+}
+
+const std::vector<std::uint8_t>& HumanBytes() {
+  static const std::vector<std::uint8_t> bytes = [] {
+    const RigDescription description =
+        Check(LoadRigDescription(std::string(WIRERIG_SAMPLES_DIR) + "/rigs/human.description.json"),
+              "human.description.json");
+    const Mesh mesh =
+        Check(ImportMesh(description.mesh.string(), description.import), "human.zae").mesh;
+    const Rig rig = Check(BuildRig(mesh, description, "human.zae"), "rig").rig;
+    RigAsset asset;
+    asset.model = Check(BuildRigModel(mesh, rig), "model").model;
+    asset.vertex_order = mesh.weld_map;
+    return SerializeRigAsset(asset);
+  }();
+  return bytes;
+}
+
+void BM_ParseHumanRigAsset(benchmark::State& state) {
+  const std::vector<std::uint8_t>& bytes = HumanBytes();
+  for (auto _ : state) {
+    RigAsset asset;
+    if (!ParseRigAsset(bytes, &asset)) state.SkipWithError("parse failed");
+    benchmark::DoNotOptimize(asset.model.vertices.data());
+  }
+  state.counters["bytes"] = double(bytes.size());
+  state.SetBytesProcessed(std::int64_t(state.iterations()) * std::int64_t(bytes.size()));
+}
+BENCHMARK(BM_ParseHumanRigAsset)->Unit(benchmark::kMillisecond);
+
+void BM_Crc32HumanRigAsset(benchmark::State& state) {
+  const std::vector<std::uint8_t>& bytes = HumanBytes();
+  for (auto _ : state) benchmark::DoNotOptimize(Crc32(bytes));
+  state.SetBytesProcessed(std::int64_t(state.iterations()) * std::int64_t(bytes.size()));
+}
+BENCHMARK(BM_Crc32HumanRigAsset)->Unit(benchmark::kMillisecond);
+
+void BM_MakeHumanContext(benchmark::State& state) {
+  RigAsset asset;
+  if (!ParseRigAsset(HumanBytes(), &asset)) state.SkipWithError("parse failed");
+  for (auto _ : state) {
+    RigWorkspace workspace = MakeRigWorkspace(asset.model);
+    benchmark::DoNotOptimize(workspace.spine_points.data());
+  }
+}
+BENCHMARK(BM_MakeHumanContext)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
