@@ -29,7 +29,8 @@ class Writer {
   void Count(std::size_t n) { U32(std::uint32_t(n)); }
   void String(const std::string& s) {
     Count(s.size());
-    out_.insert(out_.end(), s.begin(), s.end());
+    for (char c : s)
+      U8(static_cast<std::uint8_t>(c));  // (insert trips GCC 12's -Wstringop-overflow)
   }
   std::vector<std::uint8_t>& bytes() { return out_; }
 

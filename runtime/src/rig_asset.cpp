@@ -3,12 +3,13 @@
 #include <array>
 #include <cstring>
 
+#include "asset_envelope.h"
 #include "byte_codec.h"
 
 namespace wirerig {
 namespace {
 
-constexpr std::array<std::uint8_t, 4> kMagic = {'W', 'R', 'I', 'G'};
+constexpr AssetMagic kMagic = {'W', 'R', 'I', 'G'};
 
 // The smallest encoding of one element of each array, for bounding counts before allocating.
 constexpr std::size_t kVec3Bytes = 24, kFrameBytes = 72, kTriangleBytes = 12, kIndexBytes = 4;
@@ -160,32 +161,16 @@ std::vector<std::uint8_t> SerializeRigAsset(const RigAsset& asset) {
   payload.Count(asset.vertex_order.size());
   for (std::uint32_t v : asset.vertex_order) payload.U32(v);
 
-  bytes::Writer out;
-  for (std::uint8_t c : kMagic) out.U8(c);
-  out.U32(kRigAssetVersion);
-  out.U64(payload.bytes().size());
-  out.U32(Crc32(payload.bytes()));
-  out.bytes().insert(out.bytes().end(), payload.bytes().begin(), payload.bytes().end());
-  return std::move(out.bytes());
+  return Envelope(kMagic, kRigAssetVersion, payload.bytes());
 }
 
 Status ParseRigAsset(std::span<const std::uint8_t> bytes, RigAsset* out) {
   if (out == nullptr) return Status::Invalid("out", "is required");
-  if (bytes.size() < kRigAssetHeaderSize ||
-      std::memcmp(bytes.data(), kMagic.data(), kMagic.size()) != 0)
-    return Status::Invalid("header", "is not a wirerig rig asset (.wrig): wrong magic");
-  bytes::Reader header(bytes.subspan(4, kRigAssetHeaderSize - 4));
-  const std::uint32_t version = header.U32();
-  const std::uint64_t size = header.U64();
-  const std::uint32_t checksum = header.U32();
-  if (version != kRigAssetVersion)
-    return Status::Invalid("version", "is not one this runtime reads (it reads version 1)");
-  if (size != bytes.size() - kRigAssetHeaderSize)
-    return Status::Invalid("size", "does not match the file: truncated or padded");
-  const std::span<const std::uint8_t> payload = bytes.subspan(kRigAssetHeaderSize);
-  if (Crc32(payload) != checksum)
-    return Status::Invalid("checksum", "does not match the contents: the file is corrupt");
-
+  std::span<const std::uint8_t> payload;
+  if (Status s = OpenEnvelope(bytes, kMagic, kRigAssetVersion,
+                              "is not a wirerig rig asset (.wrig): wrong magic", &payload);
+      !s)
+    return s;
   bytes::Reader r(payload);
   RigAsset asset;
   RigModel& model = asset.model;

@@ -1,0 +1,81 @@
+#include "wirerig/anim/clip_asset_export.h"
+
+#include <cmath>
+
+namespace wirerig {
+namespace {
+
+template <class Load>
+LoadRange Append(std::span<const Load> loads, std::vector<Load>* all) {
+  const LoadRange range{std::uint32_t(all->size()), std::uint32_t(loads.size())};
+  all->insert(all->end(), loads.begin(), loads.end());
+  return range;
+}
+
+ClipLoop LoopOf(LoopMode mode) {
+  switch (mode) {
+    case LoopMode::kLoop:
+      return ClipLoop::kLoop;
+    case LoopMode::kPingPong:
+      return ClipLoop::kPingPong;
+    case LoopMode::kOnce:
+      break;
+  }
+  return ClipLoop::kOnce;
+}
+
+}  // namespace
+
+Result<SampledClip> SampleClipForRuntime(const RigModel& model, const Clip& clip,
+                                         const PlaybackOptions& playback, double fps) {
+  if (!(std::isfinite(fps) && fps > 0.0 && fps <= 1000.0))
+    return Error{"fps: must lie in (0, 1000]"};
+  if (!(clip.duration > 0.0)) return Error{"clip \"" + clip.name + "\": has no duration to sample"};
+  Result<Playback> made = Playback::Make(model, clip, playback);
+  if (!made) return Error{made.error()};
+  Playback& player = made.value();
+  SampledClip out;
+  out.name = clip.name;
+  out.duration = clip.duration;
+  out.frame_rate = fps;
+  out.loop = LoopOf(clip.loop);
+  out.part_count = std::uint32_t(model.parts.size());
+  const auto frames = std::size_t(std::ceil(clip.duration * fps - 1e-9)) + 1;
+  std::vector<Vec3> positions(model.vertices.size());
+  for (std::size_t k = 0; k < frames; ++k) {
+    // Clip-local time: a loop's last frame is its end, not its wrap back to the start.
+    const double t = std::min(double(k) / fps, clip.duration);
+    if (Status s = player.Evaluate(t, positions, {}); !s)
+      return Error{"clip \"" + clip.name + "\" at " + std::to_string(t) + " s: " + ToString(s)};
+    for (const PartPose& pose : player.sample().poses) {
+      PartKey key;
+      key.rotation = pose.rotation;
+      key.translation = pose.translation;
+      const SpineLoads& loads = pose.loads;
+      key.boundary = loads.boundary;
+      key.tip_force = loads.tip_force;
+      key.start_displacement = loads.start_displacement;
+      key.end_displacement = loads.end_displacement;
+      key.axial_fixed_at = loads.axial_fixed_at;
+      key.point_loads = Append(loads.bending_point_loads, &out.point_loads);
+      key.line_loads = Append(loads.bending_line_loads, &out.line_loads);
+      key.axial_point_loads = Append(loads.axial_point_loads, &out.axial_point_loads);
+      key.axial_line_loads = Append(loads.axial_line_loads, &out.axial_line_loads);
+      out.parts.push_back(key);
+    }
+    const std::span<const ProfileLoads> profiles = player.sample().profile_loads;
+    out.profile_keys_of_frame.push_back(
+        {std::uint32_t(out.profile_keys.size()), std::uint32_t(profiles.size())});
+    for (const ProfileLoads& p : profiles) {
+      ProfileKey key{p.part, p.profile, p.from, p.to, p.boundary, {}, {}};
+      key.point_loads = Append(p.point_loads, &out.point_loads);
+      key.line_loads = Append(p.line_loads, &out.line_loads);
+      out.profile_keys.push_back(key);
+    }
+  }
+  if (Status s = ValidateSampledClip(out, &model); !s)
+    return Error{"clip \"" + clip.name + "\": " + ToString(s)};
+  return out;
+}
+
+}  // namespace wirerig

@@ -1,0 +1,113 @@
+// A clip sampled for the runtime (.wclip): every part's pose and spine loads and the profile
+// loads at a fixed frame rate, as the offline playback produced them (keyed forces, joint
+// angles, articulated dynamics and rigid bodies already resolved), so an engine plays a wirerig
+// clip with the runtime alone. SampleClipJob turns a time into EvaluateRigJob's inputs.
+//
+// File layout: as a .wrig (rig_asset.h: magic, version, payload size, CRC-32 of the payload)
+// with the magic "WCLP"; the payload is the clip's fields in declaration order, each array
+// preceded by its u32 element count (clip_asset.cpp).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "wirerig/runtime/rig_evaluation.h"
+#include "wirerig/runtime/status.h"
+
+namespace wirerig {
+
+inline constexpr std::uint32_t kClipAssetVersion = 1;
+
+enum class ClipLoop : int { kOnce = 0, kLoop = 1, kPingPong = 2 };
+
+// [first, first + count) of one of SampledClip's load arrays.
+struct LoadRange {
+  std::uint32_t first = 0;
+  std::uint32_t count = 0;
+};
+
+// One part at one frame: PartPose with its loads as ranges into the clip's arrays.
+struct PartKey {
+  Quat rotation = Quat::Identity();
+  Vec3 translation = Vec3::Zero();
+  BoundaryCondition boundary = BoundaryCondition::kCantileverFree;
+  Vec3 tip_force = Vec3::Zero();
+  Vec3 start_displacement = Vec3::Zero();
+  Vec3 end_displacement = Vec3::Zero();
+  double axial_fixed_at = 0.0;
+  LoadRange point_loads, line_loads, axial_point_loads, axial_line_loads;
+};
+
+// One profile's loads at one frame (ProfileLoads with ranges).
+struct ProfileKey {
+  std::uint32_t part = 0;
+  std::uint32_t profile = 0;
+  double from = 0.0;
+  double to = 1.0;
+  BoundaryCondition boundary = BoundaryCondition::kClamped;
+  LoadRange point_loads, line_loads;
+};
+
+struct SampledClip {
+  std::string name;
+  double duration = 0.0;    // s, > 0
+  double frame_rate = 0.0;  // frames per second, > 0; frame k is at k / frame_rate
+  ClipLoop loop = ClipLoop::kOnce;
+  std::uint32_t part_count = 0;  // the rig's parts
+  std::vector<PartKey> parts;    // frame-major: frame k's part p at k * part_count + p
+  std::vector<LoadRange> profile_keys_of_frame;  // per frame: its range of profile_keys
+  std::vector<ProfileKey> profile_keys;
+  std::vector<PointLoad> point_loads;  // what the ranges point into
+  std::vector<LineLoad> line_loads;
+  std::vector<AxialPointLoad> axial_point_loads;
+  std::vector<AxialLineLoad> axial_line_loads;
+
+  std::size_t frame_count() const { return profile_keys_of_frame.size(); }
+};
+
+// Whether a clip is safe to play on a model with `part_count` parts whose profiles `model`
+// names (model may be null: profile indices are then not checked): positive duration and frame
+// rate, one key per part per frame, ranges inside their arrays, finite unit rotations, loads
+// with v in [0, 1], finite numbers.
+Status ValidateSampledClip(const SampledClip& clip, const RigModel* model = nullptr);
+
+std::vector<std::uint8_t> SerializeClipAsset(const SampledClip& clip);
+// Parses and validates (without a model) bytes made by SerializeClipAsset; on failure *out is
+// unchanged. Refusals name the field as ParseRigAsset's do.
+Status ParseClipAsset(std::span<const std::uint8_t> bytes, SampledClip* out);
+
+// What SampleClipJob writes: the poses and profile loads for EvaluateRigJob, with the loads
+// they point into. Made once per clip and thread (MakeClipPlaybackBuffers); reused every frame.
+struct ClipPlaybackBuffers {
+  std::vector<PartPose> poses;  // one per part
+  std::vector<ProfileLoads> profile_loads;
+  std::size_t profile_load_count = 0;  // how many of profile_loads this frame uses
+  std::vector<PointLoad> point_loads;
+  std::vector<LineLoad> line_loads;
+  std::vector<AxialPointLoad> axial_point_loads;
+  std::vector<AxialLineLoad> axial_line_loads;
+  std::span<const ProfileLoads> used_profile_loads() const {
+    return {profile_loads.data(), profile_load_count};
+  }
+};
+ClipPlaybackBuffers MakeClipPlaybackBuffers(const SampledClip& clip);
+
+// The clip's inputs at playback time `time` (s; mapped by the loop mode like anim's clips):
+// rotations slerped and translations, displacements and tip forces interpolated linearly between
+// the two frames around the time; loads interpolated too where both frames have the same loads
+// (same counts and boundaries), else taken from the nearer frame. Allocates nothing.
+struct SampleClipJob {
+  const SampledClip* clip = nullptr;
+  double time = 0.0;
+  ClipPlaybackBuffers* buffers = nullptr;  // made for this clip
+
+  Status Validate() const;
+  Status Run() const;
+};
+
+// The clip-local time of playback time t by the loop mode (0 for t <= 0 or not finite).
+double ClipLocalTime(ClipLoop loop, double duration, double t);
+
+}  // namespace wirerig

@@ -1,0 +1,332 @@
+#include "wirerig/runtime/clip_asset.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "asset_envelope.h"
+#include "byte_codec.h"
+
+namespace wirerig {
+namespace {
+
+constexpr AssetMagic kMagic = {'W', 'C', 'L', 'P'};
+constexpr std::size_t kPartKeyBytes = 32 + 24 + 1 + 72 + 8 + 32, kProfileKeyBytes = 41;
+
+void Write(bytes::Writer& w, const LoadRange& r) { w.U32(r.first), w.U32(r.count); }
+LoadRange ReadRange(bytes::Reader& r) {
+  const std::uint32_t first = r.U32(), count = r.U32();
+  return {first, count};
+}
+
+void Write(bytes::Writer& w, const PartKey& k) {
+  w.F64(k.rotation.x()), w.F64(k.rotation.y()), w.F64(k.rotation.z()), w.F64(k.rotation.w());
+  w.V3(k.translation);
+  w.U8(std::uint8_t(k.boundary));
+  w.V3(k.tip_force), w.V3(k.start_displacement), w.V3(k.end_displacement);
+  w.F64(k.axial_fixed_at);
+  Write(w, k.point_loads), Write(w, k.line_loads);
+  Write(w, k.axial_point_loads), Write(w, k.axial_line_loads);
+}
+
+PartKey ReadPartKey(bytes::Reader& r) {
+  PartKey k;
+  const double x = r.F64(), y = r.F64(), z = r.F64(), w = r.F64();
+  k.rotation = Quat(w, x, y, z);
+  k.translation = r.V3();
+  k.boundary = BoundaryCondition(r.U8());
+  k.tip_force = r.V3(), k.start_displacement = r.V3(), k.end_displacement = r.V3();
+  k.axial_fixed_at = r.F64();
+  k.point_loads = ReadRange(r), k.line_loads = ReadRange(r);
+  k.axial_point_loads = ReadRange(r), k.axial_line_loads = ReadRange(r);
+  return k;
+}
+
+bool Finite(double x) { return std::isfinite(x) && std::abs(x) <= 1e12; }
+bool Finite(const Vec3& v) { return Finite(v.x()) && Finite(v.y()) && Finite(v.z()); }
+bool OnWire(double v) { return v >= 0.0 && v <= 1.0; }
+bool Boundary(BoundaryCondition b) {
+  return int(b) >= int(BoundaryCondition::kSimplySupported) &&
+         int(b) <= int(BoundaryCondition::kCantileverGuided);
+}
+bool Inside(const LoadRange& r, std::size_t size) {
+  return r.first <= size && r.count <= size - r.first;
+}
+
+Status ValidateLoads(const SampledClip& c) {
+  for (const PointLoad& l : c.point_loads)
+    if (!OnWire(l.at) || !Finite(l.force))
+      return Status::Invalid("point_loads", "need at in [0, 1] and a finite force");
+  for (const LineLoad& l : c.line_loads)
+    if (!OnWire(l.from) || !OnWire(l.to) || !(l.from < l.to) || !Finite(l.force_per_length))
+      return Status::Invalid("line_loads", "need 0 <= from < to <= 1 and a finite force");
+  for (const AxialPointLoad& l : c.axial_point_loads)
+    if (!OnWire(l.at) || !Finite(l.force))
+      return Status::Invalid("axial_point_loads", "need at in [0, 1] and a finite force");
+  for (const AxialLineLoad& l : c.axial_line_loads)
+    if (!OnWire(l.from) || !OnWire(l.to) || !(l.from < l.to) || !Finite(l.force_per_length))
+      return Status::Invalid("axial_line_loads", "need 0 <= from < to <= 1 and a finite force");
+  return Status::Ok();
+}
+
+// The largest count of a range over the part keys (per part) and profile keys, for buffers.
+template <class Key, class Member>
+std::uint32_t MostOf(const std::vector<Key>& keys, Member member) {
+  std::uint32_t most = 0;
+  for (const Key& k : keys) most = std::max(most, (k.*member).count);
+  return most;
+}
+
+// Loads of frames a and b at fraction f: interpolated element-wise when the two frames carry
+// the same number of loads, else the nearer frame's. Writes `out` from `first`.
+template <class Load, class Lerp>
+std::span<const Load> Blend(const std::vector<Load>& all, const LoadRange& a, const LoadRange& b,
+                            double f, bool same_shape, Lerp lerp, Load* out) {
+  if (same_shape && a.count == b.count) {
+    for (std::uint32_t i = 0; i < a.count; ++i)
+      out[i] = lerp(all[a.first + i], all[b.first + i], f);
+    return {out, a.count};
+  }
+  const LoadRange& near = f < 0.5 ? a : b;
+  std::copy_n(all.begin() + near.first, near.count, out);
+  return {out, near.count};
+}
+
+PointLoad Lerp(const PointLoad& a, const PointLoad& b, double f) {
+  return {a.at + f * (b.at - a.at), a.force + f * (b.force - a.force)};
+}
+LineLoad Lerp(const LineLoad& a, const LineLoad& b, double f) {
+  return {a.from + f * (b.from - a.from), a.to + f * (b.to - a.to),
+          a.force_per_length + f * (b.force_per_length - a.force_per_length)};
+}
+AxialPointLoad Lerp(const AxialPointLoad& a, const AxialPointLoad& b, double f) {
+  return {a.at + f * (b.at - a.at), a.force + f * (b.force - a.force)};
+}
+AxialLineLoad Lerp(const AxialLineLoad& a, const AxialLineLoad& b, double f) {
+  return {a.from + f * (b.from - a.from), a.to + f * (b.to - a.to),
+          a.force_per_length + f * (b.force_per_length - a.force_per_length)};
+}
+template <class Load>
+Load LerpOf(const Load& a, const Load& b, double f) {
+  return Lerp(a, b, f);
+}
+
+}  // namespace
+
+double ClipLocalTime(ClipLoop loop, double duration, double t) {
+  if (!std::isfinite(t) || t <= 0.0) return 0.0;
+  switch (loop) {
+    case ClipLoop::kOnce:
+      return std::min(t, duration);
+    case ClipLoop::kLoop:
+      return std::fmod(t, duration);
+    case ClipLoop::kPingPong: {
+      const double u = std::fmod(t, 2.0 * duration);
+      return u <= duration ? u : 2.0 * duration - u;
+    }
+  }
+  return 0.0;
+}
+
+Status ValidateSampledClip(const SampledClip& c, const RigModel* model) {
+  if (!(std::isfinite(c.duration) && c.duration > 0.0 && c.duration <= 1e6))
+    return Status::Invalid("duration", "must be positive and at most 1e6 s");
+  if (!(std::isfinite(c.frame_rate) && c.frame_rate > 0.0 && c.frame_rate <= 1e4))
+    return Status::Invalid("frame_rate", "must be positive and at most 1e4 per second");
+  if (int(c.loop) < 0 || int(c.loop) > 2)
+    return Status::Invalid("loop", "must be once, loop or ping_pong");
+  if (c.part_count == 0 || c.frame_count() == 0 || c.parts.size() != c.frame_count() * c.part_count)
+    return Status::Invalid("parts", "need one key per part per frame");
+  if (model != nullptr && model->parts.size() != c.part_count)
+    return Status::Invalid("part_count", "differs from the rig's");
+  for (std::size_t i = 0; i < c.parts.size(); ++i) {
+    const PartKey& k = c.parts[i];
+    const int index = int(i);
+    if (!(k.rotation.coeffs().array().abs() <= 1.5).all() ||
+        std::abs(k.rotation.squaredNorm() - 1.0) > 1e-6)
+      return Status::InvalidElement("parts", index, "rotation", "must be a unit quaternion");
+    if (!Finite(k.translation) || !Finite(k.tip_force) || !Finite(k.start_displacement) ||
+        !Finite(k.end_displacement) || !OnWire(k.axial_fixed_at) || !Boundary(k.boundary))
+      return Status::InvalidElement("parts", index, "", "must be finite, v in [0, 1]");
+    if (!Inside(k.point_loads, c.point_loads.size()) ||
+        !Inside(k.line_loads, c.line_loads.size()) ||
+        !Inside(k.axial_point_loads, c.axial_point_loads.size()) ||
+        !Inside(k.axial_line_loads, c.axial_line_loads.size()))
+      return Status::InvalidElement("parts", index, "loads", "range past the end of the loads");
+  }
+  for (const LoadRange& r : c.profile_keys_of_frame)
+    if (!Inside(r, c.profile_keys.size()))
+      return Status::Invalid("profile_keys_of_frame", "range past the end of profile_keys");
+  for (std::size_t i = 0; i < c.profile_keys.size(); ++i) {
+    const ProfileKey& k = c.profile_keys[i];
+    const int index = int(i);
+    if (k.part >= c.part_count || !OnWire(k.from) || !OnWire(k.to) || !(k.from < k.to) ||
+        !Boundary(k.boundary))
+      return Status::InvalidElement("profile_keys", index, "",
+                                    "need a part and 0 <= from < to <= 1");
+    if (model != nullptr && k.profile >= model->parts[k.part].profiles.size())
+      return Status::InvalidElement("profile_keys", index, "profile",
+                                    "names a profile the part lacks");
+    if (!Inside(k.point_loads, c.point_loads.size()) || !Inside(k.line_loads, c.line_loads.size()))
+      return Status::InvalidElement("profile_keys", index, "loads",
+                                    "range past the end of the loads");
+  }
+  return ValidateLoads(c);
+}
+
+std::vector<std::uint8_t> SerializeClipAsset(const SampledClip& c) {
+  bytes::Writer w;
+  w.String(c.name);
+  w.F64(c.duration), w.F64(c.frame_rate), w.U8(std::uint8_t(c.loop)), w.U32(c.part_count);
+  w.Count(c.parts.size());
+  for (const PartKey& k : c.parts) Write(w, k);
+  w.Count(c.profile_keys_of_frame.size());
+  for (const LoadRange& r : c.profile_keys_of_frame) Write(w, r);
+  w.Count(c.profile_keys.size());
+  for (const ProfileKey& k : c.profile_keys) {
+    w.U32(k.part), w.U32(k.profile), w.F64(k.from), w.F64(k.to), w.U8(std::uint8_t(k.boundary));
+    Write(w, k.point_loads), Write(w, k.line_loads);
+  }
+  w.Count(c.point_loads.size());
+  for (const PointLoad& l : c.point_loads) w.F64(l.at), w.V3(l.force);
+  w.Count(c.line_loads.size());
+  for (const LineLoad& l : c.line_loads) w.F64(l.from), w.F64(l.to), w.V3(l.force_per_length);
+  w.Count(c.axial_point_loads.size());
+  for (const AxialPointLoad& l : c.axial_point_loads) w.F64(l.at), w.F64(l.force);
+  w.Count(c.axial_line_loads.size());
+  for (const AxialLineLoad& l : c.axial_line_loads)
+    w.F64(l.from), w.F64(l.to), w.F64(l.force_per_length);
+  return Envelope(kMagic, kClipAssetVersion, w.bytes());
+}
+
+Status ParseClipAsset(std::span<const std::uint8_t> bytes, SampledClip* out) {
+  if (out == nullptr) return Status::Invalid("out", "is required");
+  std::span<const std::uint8_t> payload;
+  if (Status s = OpenEnvelope(bytes, kMagic, kClipAssetVersion,
+                              "is not a wirerig clip asset (.wclip): wrong magic", &payload);
+      !s)
+    return s;
+  bytes::Reader r(payload);
+  SampledClip c;
+  c.name = r.String();
+  c.duration = r.F64(), c.frame_rate = r.F64(), c.loop = ClipLoop(r.U8()), c.part_count = r.U32();
+  c.parts.resize(r.Count(kPartKeyBytes));
+  for (PartKey& k : c.parts) k = ReadPartKey(r);
+  c.profile_keys_of_frame.resize(r.Count(8));
+  for (LoadRange& range : c.profile_keys_of_frame) range = ReadRange(r);
+  c.profile_keys.resize(r.Count(kProfileKeyBytes));
+  for (ProfileKey& k : c.profile_keys) {
+    k.part = r.U32(), k.profile = r.U32(), k.from = r.F64(), k.to = r.F64();
+    k.boundary = BoundaryCondition(r.U8());
+    k.point_loads = ReadRange(r), k.line_loads = ReadRange(r);
+  }
+  c.point_loads.resize(r.Count(32));
+  for (PointLoad& l : c.point_loads) l.at = r.F64(), l.force = r.V3();
+  c.line_loads.resize(r.Count(40));
+  for (LineLoad& l : c.line_loads) l.from = r.F64(), l.to = r.F64(), l.force_per_length = r.V3();
+  c.axial_point_loads.resize(r.Count(16));
+  for (AxialPointLoad& l : c.axial_point_loads) l.at = r.F64(), l.force = r.F64();
+  c.axial_line_loads.resize(r.Count(24));
+  for (AxialLineLoad& l : c.axial_line_loads)
+    l.from = r.F64(), l.to = r.F64(), l.force_per_length = r.F64();
+  if (!r.ok()) return Status::Invalid("payload", "ends before its contents do");
+  if (r.left() != 0) return Status::Invalid("payload", "has bytes after its contents");
+  if (Status s = ValidateSampledClip(c); !s) return s;
+  *out = std::move(c);
+  return Status::Ok();
+}
+
+ClipPlaybackBuffers MakeClipPlaybackBuffers(const SampledClip& c) {
+  ClipPlaybackBuffers b;
+  b.poses.resize(c.part_count);
+  std::uint32_t profiles = 0;
+  for (const LoadRange& r : c.profile_keys_of_frame) profiles = std::max(profiles, r.count);
+  b.profile_loads.resize(profiles);
+  // Each part's and profile's loads get their own stretch of the buffers, as long as the most
+  // that part (or profile key) ever carries.
+  const std::size_t slots = c.part_count + profiles;
+  const std::size_t points = slots * std::max(MostOf(c.parts, &PartKey::point_loads),
+                                              MostOf(c.profile_keys, &ProfileKey::point_loads));
+  const std::size_t lines = slots * std::max(MostOf(c.parts, &PartKey::line_loads),
+                                             MostOf(c.profile_keys, &ProfileKey::line_loads));
+  b.point_loads.resize(points);
+  b.line_loads.resize(lines);
+  b.axial_point_loads.resize(c.part_count * MostOf(c.parts, &PartKey::axial_point_loads));
+  b.axial_line_loads.resize(c.part_count * MostOf(c.parts, &PartKey::axial_line_loads));
+  return b;
+}
+
+Status SampleClipJob::Validate() const {
+  if (clip == nullptr) return Status::Invalid("clip", "is required");
+  if (buffers == nullptr) return Status::Invalid("buffers", "are required");
+  if (buffers->poses.size() != clip->part_count)
+    return Status::Invalid("buffers", "were made for another clip");
+  if (!std::isfinite(time)) return Status::Invalid("time", "must be finite");
+  return Status::Ok();
+}
+
+Status SampleClipJob::Run() const {
+  if (Status s = Validate(); !s) return s;
+  const SampledClip& c = *clip;
+  ClipPlaybackBuffers& b = *buffers;
+  const std::size_t last = c.frame_count() - 1;
+  const double x =
+      std::clamp(ClipLocalTime(c.loop, c.duration, time) * c.frame_rate, 0.0, double(last));
+  const std::size_t f0 = std::min(std::size_t(x), last), f1 = std::min(f0 + 1, last);
+  const double f = x - double(f0);
+  const std::size_t parts = c.part_count;
+  const std::size_t point_stride = b.point_loads.size() / (parts + b.profile_loads.size());
+  const std::size_t line_stride = b.line_loads.size() / (parts + b.profile_loads.size());
+  const std::size_t axial_point_stride = b.axial_point_loads.size() / parts;
+  const std::size_t axial_line_stride = b.axial_line_loads.size() / parts;
+  for (std::size_t p = 0; p < parts; ++p) {
+    const PartKey& a = c.parts[f0 * parts + p];
+    const PartKey& e = c.parts[f1 * parts + p];
+    PartPose& pose = b.poses[p];
+    pose.rotation = a.rotation.slerp(f, e.rotation).normalized();
+    pose.translation = a.translation + f * (e.translation - a.translation);
+    SpineLoads& loads = pose.loads;
+    const bool same = a.boundary == e.boundary;
+    loads.boundary = (same || f < 0.5) ? a.boundary : e.boundary;
+    loads.tip_force = a.tip_force + f * (e.tip_force - a.tip_force);
+    loads.start_displacement =
+        a.start_displacement + f * (e.start_displacement - a.start_displacement);
+    loads.end_displacement = a.end_displacement + f * (e.end_displacement - a.end_displacement);
+    loads.axial_fixed_at = a.axial_fixed_at + f * (e.axial_fixed_at - a.axial_fixed_at);
+    loads.bending_point_loads = Blend(c.point_loads, a.point_loads, e.point_loads, f, same,
+                                      LerpOf<PointLoad>, b.point_loads.data() + p * point_stride);
+    loads.bending_line_loads = Blend(c.line_loads, a.line_loads, e.line_loads, f, same,
+                                     LerpOf<LineLoad>, b.line_loads.data() + p * line_stride);
+    loads.axial_point_loads =
+        Blend(c.axial_point_loads, a.axial_point_loads, e.axial_point_loads, f, same,
+              LerpOf<AxialPointLoad>, b.axial_point_loads.data() + p * axial_point_stride);
+    loads.axial_line_loads =
+        Blend(c.axial_line_loads, a.axial_line_loads, e.axial_line_loads, f, same,
+              LerpOf<AxialLineLoad>, b.axial_line_loads.data() + p * axial_line_stride);
+  }
+  // Profile loads: the two frames' keys pair up when they list the same profiles in the same
+  // order; otherwise the nearer frame's are taken.
+  const LoadRange ka = c.profile_keys_of_frame[f0], ke = c.profile_keys_of_frame[f1];
+  bool paired = ka.count == ke.count;
+  for (std::uint32_t i = 0; paired && i < ka.count; ++i) {
+    const ProfileKey &a = c.profile_keys[ka.first + i], &e = c.profile_keys[ke.first + i];
+    paired = a.part == e.part && a.profile == e.profile && a.boundary == e.boundary;
+  }
+  const LoadRange& own = (paired || f < 0.5) ? ka : ke;
+  const double g = paired ? f : 0.0;
+  b.profile_load_count = own.count;
+  for (std::uint32_t i = 0; i < own.count; ++i) {
+    const ProfileKey& a = c.profile_keys[own.first + i];
+    const ProfileKey& e = paired ? c.profile_keys[ke.first + i] : a;
+    ProfileLoads& out = b.profile_loads[i];
+    out.part = a.part, out.profile = a.profile, out.boundary = a.boundary;
+    out.from = a.from + g * (e.from - a.from), out.to = a.to + g * (e.to - a.to);
+    const std::size_t slot = parts + i;
+    out.point_loads = Blend(c.point_loads, a.point_loads, e.point_loads, g, true, LerpOf<PointLoad>,
+                            b.point_loads.data() + slot * point_stride);
+    out.line_loads = Blend(c.line_loads, a.line_loads, e.line_loads, g, true, LerpOf<LineLoad>,
+                           b.line_loads.data() + slot * line_stride);
+  }
+  return Status::Ok();
+}
+
+}  // namespace wirerig

@@ -1,0 +1,174 @@
+// The runtime clip asset (.wclip) made from offline playback: replayed with the runtime alone it
+// gives the playback's frames; between frames it interpolates; bad bytes are refused.
+#include "wirerig/anim/clip_asset_export.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+
+#include "wirerig/anim/scene.h"
+#include "wirerig/runtime/rig_asset.h"
+
+namespace wirerig {
+namespace {
+
+const BuiltScene& SceneNamed(const std::string& relative) {
+  static std::map<std::string, BuiltScene> scenes;
+  auto it = scenes.find(relative);
+  if (it == scenes.end()) {
+    Result<BuiltScene> built = LoadAndBuildScene(std::string(WIRERIG_SAMPLES_DIR) + "/" + relative);
+    EXPECT_TRUE(built.ok()) << built.error();
+    it = scenes.emplace(relative, std::move(built).value()).first;
+  }
+  return it->second;
+}
+
+// Positions through the runtime only: SampleClipJob, then EvaluateRigJob.
+std::vector<Vec3> Replay(const RigModel& model, const SampledClip& clip, double t) {
+  ClipPlaybackBuffers buffers = MakeClipPlaybackBuffers(clip);
+  SampleClipJob sample{&clip, t, &buffers};
+  const Status sampled = sample.Run();
+  EXPECT_TRUE(sampled.ok()) << ToString(sampled);
+  RigWorkspace workspace = MakeRigWorkspace(model);
+  std::vector<Vec3> positions(model.vertices.size());
+  EvaluateRigJob job;
+  job.model = &model;
+  job.poses = buffers.poses;
+  job.profile_loads = buffers.used_profile_loads();
+  job.workspace = &workspace;
+  job.positions = positions;
+  const Status run = job.Run();
+  EXPECT_TRUE(run.ok()) << ToString(run);
+  return positions;
+}
+
+double LargestGap(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double gap = 0.0;
+  for (std::size_t v = 0; v < a.size(); ++v) gap = std::max(gap, (a[v] - b[v]).norm());
+  return gap;
+}
+
+class ClipAssetReplay : public ::testing::TestWithParam<const char*> {};
+
+// Keyed forces with boundary switches (octopus), profile loads (human_sex), keyed poses through
+// articulated dynamics (walk): at the frame times the runtime replay matches the offline
+// playback to round-off; halfway between frames it stays within the motion of one frame.
+TEST_P(ClipAssetReplay, MatchesOfflinePlayback) {
+  const BuiltScene& scene = SceneNamed(GetParam());
+  const Clip& clip = scene.clips.front();
+  constexpr double kFps = 30.0;
+  Result<SampledClip> sampled =
+      SampleClipForRuntime(scene.model, clip, scene.description.playback, kFps);
+  ASSERT_TRUE(sampled.ok()) << sampled.error();
+  const SampledClip& asset = sampled.value();
+  EXPECT_EQ(asset.frame_count(), std::size_t(std::ceil(clip.duration * kFps - 1e-9)) + 1);
+
+  Result<Playback> playback = Playback::Make(scene.model, clip, scene.description.playback);
+  ASSERT_TRUE(playback.ok()) << playback.error();
+  std::vector<Vec3> offline(scene.model.vertices.size());
+  const std::size_t last = asset.frame_count() - 1;
+  double worst_on_frames = 0.0, worst_between = 0.0, worst_frame_motion = 0.0;
+  for (std::size_t k : {std::size_t(1), last / 3, last / 2, last - 1}) {
+    const double t = double(k) / kFps;
+    ASSERT_TRUE(playback.value().Evaluate(t, offline, {}).ok());
+    worst_on_frames = std::max(worst_on_frames, LargestGap(Replay(scene.model, asset, t), offline));
+    // Halfway to the next frame, against the playback there and the motion of that frame.
+    const std::vector<Vec3> next = Replay(scene.model, asset, t + 1.0 / kFps);
+    ASSERT_TRUE(playback.value().Evaluate(t + 0.5 / kFps, offline, {}).ok());
+    worst_between =
+        std::max(worst_between, LargestGap(Replay(scene.model, asset, t + 0.5 / kFps), offline));
+    worst_frame_motion =
+        std::max(worst_frame_motion, LargestGap(Replay(scene.model, asset, t), next));
+  }
+  RecordProperty("worst_between_frames_m", std::to_string(worst_between));
+  EXPECT_GT(worst_frame_motion, 1e-4) << "the sampled frames should move";
+  EXPECT_LT(worst_on_frames, 1e-9);
+  EXPECT_LE(worst_between, std::max(0.5 * worst_frame_motion, 1e-9));
+
+  // Through the file format: the same clip back, bit for bit.
+  const std::vector<std::uint8_t> bytes = SerializeClipAsset(asset);
+  SampledClip loaded;
+  const Status parsed = ParseClipAsset(bytes, &loaded);
+  ASSERT_TRUE(parsed.ok()) << ToString(parsed);
+  EXPECT_EQ(SerializeClipAsset(loaded), bytes);
+  EXPECT_TRUE(ValidateSampledClip(loaded, &scene.model).ok());
+}
+
+INSTANTIATE_TEST_SUITE_P(Samples, ClipAssetReplay,
+                         ::testing::Values("octopus/octopus.scene.json",
+                                           "human/human_sex.scene.json", "walk/walk.scene.json"));
+
+SampledClip OctopusClip() {
+  const BuiltScene& scene = SceneNamed("octopus/octopus.scene.json");
+  Result<SampledClip> sampled =
+      SampleClipForRuntime(scene.model, scene.clips.front(), scene.description.playback, 10.0);
+  EXPECT_TRUE(sampled.ok()) << sampled.error();
+  return std::move(sampled).value();
+}
+
+std::string Refusal(const std::vector<std::uint8_t>& bytes) {
+  SampledClip out;
+  const Status status = ParseClipAsset(bytes, &out);
+  EXPECT_FALSE(status.ok());
+  EXPECT_TRUE(out.parts.empty());
+  return ToString(status);
+}
+
+TEST(ClipAsset, RefusesBadClipsNamingTheField) {
+  const SampledClip good = OctopusClip();
+  std::vector<std::uint8_t> bytes = SerializeClipAsset(good);
+  bytes[1] = 'X';
+  EXPECT_NE(Refusal(bytes).find("clip asset"), std::string::npos);
+  SampledClip bad = good;
+  bad.parts[7].rotation = Quat(2.0, 0.0, 0.0, 0.0);
+  EXPECT_EQ(Refusal(SerializeClipAsset(bad)), "parts[7].rotation: must be a unit quaternion");
+  bad = good;
+  bad.parts[3].point_loads = {std::uint32_t(good.point_loads.size()), 1};
+  EXPECT_NE(Refusal(SerializeClipAsset(bad)).find("parts[3].loads"), std::string::npos);
+  bad = good;
+  bad.parts.pop_back();
+  EXPECT_NE(Refusal(SerializeClipAsset(bad)).find("one key per part per frame"), std::string::npos);
+  bad = good;
+  bad.duration = 0.0;
+  EXPECT_NE(Refusal(SerializeClipAsset(bad)).find("duration"), std::string::npos);
+  bad = good;
+  bad.point_loads.front().at = 1.5;
+  EXPECT_NE(Refusal(SerializeClipAsset(bad)).find("point_loads"), std::string::npos);
+  // A clip for another rig.
+  const BuiltScene& human = SceneNamed("human/human_sex.scene.json");
+  EXPECT_FALSE(ValidateSampledClip(good, &human.model).ok());
+}
+
+TEST(ClipAsset, SampleJobRefusesBuffersOfAnotherClip) {
+  const SampledClip clip = OctopusClip();
+  SampledClip other = clip;
+  other.part_count = 1;
+  ClipPlaybackBuffers wrong = MakeClipPlaybackBuffers(other);
+  EXPECT_FALSE((SampleClipJob{&clip, 1.0, &wrong}.Run().ok()));
+  ClipPlaybackBuffers right = MakeClipPlaybackBuffers(clip);
+  EXPECT_FALSE((SampleClipJob{&clip, std::nan(""), &right}.Run().ok()));
+  EXPECT_TRUE((SampleClipJob{&clip, -3.0, &right}.Run().ok()));  // before the start: frame 0
+}
+
+// Corruptions that keep a valid checksum: refused or played without a crash.
+TEST(ClipAsset, CorruptPayloadsNeverCrash) {
+  const SampledClip clip = OctopusClip();
+  const std::vector<std::uint8_t> good = SerializeClipAsset(clip);
+  std::mt19937 random(7);
+  std::uniform_int_distribution<std::size_t> where(20, good.size() - 1);
+  std::uniform_int_distribution<int> value(0, 255);
+  for (int trial = 0; trial < 1000; ++trial) {
+    std::vector<std::uint8_t> bytes = good;
+    for (int k = 0; k < 4; ++k) bytes[where(random)] = std::uint8_t(value(random));
+    const std::uint32_t crc = Crc32(std::span(bytes).subspan(20));
+    for (int i = 0; i < 4; ++i) bytes[16 + std::size_t(i)] = std::uint8_t(crc >> (8 * i));
+    SampledClip parsed;
+    if (!ParseClipAsset(bytes, &parsed).ok()) continue;
+    ClipPlaybackBuffers buffers = MakeClipPlaybackBuffers(parsed);
+    for (double t : {0.0, 0.37, 2.5, 1e3}) (void)SampleClipJob{&parsed, t, &buffers}.Run();
+  }
+}
+
+}  // namespace
+}  // namespace wirerig
