@@ -1,9 +1,11 @@
 #include "build_command.h"
 
+#include <cctype>
 #include <ostream>
 
 #include <CLI/CLI.hpp>
 
+#include "wirerig/anim/clip_asset_export.h"
 #include "wirerig/anim/scene.h"
 #include "wirerig/rig/atomic_file.h"
 #include "wirerig/runtime/rig_asset.h"
@@ -15,6 +17,11 @@ CLI::App* AddBuildCommand(CLI::App& app, BuildCommandOptions& options) {
       app.add_subcommand("build", "Build a scene's rig into a runtime asset (.wrig) for engines");
   build->add_option("scene", options.scene, "Scene file (JSON)")->required();
   build->add_option("-o,--output", options.output, "Output file (.wrig)")->required();
+  build->add_flag("--clips", options.clips,
+                  "Also write each clip, sampled for the runtime, as OUT.<clip>.wclip");
+  build->add_option("--fps", options.fps, "Frames per second of the sampled clips")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
   return build;
 }
 
@@ -27,6 +34,24 @@ int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::
     return fail(options.output + ": the output must be a .wrig file");
   Result<BuiltScene> built = LoadAndBuildScene(options.scene);
   if (!built) return fail(built.error());
+  // The clips first, while the scene is whole; nothing is written until everything is made.
+  std::vector<std::pair<std::filesystem::path, std::vector<std::uint8_t>>> clip_files;
+  if (options.clips) {
+    const std::filesystem::path output(options.output);
+    for (const Clip& clip : built.value().clips) {
+      Result<SampledClip> sampled = SampleClipForRuntime(
+          built.value().model, clip, built.value().description.playback, options.fps);
+      if (!sampled) return fail(options.scene + ": " + sampled.error());
+      std::filesystem::path path = output;
+      std::string name = clip.name;  // as a file name: letters, digits, '-' and '_' kept
+      for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+      path.replace_filename(output.stem().string() + "." + name + ".wclip");
+      out << "clip \"" << clip.name << "\": " << sampled.value().frame_count() << " frames at "
+          << options.fps << " fps\n";
+      clip_files.emplace_back(path, SerializeClipAsset(sampled.value()));
+    }
+  }
   RigAsset asset;
   asset.model = std::move(built.value().model);
   asset.vertex_order = std::move(built.value().mesh.weld_map);
@@ -40,6 +65,13 @@ int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::
       << " welded vertices (" << asset.vertex_order.size() << " in the source order), "
       << asset.model.triangles.size() << " triangles, " << bytes.size() << " bytes\n"
       << "written: " << options.output << "\n";
+  for (const auto& [path, clip_bytes] : clip_files) {
+    const auto clip_written = WriteFileAtomically(
+        path,
+        std::string_view(reinterpret_cast<const char*>(clip_bytes.data()), clip_bytes.size()));
+    if (!clip_written) return fail(clip_written.error());
+    out << "written: " << path.string() << " (" << clip_bytes.size() << " bytes)\n";
+  }
   return 0;
 }
 

@@ -1,6 +1,7 @@
 // The C API (wirerig.h) over the runtime: rig assets, per-thread contexts, evaluation.
 #include "wirerig/wirerig.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -8,12 +9,17 @@
 #include <string>
 #include <vector>
 
+#include "wirerig/runtime/clip_asset.h"
 #include "wirerig/runtime/joint.h"
 #include "wirerig/runtime/rig_asset.h"
 #include "wirerig/runtime/rig_evaluation.h"
 
 struct wr_rig {
   wirerig::RigAsset asset;
+};
+
+struct wr_clip {
+  wirerig::SampledClip clip;
 };
 
 struct wr_context {
@@ -24,6 +30,9 @@ struct wr_context {
   std::vector<std::vector<wirerig::PointLoad>> loads;  // per part
   std::vector<wirerig::PartPose> poses;                // per part, filled at evaluation
   wirerig::RigWorkspace workspace;
+  const wr_clip* clip = nullptr;  // playing, or null
+  double clip_time = 0.0;
+  wirerig::ClipPlaybackBuffers clip_buffers;  // made for `clip`
 };
 
 namespace {
@@ -66,6 +75,19 @@ wr_status CheckPart(const char* function, const wr_context* context, uint32_t pa
   return WR_OK;
 }
 
+// The bytes of a regular file, or a status with the message set.
+wr_status ReadFile(const char* path, std::vector<std::uint8_t>* bytes) {
+  std::ifstream file(path, std::ios::binary | std::ios::ate);
+  if (!file) return Fail(WR_IO_ERROR, std::string(path) + ": cannot open");
+  const std::streamoff size = file.tellg();
+  if (size < 0) return Fail(WR_IO_ERROR, std::string(path) + ": not a regular file");
+  bytes->resize(static_cast<std::size_t>(size));
+  file.seekg(0);
+  if (!file.read(reinterpret_cast<char*>(bytes->data()), size))
+    return Fail(WR_IO_ERROR, std::string(path) + ": cannot read");
+  return WR_OK;
+}
+
 }  // namespace
 
 extern "C" {
@@ -89,14 +111,8 @@ wr_status wr_rig_load_file(const char* path, wr_rig** out) {
   return Guarded("wr_rig_load_file", [&] {
     if (path == nullptr || out == nullptr)
       return Fail(WR_INVALID_ARGUMENT, "wr_rig_load_file: path and out are required");
-    std::ifstream file(path, std::ios::binary | std::ios::ate);
-    if (!file) return Fail(WR_IO_ERROR, std::string(path) + ": cannot open");
-    const std::streamoff size = file.tellg();
-    if (size < 0) return Fail(WR_IO_ERROR, std::string(path) + ": not a regular file");
-    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
-    file.seekg(0);
-    if (!file.read(reinterpret_cast<char*>(bytes.data()), size))
-      return Fail(WR_IO_ERROR, std::string(path) + ": cannot read");
+    std::vector<std::uint8_t> bytes;
+    if (wr_status read = ReadFile(path, &bytes); read != WR_OK) return read;
     const wr_status status = wr_rig_load_memory(bytes.data(), bytes.size(), out);
     if (status != WR_OK) last_error = std::string(path) + ": " + last_error;
     return status;
@@ -154,6 +170,56 @@ wr_status wr_rig_welded_triangles(const wr_rig* rig, uint32_t* indices, size_t c
   return WR_OK;
 }
 
+wr_status wr_clip_load_memory(const void* bytes, size_t size, wr_clip** out) {
+  return Guarded("wr_clip_load_memory", [&] {
+    if (bytes == nullptr || out == nullptr)
+      return Fail(WR_INVALID_ARGUMENT, "wr_clip_load_memory: bytes and out are required");
+    auto clip = std::make_unique<wr_clip>();
+    const wirerig::Status status = wirerig::ParseClipAsset(
+        std::span(static_cast<const std::uint8_t*>(bytes), size), &clip->clip);
+    if (!status) return Fail(WR_BAD_ASSET, "clip asset: " + wirerig::ToString(status));
+    *out = clip.release();
+    return WR_OK;
+  });
+}
+
+wr_status wr_clip_load_file(const char* path, wr_clip** out) {
+  return Guarded("wr_clip_load_file", [&] {
+    if (path == nullptr || out == nullptr)
+      return Fail(WR_INVALID_ARGUMENT, "wr_clip_load_file: path and out are required");
+    std::vector<std::uint8_t> bytes;
+    if (wr_status read = ReadFile(path, &bytes); read != WR_OK) return read;
+    const wr_status status = wr_clip_load_memory(bytes.data(), bytes.size(), out);
+    if (status != WR_OK) last_error = std::string(path) + ": " + last_error;
+    return status;
+  });
+}
+
+void wr_clip_free(wr_clip* clip) { delete clip; }
+
+const char* wr_clip_name(const wr_clip* clip) { return clip ? clip->clip.name.c_str() : nullptr; }
+
+double wr_clip_duration(const wr_clip* clip) { return clip ? clip->clip.duration : 0.0; }
+
+wr_status wr_context_set_clip(wr_context* context, const wr_clip* clip, double time) {
+  return Guarded("wr_context_set_clip", [&] {
+    if (context == nullptr)
+      return Fail(WR_INVALID_ARGUMENT, "wr_context_set_clip: context is null");
+    if (!std::isfinite(time))
+      return Fail(WR_INVALID_ARGUMENT, "wr_context_set_clip: time must be finite");
+    if (clip != nullptr && clip != context->clip) {
+      if (wirerig::Status s = wirerig::ValidateSampledClip(clip->clip, &context->rig->asset.model);
+          !s)
+        return Fail(WR_INVALID_ARGUMENT, "wr_context_set_clip: clip \"" + clip->clip.name +
+                                             "\" does not fit this rig: " + wirerig::ToString(s));
+      context->clip_buffers = wirerig::MakeClipPlaybackBuffers(clip->clip);
+    }
+    context->clip = clip;
+    context->clip_time = time;
+    return WR_OK;
+  });
+}
+
 wr_status wr_context_create(const wr_rig* rig, wr_context** out) {
   return Guarded("wr_context_create", [&] {
     if (rig == nullptr || out == nullptr)
@@ -179,6 +245,7 @@ void wr_context_reset(wr_context* context) {
   context->transform_translation.assign(parts, wirerig::Vec3::Zero());
   context->joint_degrees.assign(parts, wirerig::Vec3::Zero());
   for (auto& loads : context->loads) loads.clear();
+  context->clip = nullptr;
 }
 
 wr_status wr_context_set_joint_angles(wr_context* context, uint32_t part, float x_degrees,
@@ -239,20 +306,33 @@ wr_status wr_context_evaluate(wr_context* context, wr_vertex_order order, float*
   if (order != WR_ORDER_SOURCE && order != WR_ORDER_WELDED)
     return Fail(WR_INVALID_ARGUMENT, "wr_context_evaluate: order must be source or welded");
   const wirerig::RigAsset& asset = context->rig->asset;
+  std::span<const wirerig::ProfileLoads> profile_loads;
+  if (context->clip != nullptr) {
+    const wirerig::SampleClipJob sample{&context->clip->clip, context->clip_time,
+                                        &context->clip_buffers};
+    if (wirerig::Status s = sample.Run(); !s)
+      return Fail(WR_INVALID_ARGUMENT, "wr_context_evaluate: " + wirerig::ToString(s));
+    std::copy(context->clip_buffers.poses.begin(), context->clip_buffers.poses.end(),
+              context->poses.begin());
+    profile_loads = context->clip_buffers.used_profile_loads();
+  }
   for (std::size_t p = 0; p < context->poses.size(); ++p) {
     wirerig::PartPose& pose = context->poses[p];
-    pose.rotation = context->transform_rotation[p];
+    if (context->clip == nullptr) {
+      pose.rotation = context->transform_rotation[p];
+      pose.translation = context->transform_translation[p];
+      pose.loads = {};
+      pose.loads.bending_point_loads = context->loads[p];
+    }
     if (asset.model.parts[p].parent >= 0 && !context->joint_degrees[p].isZero())
       pose.rotation = (pose.rotation * wirerig::JointRotation(asset.model.parts[p].joint,
                                                               context->joint_degrees[p]))
                           .normalized();
-    pose.translation = context->transform_translation[p];
-    pose.loads = {};
-    pose.loads.bending_point_loads = context->loads[p];
   }
   wirerig::EvaluateRigJob job;
   job.model = &asset.model;
   job.poses = context->poses;
+  job.profile_loads = profile_loads;
   job.workspace = &context->workspace;
   job.float_positions = std::span(positions, capacity);
   job.float_position_stride = position_stride;

@@ -1,7 +1,9 @@
-/* The C API (wirerig.h) from C: loads a built rig asset (argv[1], made by `wirerig build` from
- * samples/human/human_wave.scene.json), evaluates frames into interleaved float buffers and
- * checks the API's contract: errors with statuses and messages, outputs untouched on failure,
- * determinism, a bent joint moving only its side, the source and welded orders agreeing.
+/* The C API (wirerig.h) from C: loads a built rig asset (argv[1], made by `wirerig build --clips`
+ * from samples/human/human_wave.scene.json), its clip (argv[2]) and a clip of another rig
+ * (argv[3], the octopus's), evaluates frames into interleaved float buffers and checks the API's
+ * contract: errors with statuses and messages, outputs untouched on failure, determinism, a bent
+ * joint moving only its side, the source and welded orders agreeing, a clip playing and looping,
+ * a clip of another rig refused.
  * Prints a line per failed check; exits 0 only when every check holds. */
 #include <math.h>
 #include <stdio.h>
@@ -29,8 +31,8 @@ static float* Evaluate(wr_context* context, wr_vertex_order order, uint32_t vert
 }
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    fprintf(stderr, "usage: %s RIG.wrig\n", argv[0]);
+  if (argc != 4) {
+    fprintf(stderr, "usage: %s RIG.wrig CLIP.wclip OTHER_RIGS_CLIP.wclip\n", argv[0]);
     return 2;
   }
   wr_rig* rig = NULL;
@@ -115,6 +117,39 @@ int main(int argc, char** argv) {
   float* back = Evaluate(context, WR_ORDER_WELDED, welded);
   CHECK(memcmp(back, rest, sizeof(float) * 6 * welded) == 0);
 
+  /* The rig's own clip plays: frames move, the time loops, joint angles add on top. */
+  wr_clip* clip = NULL;
+  wr_clip* other = NULL;
+  CHECK(wr_clip_load_file(argv[1], &clip) == WR_BAD_ASSET && clip == NULL); /* a .wrig */
+  CHECK(strstr(wr_last_error(), "clip asset") != NULL);
+  if (wr_clip_load_file(argv[2], &clip) != WR_OK || wr_clip_load_file(argv[3], &other) != WR_OK) {
+    fprintf(stderr, "cannot load the clips: %s\n", wr_last_error());
+    return 1;
+  }
+  const double duration = wr_clip_duration(clip);
+  printf("clip \"%s\": %.2f s\n", wr_clip_name(clip), duration);
+  CHECK(duration > 0.0);
+  CHECK(wr_context_set_clip(context, other, 0.0) == WR_INVALID_ARGUMENT);
+  CHECK(strstr(wr_last_error(), "does not fit this rig") != NULL);
+  CHECK(wr_context_set_clip(context, clip, 0.0) == WR_OK);
+  float* start = Evaluate(context, WR_ORDER_WELDED, welded);
+  CHECK(wr_context_set_clip(context, clip, 0.5 * duration) == WR_OK);
+  float* middle = Evaluate(context, WR_ORDER_WELDED, welded);
+  CHECK(memcmp(start, middle, sizeof(float) * 6 * welded) != 0);
+  CHECK(wr_context_set_clip(context, clip, 0.5 * duration) == WR_OK);
+  float* middle_again = Evaluate(context, WR_ORDER_WELDED, welded);
+  CHECK(memcmp(middle, middle_again, sizeof(float) * 6 * welded) == 0);
+  CHECK(wr_context_set_clip(context, clip, NAN) == WR_INVALID_ARGUMENT);
+  CHECK(wr_context_set_clip(context, NULL, 0.0) == WR_OK);
+  float* unplayed = Evaluate(context, WR_ORDER_WELDED, welded);
+  CHECK(memcmp(unplayed, rest, sizeof(float) * 6 * welded) == 0);
+
+  free(start);
+  free(middle);
+  free(middle_again);
+  free(unplayed);
+  wr_clip_free(clip);
+  wr_clip_free(other);
   free(indices);
   free(rest);
   free(rest_again);

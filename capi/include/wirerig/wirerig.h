@@ -11,8 +11,9 @@
  * arguments are untouched and wr_last_error() returns a message for the calling thread naming the
  * argument or the asset's field at fault. No C++ exception crosses this API.
  *
- * Threads: a wr_rig is immutable once loaded and may be shared by any number of threads; each
- * thread evaluates through its own wr_context. wr_context_evaluate allocates nothing.
+ * Threads: a wr_rig and a wr_clip are immutable once loaded and may be shared by any number of
+ * threads; each thread evaluates through its own wr_context. wr_context_evaluate allocates
+ * nothing. A rig and the clips set on a context must outlive the context.
  */
 #ifndef WIRERIG_WIRERIG_H_
 #define WIRERIG_WIRERIG_H_
@@ -37,6 +38,7 @@ typedef enum wr_status {
 typedef enum wr_vertex_order { WR_ORDER_SOURCE = 0, WR_ORDER_WELDED = 1 } wr_vertex_order;
 
 typedef struct wr_rig wr_rig;
+typedef struct wr_clip wr_clip;
 typedef struct wr_context wr_context;
 
 /* The message of the calling thread's last failure ("" if none). Valid until its next call. */
@@ -60,7 +62,15 @@ uint32_t wr_rig_triangle_count(const wr_rig* rig);
 /* Writes 3 x wr_rig_triangle_count indices into WR_ORDER_WELDED vertices. */
 wr_status wr_rig_welded_triangles(const wr_rig* rig, uint32_t* indices, size_t capacity);
 
-/* A per-thread evaluation context: every part at rest, no loads. */
+/* Loads a clip asset (.wclip, made by `wirerig build --clips`): a clip sampled for the runtime
+ * (poses, joint angles, dynamics and loads already resolved). Immutable; shareable. */
+wr_status wr_clip_load_memory(const void* bytes, size_t size, wr_clip** out);
+wr_status wr_clip_load_file(const char* path, wr_clip** out);
+void wr_clip_free(wr_clip* clip); /* null is allowed */
+const char* wr_clip_name(const wr_clip* clip);
+double wr_clip_duration(const wr_clip* clip); /* s */
+
+/* A per-thread evaluation context: every part at rest, no loads, no clip. */
 wr_status wr_context_create(const wr_rig* rig, wr_context** out);
 void wr_context_free(wr_context* context); /* null is allowed */
 /* Every part back to rest, every load removed. */
@@ -78,6 +88,12 @@ wr_status wr_context_set_part_transform(wr_context* context, uint32_t part,
  * 0 removes them. Allocates (call it when loads change, not per vertex). */
 wr_status wr_context_set_point_loads(wr_context* context, uint32_t part, const float* at,
                                      const float* forces, uint32_t count);
+/* Plays `clip` (null: none) at playback time `time` in s (looping as the clip says): poses and
+ * loads then come from the clip, with joint angles set above turning on top; part transforms
+ * and point loads set above apply only while no clip is set. Refused when the clip was made for
+ * another rig. Allocates when the clip differs from the context's previous one, never when
+ * only the time changes. */
+wr_status wr_context_set_clip(wr_context* context, const wr_clip* clip, double time);
 /* Evaluates the pose into float buffers: vertex i's position at positions[i * position_stride
  * .. + 2] and its unit normal likewise (normals may be null). Strides in floats, at least 3.
  * `capacity` counts floats in each buffer. Writes nothing on failure. */
