@@ -91,7 +91,7 @@ void BM_WireRigSkin(benchmark::State& state) {
     benchmark::ClobberMemory();
   }
   state.counters["vertices"] = double(positions.size());
-  state.counters["bridged"] = double(workspace.layout.joint_vertices.size());
+  state.counters["bridged"] = double(workspace.plan->layout.joint_vertices.size());
 }
 BENCHMARK(BM_WireRigSkin)->Unit(benchmark::kMicrosecond);
 
@@ -112,7 +112,7 @@ void BM_WireRigSkinFloat(benchmark::State& state) {
     benchmark::ClobberMemory();
   }
   state.counters["vertices"] = double(s.model.vertices.size());
-  state.counters["bridged"] = double(workspace.layout.joint_vertices.size());
+  state.counters["bridged"] = double(workspace.plan->layout.joint_vertices.size());
 }
 BENCHMARK(BM_WireRigSkinFloat)->Unit(benchmark::kMicrosecond);
 

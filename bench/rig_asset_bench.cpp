@@ -1,5 +1,6 @@
 // Loading the human's built rig asset (.wrig): parsing and validating its bytes (what an engine
-// pays at load; target under 5 ms), and making a per-thread evaluation context from it.
+// pays at load; target under 5 ms), the evaluation plan made once per rig, and a further
+// thread's context from that plan.
 //   build/bench/wirerig_rig_asset_bench --benchmark_repetitions=9
 //   --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -61,11 +62,21 @@ void BM_Crc32HumanRigAsset(benchmark::State& state) {
 }
 BENCHMARK(BM_Crc32HumanRigAsset)->Unit(benchmark::kMillisecond);
 
+// The evaluation plan, made once per rig at load (shared by every thread's context).
+void BM_MakeHumanPlan(benchmark::State& state) {
+  RigAsset asset;
+  if (!ParseRigAsset(HumanBytes(), &asset)) state.SkipWithError("parse failed");
+  for (auto _ : state) benchmark::DoNotOptimize(MakeRigEvaluationPlan(asset.model).get());
+}
+BENCHMARK(BM_MakeHumanPlan)->Unit(benchmark::kMillisecond);
+
+// A further thread's context from the shared plan: per-frame buffers only.
 void BM_MakeHumanContext(benchmark::State& state) {
   RigAsset asset;
   if (!ParseRigAsset(HumanBytes(), &asset)) state.SkipWithError("parse failed");
+  const auto plan = MakeRigEvaluationPlan(asset.model);
   for (auto _ : state) {
-    RigWorkspace workspace = MakeRigWorkspace(asset.model);
+    RigWorkspace workspace = MakeRigWorkspace(asset.model, plan);
     benchmark::DoNotOptimize(workspace.spine_points.data());
   }
 }

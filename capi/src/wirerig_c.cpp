@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <new>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 
 struct wr_rig {
   wirerig::RigAsset asset;
+  std::shared_ptr<const wirerig::RigEvaluationPlan> plan;  // shared by every context
 };
 
 struct wr_clip {
@@ -102,6 +104,7 @@ wr_status wr_rig_load_memory(const void* bytes, size_t size, wr_rig** out) {
     const wirerig::Status status = wirerig::ParseRigAsset(
         std::span(static_cast<const std::uint8_t*>(bytes), size), &rig->asset);
     if (!status) return Fail(WR_BAD_ASSET, "rig asset: " + wirerig::ToString(status));
+    rig->plan = wirerig::MakeRigEvaluationPlan(rig->asset.model);
     *out = rig.release();
     return WR_OK;
   });
@@ -229,7 +232,7 @@ wr_status wr_context_create(const wr_rig* rig, wr_context** out) {
     const std::size_t parts = rig->asset.model.parts.size();
     context->poses.resize(parts);
     context->loads.resize(parts);
-    context->workspace = wirerig::MakeRigWorkspace(rig->asset.model);
+    context->workspace = wirerig::MakeRigWorkspace(rig->asset.model, rig->plan);
     wr_context_reset(context.get());
     *out = context.release();
     return WR_OK;

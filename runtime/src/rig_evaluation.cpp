@@ -27,7 +27,7 @@ Mat3 SpineTurn(const PartModel& part, const RigWorkspace& w, std::size_t i, doub
 // Each bridged joint's skin bridge for this frame, and the spine samples' undo matrices the
 // vertices on bridges go back to rest space through.
 void SampleBridges(const RigModel& model, RigWorkspace& w) {
-  const RigEvaluationLayout& layout = w.layout;
+  const RigEvaluationLayout& layout = w.plan->layout;
   if (layout.joint_vertices.empty()) return;
   for (std::uint32_t c : layout.bridged_parts) {
     const PartModel& child = model.parts[c];
@@ -43,7 +43,7 @@ void SampleBridges(const RigModel& model, RigWorkspace& w) {
         SpineTurn(child, w, c, end_v, &rest_end, &posed.end, &rest_end_tangent, &posed.end_tangent);
     posed.start_tangent = parent_turn * child.joint.parent_axis;
     posed.start = w.spine_points[c].front() - h * posed.start_tangent;
-    SampleJointBridge(child.joint, w.rest_bridges[c], posed, parent_turn, child_turn,
+    SampleJointBridge(child.joint, w.plan->rest_bridges[c], posed, parent_turn, child_turn,
                       &w.bridges[c]);
   }
   for (const auto& [part, sample] : layout.undo_samples)
@@ -60,8 +60,55 @@ Status ValidateLoads(const SpineLoads& loads) {
 
 }  // namespace
 
+std::shared_ptr<const RigEvaluationPlan> MakeRigEvaluationPlan(const RigModel& model) {
+  auto plan = std::make_shared<RigEvaluationPlan>();
+  plan->parts = model.parts.size();
+  plan->vertices = model.vertices.size();
+  plan->triangles = model.triangles.size();
+  RigEvaluationLayout& layout = plan->layout;
+  std::uint32_t profiles = 0, points = 0;  // global profiles, wire points
+  for (const PartModel& part : model.parts) {
+    layout.profile_base.push_back(profiles);
+    for (const ProfileModel& profile : part.profiles) {
+      layout.point_base.push_back(points);
+      points += static_cast<std::uint32_t>(profile.local_points.size());
+      ++profiles;
+    }
+  }
+  for (std::size_t v = 0; v < model.vertices.size(); ++v)
+    for (const JointInfluence& j : model.vertices[v].joints)
+      if (j.joint >= 0)
+        layout.joint_vertices.push_back(
+            {static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(j.joint),
+             model.vertices[v].part, j.sample, j.u, j.weight, j.bridge, j.section,
+             j.joint == std::int32_t(model.vertices[v].part)});
+  for (std::size_t i = 0; i < model.parts.size(); ++i) {
+    const PartModel& part = model.parts[i];
+    if (part.parent >= 0 && part.joint.blend_length > 0.0)
+      layout.bridged_parts.push_back(static_cast<std::uint32_t>(i));
+  }
+  // The spine samples the entries undo through.
+  for (const RigEvaluationLayout::JointVertex& j : layout.joint_vertices)
+    layout.undo_samples.emplace_back(j.part, j.sample);
+  std::sort(layout.undo_samples.begin(), layout.undo_samples.end());
+  layout.undo_samples.erase(std::unique(layout.undo_samples.begin(), layout.undo_samples.end()),
+                            layout.undo_samples.end());
+  plan->rest_bridges.resize(model.parts.size());
+  for (std::uint32_t c : layout.bridged_parts)
+    plan->rest_bridges[c] = MakeRestBridge(RestBridgeEnds(model.parts[c]));
+  MakeVertexStagePlan(model, layout, &plan->stage64);
+  MakeVertexStagePlan(model, layout, &plan->stage32);
+  return plan;
+}
+
 RigWorkspace MakeRigWorkspace(const RigModel& model) {
+  return MakeRigWorkspace(model, MakeRigEvaluationPlan(model));
+}
+
+RigWorkspace MakeRigWorkspace(const RigModel& model,
+                              std::shared_ptr<const RigEvaluationPlan> plan) {
   RigWorkspace w;
+  w.plan = std::move(plan);
   std::size_t longest = 2;
   for (const PartModel& part : model.parts) {
     w.strain.emplace_back(part.spine_points.size(), 0.0);
@@ -86,44 +133,12 @@ RigWorkspace MakeRigWorkspace(const RigModel& model) {
       widest = std::max(widest, profile.local_points.size());
   w.profile_samples.resize(widest + 1);
   w.profile_displacement.resize(widest + 1);
-
-  RigEvaluationLayout& layout = w.layout;
-  std::uint32_t profiles = 0, points = 0;  // global profiles, wire points
-  for (const PartModel& part : model.parts) {
-    layout.profile_base.push_back(profiles);
-    for (const ProfileModel& profile : part.profiles) {
-      layout.point_base.push_back(points);
-      points += static_cast<std::uint32_t>(profile.local_points.size());
-      ++profiles;
-    }
-  }
-  w.cap_axes.resize(profiles, Mat3::Identity());
-  for (std::size_t v = 0; v < model.vertices.size(); ++v)
-    for (const JointInfluence& j : model.vertices[v].joints)
-      if (j.joint >= 0)
-        layout.joint_vertices.push_back(
-            {static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(j.joint),
-             model.vertices[v].part, j.sample, j.u, j.weight, j.bridge, j.section,
-             j.joint == std::int32_t(model.vertices[v].part)});
-  for (std::size_t i = 0; i < model.parts.size(); ++i) {
-    const PartModel& part = model.parts[i];
-    if (part.parent >= 0 && part.joint.blend_length > 0.0)
-      layout.bridged_parts.push_back(static_cast<std::uint32_t>(i));
-  }
-  // The spine samples the entries undo through.
-  for (const RigEvaluationLayout::JointVertex& j : layout.joint_vertices)
-    layout.undo_samples.emplace_back(j.part, j.sample);
-  std::sort(layout.undo_samples.begin(), layout.undo_samples.end());
-  layout.undo_samples.erase(std::unique(layout.undo_samples.begin(), layout.undo_samples.end()),
-                            layout.undo_samples.end());
+  w.cap_axes.resize(w.plan->layout.point_base.size(), Mat3::Identity());
   w.bridges.resize(model.parts.size());
-  w.rest_bridges.resize(model.parts.size());
-  for (std::uint32_t c : layout.bridged_parts)
-    w.rest_bridges[c] = MakeRestBridge(RestBridgeEnds(model.parts[c]));
   for (const PartModel& part : model.parts)
     w.spine_undo.emplace_back(part.spine_points.size(), Mat3::Identity());
-  MakeVertexStage(model, layout, &w.stage64);
-  MakeVertexStage(model, layout, &w.stage32);
+  MakeVertexStage(model, w.plan->layout, w.plan->stage64, &w.stage64);
+  MakeVertexStage(model, w.plan->layout, w.plan->stage32, &w.stage32);
   return w;
 }
 
@@ -195,11 +210,10 @@ Status EvaluateRigJob::Validate() const {
   }
   if (!warnings.empty() && warnings.size() != model->parts.size())
     return Status::Invalid("warnings", "must be empty or have one element per part");
-  if (workspace->spine_points.size() != model->parts.size() ||
-      workspace->stage64.slot_of_vertex.size() != vertex_count ||
-      workspace->stage32.slot_of_vertex.size() != vertex_count ||
-      workspace->layout.profile_base.size() != model->parts.size() ||
-      workspace->stage64.t0.size() != model->triangles.size())
+  if (!workspace->plan || workspace->plan->parts != model->parts.size() ||
+      workspace->plan->vertices != vertex_count ||
+      workspace->plan->triangles != model->triangles.size() ||
+      workspace->spine_points.size() != model->parts.size())
     return Status::Invalid("workspace", "was made for another model");
   for (const PartPose& pose : poses) {
     const Eigen::Vector4d q = pose.rotation.coeffs();
@@ -328,7 +342,7 @@ Status EvaluateRigJob::Run() const {
       w.profile_normals[i][p] = frame.tangent;
       // The end caps' frame: in-plane like the profile, and 1/scale^2 along the tangent, so a
       // cap keeps its volume and meets the profile's plane continuously.
-      const std::size_t g = w.layout.profile_base[i] + p;
+      const std::size_t g = w.plan->layout.profile_base[i] + p;
       w.cap_axes[g] = axes;
       w.cap_axes[g].col(2) /= w.profile_scale[i][p] * w.profile_scale[i][p];
       std::vector<Vec3>& out = w.profile_points[i][p];

@@ -76,11 +76,13 @@ struct StagePasses {
       return GatherV3<P>(c, index);
     };
     const Value one = P::Broadcast(Real(1));
-    const Value l1 = P::Load(&st.lambda1[i]), l2 = P::Load(&st.lambda2[i]);
-    const V p1 = (one - l1) * gather(st.wire, &st.a0[i]) + l1 * gather(st.wire, &st.a1[i]);
-    const V p2 = (one - l2) * gather(st.wire, &st.b0[i]) + l2 * gather(st.wire, &st.b1[i]);
+    const Value l1 = P::Load(&st.plan->lambda1[i]), l2 = P::Load(&st.plan->lambda2[i]);
+    const V p1 =
+        (one - l1) * gather(st.wire, &st.plan->a0[i]) + l1 * gather(st.wire, &st.plan->a1[i]);
+    const V p2 =
+        (one - l2) * gather(st.wire, &st.plan->b0[i]) + l2 * gather(st.wire, &st.plan->b1[i]);
     const V e = p2 - p1;
-    const V d = gather(st.pair_centre, &st.profile[i]) - p1;
+    const V d = gather(st.pair_centre, &st.plan->profile[i]) - p1;
     const Value ee = simd::Dot(e, e), dd = simd::Dot(d, d);
     const V n = simd::Cross(e, d);
     const Value nn = simd::Dot(n, n);
@@ -91,8 +93,9 @@ struct StagePasses {
                            P::Greater(nn, P::Broadcast(B::kSine2) * ee * dd));
     const Value safe_nn = P::Select(ok, nn, one), safe_ee = P::Select(ok, ee, one);
     const V n_hat = (one / P::Sqrt(safe_nn)) * n;
-    const V p = p1 + P::Load(&st.alpha[i]) * e + P::Load(&st.beta[i]) * simd::Cross(n_hat, e) +
-                (P::Load(&st.gamma[i]) * P::Sqrt(safe_ee)) * n_hat;
+    const V p = p1 + P::Load(&st.plan->alpha[i]) * e +
+                P::Load(&st.plan->beta[i]) * simd::Cross(n_hat, e) +
+                (P::Load(&st.plan->gamma[i]) * P::Sqrt(safe_ee)) * n_hat;
     P::Store(&s->position.x[i], p.x);
     P::Store(&s->position.y[i], p.y);
     P::Store(&s->position.z[i], p.z);
@@ -101,7 +104,7 @@ struct StagePasses {
 
   // ApplyPairBinding itself (double), on the wires as spans.
   void SlowPair(std::size_t slot) const {
-    const std::uint32_t vertex = s->vertex_of_slot[slot];
+    const std::uint32_t vertex = s->plan->vertex_of_slot[slot];
     const VertexAttachment& a = model->vertices[vertex];
     const PartModel& part = model->parts[a.part];
     const WirePolyline wire_i{w->profile_points[a.part][a.profile],
@@ -129,20 +132,21 @@ struct StagePasses {
   static void Vertices(const void* context, std::size_t k) {
     const auto& self = *static_cast<const StagePasses*>(context);
     S& st = *self.s;
-    const std::size_t pair_tasks = Tasks(st.pair_count);
+    const std::size_t pair_tasks = Tasks(st.plan->pair_count);
     if (k < pair_tasks) {
-      self.template Pairs<Wide>(k * kTaskSize, std::min(st.pair_count, (k + 1) * kTaskSize));
+      self.template Pairs<Wide>(k * kTaskSize, std::min(st.plan->pair_count, (k + 1) * kTaskSize));
       return;
     }
-    const std::size_t caps = st.cap_profile.size();
+    const std::size_t caps = st.plan->cap_profile.size();
     const std::size_t end = std::min(caps, (k - pair_tasks + 1) * kTaskSize);
     for (std::size_t c = (k - pair_tasks) * kTaskSize; c < end; ++c) {
-      const std::uint32_t g = st.cap_profile[c];
-      const typename S::V local(st.cap_local.x[c], st.cap_local.y[c], st.cap_local.z[c]);
+      const std::uint32_t g = st.plan->cap_profile[c];
+      const typename S::V local(st.plan->cap_local.x[c], st.plan->cap_local.y[c],
+                                st.plan->cap_local.z[c]);
       const typename S::V p =
           typename S::V(st.cap_origin.x[g], st.cap_origin.y[g], st.cap_origin.z[g]) +
           st.cap_axes[g] * local;
-      const std::size_t slot = st.pair_count + c;
+      const std::size_t slot = st.plan->pair_count + c;
       st.position.x[slot] = p.x(), st.position.y[slot] = p.y(), st.position.z[slot] = p.z();
     }
   }
@@ -151,9 +155,9 @@ struct StagePasses {
   static void Undo(const void* context, std::size_t k) {
     const auto& self = *static_cast<const StagePasses*>(context);
     S& st = *self.s;
-    const std::size_t end = std::min(st.bridged_slot.size(), (k + 1) * kTaskSize);
+    const std::size_t end = std::min(st.plan->bridged_slot.size(), (k + 1) * kTaskSize);
     for (std::size_t b = k * kTaskSize; b < end; ++b) {
-      const std::uint32_t slot = st.bridged_slot[b], u = st.bridged_undo[b];
+      const std::uint32_t slot = st.plan->bridged_slot[b], u = st.plan->bridged_undo[b];
       const typename S::V own(st.position.x[slot], st.position.y[slot], st.position.z[slot]);
       const typename S::V rest = st.undo_rest_point[u] + st.undo[u] * (own - st.undo_point[u]);
       st.rest.x[b] = rest.x(), st.rest.y[b] = rest.y(), st.rest.z[b] = rest.z();
@@ -170,18 +174,18 @@ struct StagePasses {
     S& st = *s;
     const BridgeSegment<P> segment(bridges[bucket.joint], bucket.segment);
     for (std::size_t e = bucket.begin; e < bucket.end; e += P::kWidth) {
-      const std::uint32_t* bridged = &st.entry_bridged[e];
-      const std::uint32_t* slot = &st.entry_slot[e];
+      const std::uint32_t* bridged = &st.plan->entry_bridged[e];
+      const std::uint32_t* slot = &st.plan->entry_slot[e];
       const V q = GatherV3<P>(st.rest, bridged);
       V parent;
-      const V image =
-          segment.Image(P::Load(&st.entry_f[e]), P::Load(&st.entry_u[e]),
-                        P::Load(&st.entry_fraction[e]), P::Load(&st.entry_section[e]), q, &parent);
-      const auto child = P::Greater(P::Load(&st.entry_child[e]), P::Broadcast(Real(0.5)));
+      const V image = segment.Image(P::Load(&st.plan->entry_f[e]), P::Load(&st.plan->entry_u[e]),
+                                    P::Load(&st.plan->entry_fraction[e]),
+                                    P::Load(&st.plan->entry_section[e]), q, &parent);
+      const auto child = P::Greater(P::Load(&st.plan->entry_child[e]), P::Broadcast(Real(0.5)));
       const V own = GatherV3<P>(st.position, slot);
       const V base{P::Select(child, own.x, parent.x), P::Select(child, own.y, parent.y),
                    P::Select(child, own.z, parent.z)};
-      const V correction = P::Load(&st.entry_weight[e]) * (image - base);
+      const V correction = P::Load(&st.plan->entry_weight[e]) * (image - base);
       P::Store(&st.correction.x[e], correction.x);
       P::Store(&st.correction.y[e], correction.y);
       P::Store(&st.correction.z[e], correction.z);
@@ -191,22 +195,23 @@ struct StagePasses {
   static void Buckets(const void* context, std::size_t k) {
     const auto& self = *static_cast<const StagePasses*>(context);
     const S& st = *self.s;
-    for (std::uint32_t b = st.bucket_task_starts[k]; b < st.bucket_task_starts[k + 1]; ++b)
-      self.template Bucket<Wide>(st.buckets[b]);
+    for (std::uint32_t b = st.plan->bucket_task_starts[k]; b < st.plan->bucket_task_starts[k + 1];
+         ++b)
+      self.template Bucket<Wide>(st.plan->buckets[b]);
   }
 
   // Bridged vertices: their own position plus their entries' corrections, in entry order.
   static void Sums(const void* context, std::size_t k) {
     const auto& self = *static_cast<const StagePasses*>(context);
     S& st = *self.s;
-    const std::size_t end = std::min(st.bridged_slot.size(), (k + 1) * kTaskSize);
+    const std::size_t end = std::min(st.plan->bridged_slot.size(), (k + 1) * kTaskSize);
     for (std::size_t b = k * kTaskSize; b < end; ++b) {
       Real x = 0, y = 0, z = 0;
-      for (std::uint32_t j = st.entry_offsets[b]; j < st.entry_offsets[b + 1]; ++j) {
-        const std::uint32_t e = st.entry_of[j];
+      for (std::uint32_t j = st.plan->entry_offsets[b]; j < st.plan->entry_offsets[b + 1]; ++j) {
+        const std::uint32_t e = st.plan->entry_of[j];
         x += st.correction.x[e], y += st.correction.y[e], z += st.correction.z[e];
       }
-      const std::uint32_t slot = st.bridged_slot[b];
+      const std::uint32_t slot = st.plan->bridged_slot[b];
       st.position.x[slot] += x, st.position.y[slot] += y, st.position.z[slot] += z;
     }
   }
@@ -215,9 +220,9 @@ struct StagePasses {
   template <class P>
   simd::V3<typename P::Value> FaceNormalOf(std::size_t f) const {
     const S& st = *s;
-    const auto p0 = GatherV3<P>(st.position, &st.t0[f]);
-    return simd::Cross(GatherV3<P>(st.position, &st.t1[f]) - p0,
-                       GatherV3<P>(st.position, &st.t2[f]) - p0);
+    const auto p0 = GatherV3<P>(st.position, &st.plan->t0[f]);
+    return simd::Cross(GatherV3<P>(st.position, &st.plan->t1[f]) - p0,
+                       GatherV3<P>(st.position, &st.plan->t2[f]) - p0);
   }
 
   template <class P>
@@ -230,7 +235,7 @@ struct StagePasses {
 
   static void FaceNormals(const void* context, std::size_t k) {
     const auto& self = *static_cast<const StagePasses*>(context);
-    const std::size_t end = std::min(self.s->t0.size(), (k + 1) * kTaskSize);
+    const std::size_t end = std::min(self.s->plan->t0.size(), (k + 1) * kTaskSize);
     std::size_t f = k * kTaskSize;
     for (; f + Wide::kWidth <= end; f += Wide::kWidth) self.template FaceNormal<Wide>(f);
     for (; f < end; ++f) self.template FaceNormal<One>(f);
@@ -240,14 +245,15 @@ struct StagePasses {
   void FaceNormalAndScatter(std::size_t f) const {
     const auto n = FaceNormalOf<P>(f);
     S& st = *s;
-    P::ScatterAdd4(st.normal_sum.data(), n.x, n.y, n.z, &st.t0[f], &st.t1[f], &st.t2[f]);
+    P::ScatterAdd4(st.normal_sum.data(), n.x, n.y, n.z, &st.plan->t0[f], &st.plan->t1[f],
+                   &st.plan->t2[f]);
   }
 
   // One thread: every triangle's normal added into its vertices' sums in triangle order.
   void ScatterNormals() const {
     S& st = *s;
     std::fill(st.normal_sum.begin(), st.normal_sum.end(), Real(0));
-    const std::size_t triangles = st.t0.size();
+    const std::size_t triangles = st.plan->t0.size();
     std::size_t f = 0;
     for (; f + Wide::kWidth <= triangles; f += Wide::kWidth) FaceNormalAndScatter<Wide>(f);
     for (; f < triangles; ++f) FaceNormalAndScatter<One>(f);
@@ -259,12 +265,12 @@ struct StagePasses {
   static void GatherNormals(const void* context, std::size_t k) {
     const auto& self = *static_cast<const StagePasses*>(context);
     S& st = *self.s;
-    const std::size_t end = std::min(st.slot_of_vertex.size(), (k + 1) * kTaskSize);
+    const std::size_t end = std::min(st.plan->slot_of_vertex.size(), (k + 1) * kTaskSize);
     for (std::size_t slot = k * kTaskSize; slot < end; ++slot) {
       Real x = 0, y = 0, z = 0;
-      for (std::uint32_t t = st.slot_triangle_offsets[slot]; t < st.slot_triangle_offsets[slot + 1];
-           ++t) {
-        const std::uint32_t f = st.slot_triangles[t];
+      for (std::uint32_t t = st.plan->slot_triangle_offsets[slot];
+           t < st.plan->slot_triangle_offsets[slot + 1]; ++t) {
+        const std::uint32_t f = st.plan->slot_triangles[t];
         x += st.face_normal.x[f], y += st.face_normal.y[f], z += st.face_normal.z[f];
       }
       Real* sum = &st.normal_sum[4 * slot];
@@ -280,10 +286,10 @@ struct StagePasses {
     S& st = *self.s;
     const StageOutput<Real>& out = self.out;
     const bool direct = out.order == nullptr;
-    const std::size_t slots = st.vertex_of_slot.size();
+    const std::size_t slots = st.plan->vertex_of_slot.size();
     const std::size_t begin = k * kTaskSize, end = std::min(slots, (k + 1) * kTaskSize);
     for (std::size_t i = begin; i < end && direct; ++i) {
-      Real* p = out.positions + st.vertex_of_slot[i] * out.position_stride;
+      Real* p = out.positions + st.plan->vertex_of_slot[i] * out.position_stride;
       p[0] = st.position.x[i], p[1] = st.position.y[i], p[2] = st.position.z[i];
     }
     if (!out.normals) return;
@@ -310,7 +316,7 @@ struct StagePasses {
       P::Store(unit[1], y);
       P::Store(unit[2], z);
       for (std::size_t l = 0; l < std::size_t(P::kWidth) && i + l < end; ++l) {
-        Real* o = out.normals + st.vertex_of_slot[i + l] * out.normal_stride;
+        Real* o = out.normals + st.plan->vertex_of_slot[i + l] * out.normal_stride;
         o[0] = unit[0][l], o[1] = unit[1][l], o[2] = unit[2][l];
       }
     }
@@ -323,7 +329,7 @@ struct StagePasses {
     const StageOutput<Real>& out = self.out;
     const std::size_t end = std::min(out.order_size, (k + 1) * kTaskSize);
     for (std::size_t i = k * kTaskSize; i < end; ++i) {
-      const std::uint32_t slot = st.slot_of_vertex[out.order[i]];
+      const std::uint32_t slot = st.plan->slot_of_vertex[out.order[i]];
       Real* p = out.positions + i * out.position_stride;
       p[0] = st.position.x[slot], p[1] = st.position.y[slot], p[2] = st.position.z[slot];
       if (!out.normals) continue;
@@ -347,7 +353,7 @@ const BasicBridgeSamples<Real>* StageBridges(RigWorkspace& w, VertexStage<Real>&
     (void)stage;
     return w.bridges.data();
   } else {
-    for (std::uint32_t part : w.layout.bridged_parts)
+    for (std::uint32_t part : w.plan->layout.bridged_parts)
       stage.bridges[part] = w.bridges[part].template Cast<Real>();
     return stage.bridges.data();
   }
@@ -356,9 +362,9 @@ const BasicBridgeSamples<Real>* StageBridges(RigWorkspace& w, VertexStage<Real>&
 }  // namespace
 
 template <class Real>
-void MakeVertexStage(const RigModel& model, const RigEvaluationLayout& layout,
-                     VertexStage<Real>* stage) {
-  VertexStage<Real>& s = *stage;
+void MakeVertexStagePlan(const RigModel& model, const RigEvaluationLayout& layout,
+                         VertexStagePlan<Real>* plan) {
+  VertexStagePlan<Real>& s = *plan;
   const std::size_t n = model.vertices.size();
   s.slot_of_vertex.assign(n, 0);
   s.vertex_of_slot.clear();
@@ -433,7 +439,7 @@ void MakeVertexStage(const RigModel& model, const RigEvaluationLayout& layout,
     s.entry_child.push_back(child ? Real(1) : Real(0));
   };
   for (std::size_t i = 0; i < order.size();) {
-    typename VertexStage<Real>::Bucket bucket;
+    typename VertexStagePlan<Real>::Bucket bucket;
     bucket.joint = entries[order[i]].joint;
     bucket.segment = segment[order[i]];
     bucket.begin = static_cast<std::uint32_t>(s.entry_bridged.size());
@@ -485,8 +491,14 @@ void MakeVertexStage(const RigModel& model, const RigEvaluationLayout& layout,
   for (std::size_t f = 0; f < model.triangles.size(); ++f)
     for (std::uint32_t index : model.triangles[f])
       s.slot_triangles[fill[s.slot_of_vertex[index]]++] = static_cast<std::uint32_t>(f);
+}
 
-  // Per-frame buffers.
+template <class Real>
+void MakeVertexStage(const RigModel& model, const RigEvaluationLayout& layout,
+                     const VertexStagePlan<Real>& plan, VertexStage<Real>* stage) {
+  VertexStage<Real>& s = *stage;
+  s.plan = &plan;
+  const std::size_t n = model.vertices.size();
   const std::size_t profiles = layout.point_base.size();
   std::size_t points = 0;
   for (const PartModel& part : model.parts)
@@ -496,8 +508,8 @@ void MakeVertexStage(const RigModel& model, const RigEvaluationLayout& layout,
   s.pair_centre.resize(profiles);
   s.cap_origin.resize(profiles);
   s.cap_axes.assign(profiles, VertexStage<Real>::M::Identity());
-  s.rest.resize(s.bridged_slot.size());
-  s.correction.resize(s.entry_bridged.size());
+  s.rest.resize(plan.bridged_slot.size());
+  s.correction.resize(plan.entry_bridged.size());
   s.face_normal.resize(model.triangles.size());
   const std::size_t padded = (n + kBucketMultiple - 1) / kBucketMultiple * kBucketMultiple;
   s.normal_sum.assign(4 * padded, Real(0));
@@ -511,7 +523,7 @@ void MakeVertexStage(const RigModel& model, const RigEvaluationLayout& layout,
 template <class Real>
 void RunVertexStage(const RigModel& model, RigWorkspace& w, VertexStage<Real>& s,
                     const StageOutput<Real>& output, const ParallelFor* parallel) {
-  const RigEvaluationLayout& layout = w.layout;
+  const RigEvaluationLayout& layout = w.plan->layout;
   // The frame's wires, pair centres and cap frames, in Real.
   for (std::size_t i = 0; i < model.parts.size(); ++i) {
     const std::size_t profiles = model.parts[i].profiles.size();
@@ -542,26 +554,33 @@ void RunVertexStage(const RigModel& model, RigWorkspace& w, VertexStage<Real>& s
   }
   const StagePasses<Real> passes{&model, &w, &s, StageBridges(w, s), output};
   using Passes = StagePasses<Real>;
-  RunTasks(parallel, Tasks(s.pair_count) + Tasks(s.cap_profile.size()), &Passes::Vertices, &passes);
-  if (!s.bridged_slot.empty()) {
-    RunTasks(parallel, Tasks(s.bridged_slot.size()), &Passes::Undo, &passes);
-    RunTasks(parallel, s.bucket_task_starts.size() - 1, &Passes::Buckets, &passes);
-    RunTasks(parallel, Tasks(s.bridged_slot.size()), &Passes::Sums, &passes);
+  RunTasks(parallel, Tasks(s.plan->pair_count) + Tasks(s.plan->cap_profile.size()),
+           &Passes::Vertices, &passes);
+  if (!s.plan->bridged_slot.empty()) {
+    RunTasks(parallel, Tasks(s.plan->bridged_slot.size()), &Passes::Undo, &passes);
+    RunTasks(parallel, s.plan->bucket_task_starts.size() - 1, &Passes::Buckets, &passes);
+    RunTasks(parallel, Tasks(s.plan->bridged_slot.size()), &Passes::Sums, &passes);
   }
   if (output.normals) {
     if (parallel == nullptr || parallel->concurrency() <= 1) {
       passes.ScatterNormals();
     } else {
-      RunTasks(parallel, Tasks(s.t0.size()), &Passes::FaceNormals, &passes);
-      RunTasks(parallel, Tasks(s.slot_of_vertex.size()), &Passes::GatherNormals, &passes);
+      RunTasks(parallel, Tasks(s.plan->t0.size()), &Passes::FaceNormals, &passes);
+      RunTasks(parallel, Tasks(s.plan->slot_of_vertex.size()), &Passes::GatherNormals, &passes);
     }
   }
-  RunTasks(parallel, Tasks(s.vertex_of_slot.size()), &Passes::Output, &passes);
+  RunTasks(parallel, Tasks(s.plan->vertex_of_slot.size()), &Passes::Output, &passes);
   if (output.order) RunTasks(parallel, Tasks(output.order_size), &Passes::OrderedOutput, &passes);
 }
 
-template void MakeVertexStage(const RigModel&, const RigEvaluationLayout&, VertexStage<double>*);
-template void MakeVertexStage(const RigModel&, const RigEvaluationLayout&, VertexStage<float>*);
+template void MakeVertexStagePlan(const RigModel&, const RigEvaluationLayout&,
+                                  VertexStagePlan<double>*);
+template void MakeVertexStagePlan(const RigModel&, const RigEvaluationLayout&,
+                                  VertexStagePlan<float>*);
+template void MakeVertexStage(const RigModel&, const RigEvaluationLayout&,
+                              const VertexStagePlan<double>&, VertexStage<double>*);
+template void MakeVertexStage(const RigModel&, const RigEvaluationLayout&,
+                              const VertexStagePlan<float>&, VertexStage<float>*);
 template void RunVertexStage(const RigModel&, RigWorkspace&, VertexStage<double>&,
                              const StageOutput<double>&, const ParallelFor*);
 template void RunVertexStage(const RigModel&, RigWorkspace&, VertexStage<float>&,

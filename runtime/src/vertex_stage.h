@@ -22,10 +22,14 @@ struct StageOutput {
   std::size_t order_size = 0;
 };
 
-// The stage's layout for `model`; `layout` holds the joint entries and undo samples.
+// The stage's plan for `model`; `layout` holds the joint entries and undo samples.
+template <class Real>
+void MakeVertexStagePlan(const RigModel& model, const RigEvaluationLayout& layout,
+                         VertexStagePlan<Real>* plan);
+// Per-frame buffers sized for `plan` (which must outlive the stage).
 template <class Real>
 void MakeVertexStage(const RigModel& model, const RigEvaluationLayout& layout,
-                     VertexStage<Real>* stage);
+                     const VertexStagePlan<Real>& plan, VertexStage<Real>* stage);
 
 // Steps 6-8 of EvaluateRigJob::Run, after the spines and profiles of `w` are evaluated (and
 // w.bridges and w.spine_undo made for this frame).

@@ -9,8 +9,10 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <thread>
 
+#include "support/two_segment_limb.h"
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/rig_builder.h"
@@ -83,6 +85,49 @@ int PartIndex(const Scene& scene, const std::string& name) {
   for (std::size_t i = 0; i < scene.model.parts.size(); ++i)
     if (scene.model.parts[i].name == name) return int(i);
   return -1;
+}
+
+// Two threads' workspaces from one shared plan evaluate a jointed, loaded pose bit for bit as a
+// workspace with a plan of its own; a plan made for another model is refused.
+TEST(RigEvaluation, WorkspacesShareOnePlan) {
+  const Scene& human = Human();
+  std::vector<PartPose> poses(human.model.parts.size());
+  poses[std::size_t(PartIndex(human, "forearm_l"))].rotation = JointRotation(
+      human.model.parts[std::size_t(PartIndex(human, "forearm_l"))].joint, Vec3(80, 0, 0));
+  const PointLoad load{0.8, Vec3(0, 40, 0)};
+  poses[0].loads.bending_point_loads = std::span(&load, 1);
+  const std::vector<Vec3> own = Evaluate(human, poses);
+  const std::shared_ptr<const RigEvaluationPlan> plan = MakeRigEvaluationPlan(human.model);
+  std::array<std::vector<Vec3>, 2> shared;
+  std::array<std::thread, 2> threads;
+  for (std::size_t t = 0; t < 2; ++t)
+    threads[t] = std::thread([&, t] {
+      RigWorkspace workspace = MakeRigWorkspace(human.model, plan);
+      shared[t].resize(human.model.vertices.size());
+      EvaluateRigJob job;
+      job.model = &human.model;
+      job.poses = poses;
+      job.workspace = &workspace;
+      job.positions = shared[t];
+      EXPECT_TRUE(job.Run().ok());
+    });
+  for (std::thread& thread : threads) thread.join();
+  for (const std::vector<Vec3>& positions : shared) {
+    ASSERT_EQ(positions.size(), own.size());
+    EXPECT_EQ(std::memcmp(positions.data(), own.data(), own.size() * sizeof(Vec3)), 0);
+  }
+  EXPECT_EQ(plan.use_count(), 1) << "the workspaces released their share";
+
+  const Scene limb =
+      Build(MakeCapsule(0.08, 1.0, 16, 24, 4), testing::TwoSegmentLimb(), SpineKind::kRigid);
+  RigWorkspace mismatched = MakeRigWorkspace(human.model, MakeRigEvaluationPlan(limb.model));
+  std::vector<Vec3> positions(human.model.vertices.size());
+  EvaluateRigJob job;
+  job.model = &human.model;
+  job.poses = poses;
+  job.workspace = &mismatched;
+  job.positions = positions;
+  EXPECT_EQ(ToString(job.Validate()), "workspace: was made for another model");
 }
 
 TEST(RigEvaluation, ZeroLoadReproducesTheMesh) {

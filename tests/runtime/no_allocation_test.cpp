@@ -174,7 +174,7 @@ TEST(NoAllocation, JointedRigIntoFloatBuffers) {
   const Result<BuiltRigModel> model = BuildRigModel(mesh, rig.value().rig, options);
   ASSERT_TRUE(model.ok()) << model.error();
   RigWorkspace workspace = MakeRigWorkspace(model.value().model);
-  ASSERT_FALSE(workspace.layout.joint_vertices.empty());
+  ASSERT_FALSE(workspace.plan->layout.joint_vertices.empty());
   std::vector<float> buffer(6 * model.value().model.vertices.size());
   std::vector<PartPose> poses(2);
   poses[1].rotation = Quat(Eigen::AngleAxisd(1.2, Vec3::UnitX()));

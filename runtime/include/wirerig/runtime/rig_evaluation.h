@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <utility>
 #include <vector>
@@ -110,8 +111,20 @@ struct RigEvaluationLayout {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> undo_samples;
 };
 
-// Scratch buffers sized for one model; make once, reuse every frame.
+// What the evaluation lays out once per model, shared by every workspace (every thread) of it:
+// joint entries, rest bridges, the vertex stage's plans. Immutable once made.
+struct RigEvaluationPlan {
+  std::size_t parts = 0, vertices = 0, triangles = 0;  // of the model it was made for
+  RigEvaluationLayout layout;
+  std::vector<RestBridge> rest_bridges;  // per part: its joint's skin bridge at rest
+  VertexStagePlan<double> stage64;
+  VertexStagePlan<float> stage32;
+};
+std::shared_ptr<const RigEvaluationPlan> MakeRigEvaluationPlan(const RigModel& model);
+
+// Scratch buffers sized for one model; make once per thread, reuse every frame.
 struct RigWorkspace {
+  std::shared_ptr<const RigEvaluationPlan> plan;               // shared, constant
   std::vector<std::vector<Vec3>> spine_points;                 // per part, deformed, world
   std::vector<std::vector<Frame>> spine_frames;                // per part, deformed, world
   std::vector<std::vector<std::vector<Vec3>>> profile_points;  // per part, per profile, world
@@ -125,17 +138,19 @@ struct RigWorkspace {
   std::vector<std::vector<double>> profile_scale;  // per part, per profile: in-plane scale
   std::vector<double> profile_samples;             // per point of the longest profile
   std::vector<Vec3> profile_displacement;          // likewise
-  RigEvaluationLayout layout;
   std::vector<Mat3> cap_axes;  // by global profile: its cap frame's axes, scaled like the profile
-  std::vector<RestBridge> rest_bridges;  // per part: its joint's skin bridge at rest
-  std::vector<BridgeSamples> bridges;    // per part: its joint's skin bridge this frame
+  std::vector<BridgeSamples> bridges;  // per part: its joint's skin bridge this frame
   // Per part, per spine sample: rest axes times the transposed deformed axes (world -> rest).
   std::vector<std::vector<Mat3>> spine_undo;
   // The vertex, bridge and normal passes, in double (positions) and float (float_positions).
   VertexStage<double> stage64;
   VertexStage<float> stage32;
 };
+// A workspace with a plan of its own.
 RigWorkspace MakeRigWorkspace(const RigModel& model);
+// A workspace sharing `plan` (made for this model): what each further thread needs, made
+// without redoing the plan's work.
+RigWorkspace MakeRigWorkspace(const RigModel& model, std::shared_ptr<const RigEvaluationPlan> plan);
 
 struct EvaluateRigJob {
   const RigModel* model = nullptr;

@@ -1,8 +1,9 @@
 // The per-vertex stage of EvaluateRigJob (rig_evaluation.h, steps 6-8): vertices from the
 // profile wires, then the skin bridges at joints, then normals, over flat arrays with one array
 // per coordinate, in Real: double where a tool needs it, float for engine buffers (four
-// vertices at a time with SSE2). Made once per model by MakeRigWorkspace; internal to the
-// evaluation (its fields may change).
+// vertices at a time with SSE2). Its plan (VertexStagePlan) is made once per model and shared by
+// every workspace of that model (RigEvaluationPlan); each workspace holds its own per-frame
+// buffers (VertexStage). Internal to the evaluation (its fields may change).
 //
 // Vertices are held in "slots": the pair-bound vertices first, in vertex order, then the
 // capped ones; slot_of_vertex maps a vertex to its slot.
@@ -17,15 +18,15 @@
 namespace wirerig {
 
 template <class Real>
-struct VertexStage {
-  using V = Eigen::Matrix<Real, 3, 1>;
-  using M = Eigen::Matrix<Real, 3, 3>;
-  struct Coordinates {  // one array per coordinate
-    std::vector<Real> x, y, z;
-    void resize(std::size_t n) { x.resize(n), y.resize(n), z.resize(n); }
-  };
+struct StageCoordinates {  // one array per coordinate
+  std::vector<Real> x, y, z;
+  void resize(std::size_t n) { x.resize(n), y.resize(n), z.resize(n); }
+};
 
-  // --- Layout, constant per model ---
+// The stage's layout, constant per model.
+template <class Real>
+struct VertexStagePlan {
+  using Coordinates = StageCoordinates<Real>;
   std::vector<std::uint32_t> slot_of_vertex;  // #W
   std::vector<std::uint32_t> vertex_of_slot;  // #W
   std::size_t pair_count = 0;
@@ -57,8 +58,17 @@ struct VertexStage {
   // slot_triangles[slot_triangle_offsets[i] .. slot_triangle_offsets[i + 1]).
   std::vector<std::uint32_t> t0, t1, t2;
   std::vector<std::uint32_t> slot_triangle_offsets, slot_triangles;
+};
 
-  // --- Per frame ---
+// The stage's per-frame buffers, one set per workspace.
+template <class Real>
+struct VertexStage {
+  using V = Eigen::Matrix<Real, 3, 1>;
+  using M = Eigen::Matrix<Real, 3, 3>;
+  using Coordinates = StageCoordinates<Real>;
+  using Bucket = typename VertexStagePlan<Real>::Bucket;
+  const VertexStagePlan<Real>* plan = nullptr;  // owned by the workspace's RigEvaluationPlan
+
   Coordinates position;     // by slot
   Coordinates wire;         // every profile's world points, by RigEvaluationLayout::point_base
   Coordinates pair_centre;  // (c_g + c_g+1) / 2 by global profile
