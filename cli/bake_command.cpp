@@ -1,7 +1,9 @@
 #include "bake_command.h"
 
+#include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <ostream>
 
 #include <CLI/CLI.hpp>
@@ -20,6 +22,13 @@ void DrawProgress(std::ostream& err, std::size_t done, std::size_t total) {
   err << "\r  baking [" << std::string(static_cast<std::size_t>(filled), '#')
       << std::string(static_cast<std::size_t>(kWidth - filled), '.') << "] " << done << "/" << total
       << " keys" << (done == total ? "\n" : "") << std::flush;
+}
+
+// The output is a .glb (the extension matched case-insensitively, as ExportGltf does).
+bool IsGlb(const std::string& output) {
+  std::string extension = std::filesystem::path(output).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".glb";
 }
 
 double Seconds(std::chrono::steady_clock::time_point since) {
@@ -69,6 +78,31 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
       << " parts; clip \"" << clip->name << "\", " << clip->duration << " s at " << options.fps
       << " fps\n";
 
+  GltfExportOptions export_options;
+  export_options.mode =
+      options.mode == "skin" ? GltfAnimationMode::kSkin : GltfAnimationMode::kMorph;
+  export_options.residual_morph_targets = options.residual;
+  export_options.quantize = options.quantize;
+  export_options.node_name = scene.description.name;
+  // An export a .glb cannot hold is refused with its numbers before anything is baked.
+  if (IsGlb(options.output)) {
+    std::size_t joints = 0;
+    for (const PartModel& part : scene.model.parts) joints += part.spine_points.size();
+    const double keys = BakeKeyCount(clip->duration, options.fps);
+    const double bytes =
+        EstimateGltfBytes(scene.mesh.positions.size(), joints, keys, true, export_options);
+    if (bytes > kMaxGlbBytes) {
+      char message[320];
+      std::snprintf(message, sizeof message,
+                    "%.0f keys (%g s at %g fps) x %zu vertices need at least %.3g GB, more than "
+                    "a .glb holds (%.3g GB); write .gltf, or bake fewer keys (--fps, a shorter "
+                    "clip)",
+                    keys, clip->duration, options.fps, scene.mesh.positions.size(), bytes / 1e9,
+                    kMaxGlbBytes / 1e9);
+      return fail(options.output + ": " + message);
+    }
+  }
+
   BakeOptions bake_options;
   bake_options.fps = options.fps;
   bake_options.skin = options.mode == "skin";
@@ -82,12 +116,6 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   if (!bake) return fail(options.scene + ": clip \"" + clip->name + "\": " + bake.error());
   const double bake_seconds = Seconds(bake_start);
 
-  GltfExportOptions export_options;
-  export_options.mode =
-      options.mode == "skin" ? GltfAnimationMode::kSkin : GltfAnimationMode::kMorph;
-  export_options.residual_morph_targets = options.residual;
-  export_options.quantize = options.quantize;
-  export_options.node_name = scene.description.name;
   if (!scene.description.mesh.file.empty()) {
     const std::filesystem::path mesh_file =
         scene.description.mesh.file.is_absolute()
@@ -113,6 +141,7 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
                   report.skin_max_error, report.skin_max_error_relative, report.skin_rms_error);
     out << line;
   }
+  for (const std::string& warning : bake.value().warnings) out << "warning: " << warning << "\n";
   for (const std::string& warning : report.warnings) out << "warning: " << warning << "\n";
   return 0;
 }

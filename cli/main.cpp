@@ -1,4 +1,6 @@
 // wirerig: the command-line tool. Each subcommand lives in its own *_command.{h,cpp}.
+// One exit-code policy for every command (printed by --help): 0 success, 1 bad input or
+// failure, 2 usage error (CLI11's own parse error codes, 100 and up, are mapped to 2).
 #include <unistd.h>
 
 #include <iostream>
@@ -20,6 +22,9 @@ int main(int argc, char** argv) {
   CLI::App app{"wirerig: character rigging and animation with physically based wire deformations"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "wirerig " WIRERIG_VERSION);
+  app.footer(
+      "Exit codes (every command): 0 success; 1 bad input or failure (the message names the "
+      "file and field); 2 usage error (unknown or missing subcommand, option or value).");
 
   wirerig::cli::WireCommandOptions wire_options;
   CLI::App* wire = wirerig::cli::AddWireCommand(app, wire_options);
@@ -45,7 +50,12 @@ int main(int argc, char** argv) {
   CLI::App* view = wirerig::cli::AddViewCommand(app, view_options);
 #endif
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version end the parse with code 0; every other parse error is a usage error.
+    return app.exit(e) == 0 ? 0 : 2;
+  }
   if (wire->parsed())
     return wirerig::cli::RunWireCommand(wire_options, std::cin, std::cout, std::cerr);
   if (rig->parsed()) return wirerig::cli::RunRigCommand(rig_options, std::cout, std::cerr);

@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "wirerig/anim/bake.h"
 #include "wirerig/anim/scene.h"
 #include "wirerig/viewer/headless.h"
 #include "wirerig/viewer/scene_frame.h"
@@ -80,9 +81,13 @@ int RunRenderCommand(const RenderCommandOptions& options, std::ostream& out, std
   std::vector<Vec3> positions(scene.model.vertices.size()), normals(positions.size());
   RenderOptions render_options;
   render_options.show_wires = options.wires;
+  std::vector<PartWarnings> warnings(scene.model.parts.size());
   auto evaluate = [&](double t) -> std::string {
-    if (Status s = playback.Evaluate(t, positions, normals); !s)
+    if (Status s = playback.Evaluate(t, positions, normals, warnings); !s)
       return "t = " + std::to_string(t) + " s: " + ToString(s);
+    for (std::size_t p = 0; p < warnings.size(); ++p)
+      if (std::string w = DeflectionWarning(scene.model.parts[p], warnings[p], t); !w.empty())
+        out << "warning: " << w << "\n";
     picture.Update(playback, positions, normals);
     return {};
   };

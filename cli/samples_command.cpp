@@ -1,7 +1,6 @@
 #include "samples_command.h"
 
 #include <filesystem>
-#include <fstream>
 #include <ostream>
 #include <sstream>
 
@@ -11,6 +10,7 @@
 #include "bake_command.h"
 #include "render_command.h"
 #include "wirerig/rig/atomic_file.h"
+#include "wirerig/rig/input_file.h"
 #include "wirerig/rig/json_fields.h"
 
 #ifndef WIRERIG_SAMPLES_DIR
@@ -29,11 +29,9 @@ std::string SamplesDir(const SamplesCommandOptions& options) {
 }  // namespace
 
 Result<std::vector<CatalogEntry>> LoadCatalog(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return Error{path + ": cannot open the catalog"};
-  std::stringstream text;
-  text << in.rdbuf();
-  const nlohmann::json document = nlohmann::json::parse(text.str(), nullptr, false);
+  Result<std::string> text = ReadInputFile(path, "sample catalog (JSON)");
+  if (!text) return Error{text.error()};
+  const nlohmann::json document = nlohmann::json::parse(text.value(), nullptr, false);
   if (document.is_discarded()) return Error{path + ": not valid JSON"};
   std::vector<CatalogEntry> entries;
   try {

@@ -1,6 +1,6 @@
 #include "wire_command.h"
 
-#include <fstream>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -12,6 +12,8 @@
 #include "wirerig/rig/wire_problem.h"
 
 namespace wirerig::cli {
+
+namespace fs = std::filesystem;
 
 CLI::App* AddWireCommand(CLI::App& app, WireCommandOptions& options) {
   CLI::App* wire =
@@ -28,16 +30,10 @@ CLI::App* AddWireCommand(CLI::App& app, WireCommandOptions& options) {
 int RunWireCommand(const WireCommandOptions& options, std::istream& in, std::ostream& out,
                    std::ostream& err) {
   const bool from_stdin = options.input == "-";
-  std::ifstream file;
-  if (!from_stdin) {
-    file.open(options.input, std::ios::binary);
-    if (!file) {
-      err << "wirerig wire: " << options.input << ": cannot open file\n";
-      return 1;
-    }
-  }
   const std::string source = from_stdin ? "<stdin>" : options.input;
-  const Result<WireProblem> problem = LoadWireProblem(from_stdin ? in : file, source);
+  // A file is checked before it is opened (a directory or FIFO is refused, never read).
+  const Result<WireProblem> problem =
+      from_stdin ? LoadWireProblem(in, source) : LoadWireProblem(fs::path(options.input));
   if (!problem) {
     err << "wirerig wire: " << problem.error() << "\n";
     return 1;
@@ -47,6 +43,8 @@ int RunWireCommand(const WireCommandOptions& options, std::istream& in, std::ost
     err << "wirerig wire: " << source << ": " << solution.error() << "\n";
     return 1;
   }
+  for (const std::string& warning : WireSolutionWarnings(problem.value(), solution.value()))
+    err << "wirerig wire: warning: " << source << ": " << warning << "\n";
   std::ostringstream text;
   if (options.format == "table")
     PrintWireTable(text, problem.value(), solution.value());

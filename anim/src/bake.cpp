@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <utility>
 
 namespace wirerig {
 namespace {
@@ -32,6 +34,34 @@ void AddSpines(const RigModel& model, std::size_t keys, BakedAnimation& bake) {
 
 }  // namespace
 
+std::string DeflectionWarning(const PartModel& part, const PartWarnings& warning, double t) {
+  if (!(warning.max_deflection_ratio > 1.0)) return {};
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "part \"%s\": its deflection reached %.3g m (%.3g x its length %.3g m) at t = "
+                "%.3g s: linear beam theory no longer holds (the loads are far too large for its "
+                "stiffness)",
+                part.name.c_str(), warning.max_deflection_ratio * part.spine_length,
+                warning.max_deflection_ratio, part.spine_length, t);
+  return text;
+}
+
+double BakeKeyCount(double duration, double fps) {
+  // As BakeKeyTimes counts: whole frames from 0, plus the end when no frame sits on it.
+  const double whole = std::floor(duration * fps + 1e-9);
+  return whole + 1.0 + (duration - whole / fps > 1e-6 / fps ? 1.0 : 0.0);
+}
+
+double EstimateBakeBytes(const Mesh& mesh, const RigModel& model, double keys,
+                         const BakeOptions& options) {
+  const double vertex = sizeof(Vec3f) * (options.normals ? 2.0 : 1.0);
+  double spine_samples = 0.0;
+  for (const PartModel& part : model.parts) spine_samples += double(part.spine_points.size());
+  const double per_key = vertex * double(mesh.positions.size()) +
+                         (sizeof(Vec3) + sizeof(Quat)) * spine_samples + sizeof(double);
+  return keys * per_key;
+}
+
 std::vector<double> BakeKeyTimes(double duration, double fps) {
   std::vector<double> times;
   const auto whole = static_cast<std::size_t>(std::floor(duration * fps + 1e-9));
@@ -48,6 +78,19 @@ Result<BakedAnimation> BakeClip(const Mesh& mesh, const RigModel& model, const C
   if (mesh.weld_map.size() != mesh.positions.size() ||
       mesh.welded_positions.size() != model.vertices.size())
     return Error{"mesh: is not the mesh the rig model was built on (vertex counts differ)"};
+  // The size first: a clip of 1e5 s must be refused here, not by std::bad_alloc below.
+  const double key_count = BakeKeyCount(clip.duration, options.fps);
+  if (const double bytes = EstimateBakeBytes(mesh, model, key_count, options);
+      !(bytes <= options.max_bytes)) {
+    char message[320];
+    std::snprintf(message, sizeof message,
+                  "the bake would hold %.0f keys (%g s at %g keys/s) x %zu vertices = %.3g GB, "
+                  "more than the %.3g GB a bake may take; bake a shorter clip or fewer keys per "
+                  "second",
+                  key_count, clip.duration, options.fps, mesh.positions.size(), bytes / 1e9,
+                  options.max_bytes / 1e9);
+    return Error{message};
+  }
   SpineSkin skin;
   if (options.skin) {
     SpineSkinOptions skin_options;
@@ -72,6 +115,9 @@ Result<BakedAnimation> BakeClip(const Mesh& mesh, const RigModel& model, const C
   bake.skin_joints = std::move(skin.joints);
   bake.skin_weights = std::move(skin.weights);
 
+  // Per part: the frame's warnings, and the worst deflection over the keys (ratio, time).
+  std::vector<PartWarnings> frame(model.parts.size());
+  std::vector<std::pair<PartWarnings, double>> worst(model.parts.size());
   for (std::size_t k = 0; k < keys; ++k) {
     const double t = bake.times[k];
     // The key's vertices straight into the bake, in the mesh's own (unwelded) order.
@@ -84,10 +130,14 @@ Result<BakedAnimation> BakeClip(const Mesh& mesh, const RigModel& model, const C
     if (options.normals) output.normals = key(bake.normals);
     output.vertex_order = mesh.weld_map;
     // Clip-local time of the key: a baked clip covers [0, duration] once, whatever its loop.
-    if (Status s = player.Evaluate(std::min(t, clip.duration - 1e-12 * clip.duration), output);
+    if (Status s =
+            player.Evaluate(std::min(t, clip.duration - 1e-12 * clip.duration), output, frame);
         !s) {
       return Error{"key at t = " + std::to_string(t) + " s: " + ToString(s)};
     }
+    for (std::size_t p = 0; p < frame.size(); ++p)
+      if (frame[p].max_deflection_ratio > worst[p].first.max_deflection_ratio)
+        worst[p] = {frame[p], t};
     for (std::size_t p = 0; p < model.parts.size(); ++p) {
       BakedSpine& spine = bake.spines[p];
       const std::vector<Vec3>& points = player.workspace().spine_points[p];
@@ -97,6 +147,10 @@ Result<BakedAnimation> BakeClip(const Mesh& mesh, const RigModel& model, const C
     }
     if (options.progress) options.progress(k + 1, keys);
   }
+  for (std::size_t p = 0; p < worst.size(); ++p)
+    if (std::string w = DeflectionWarning(model.parts[p], worst[p].first, worst[p].second);
+        !w.empty())
+      bake.warnings.push_back(std::move(w));
   return bake;
 }
 

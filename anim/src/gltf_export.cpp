@@ -3,6 +3,7 @@
 #include "wirerig/anim/gltf_export.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <utility>
@@ -98,6 +99,18 @@ gltf::MorphTargetsAdded AddSkinMode(tinygltf::Model& model, tinygltf::Animation&
 }
 
 }  // namespace
+
+double EstimateGltfBytes(std::size_t vertex_count, std::size_t joint_count, double keys,
+                         bool normals, const GltfExportOptions& options) {
+  const bool skin = options.mode == GltfAnimationMode::kSkin;
+  const bool morph = !skin || options.residual_morph_targets;
+  // Per vertex and attribute: 3 floats, or 4 shorts when quantized (the smallest it can be).
+  const double stride = options.quantize ? 4.0 * sizeof(std::int16_t) : 3.0 * sizeof(float);
+  const double morph_bytes = morph ? stride * (normals ? 2.0 : 1.0) * double(vertex_count) : 0.0;
+  // Per joint: a translation (3 floats) and a rotation (4 floats) per key.
+  const double joint_bytes = skin ? 7.0 * sizeof(float) * double(joint_count) : 0.0;
+  return keys * (morph_bytes + joint_bytes);
+}
 
 Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake,
                                     const GltfExportOptions& options, const fs::path& out) {

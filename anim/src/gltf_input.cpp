@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include "float_finite.h"
+
 namespace wirerig::gltf {
 namespace {
 
@@ -45,30 +47,14 @@ Message CheckFinite(const std::vector<V>& values, const std::string& field) {
   return std::nullopt;
 }
 
-// The bake's float vectors (#K x #V, up to ~10^7 values): their bits, scanned in blocks for an
-// all-ones exponent (infinity or NaN) without floating-point operations, so that the loop
-// vectorizes; the element is then located by the loop above.
+// The bake's float vectors (#K x #V, up to ~10^7 values): the check Playback::Evaluate makes
+// on every frame it outputs (float_finite.h).
 Message CheckFinite(const std::vector<Vec3f>& values, const std::string& field) {
   static_assert(sizeof(Vec3f) == 3 * sizeof(float));
-  constexpr std::uint32_t kExponent = 0x7F800000u;
-  constexpr std::size_t kBlock = 3 * 1024;
-  const std::size_t count = values.size() * 3;
-  const auto* bytes = reinterpret_cast<const unsigned char*>(values.data());
-  for (std::size_t first = 0; first < count; first += kBlock) {
-    const std::size_t last = std::min(count, first + kBlock);
-    std::uint32_t bad = 0;
-    for (std::size_t i = first; i < last; ++i) {
-      std::uint32_t bits = 0;
-      std::memcpy(&bits, bytes + i * sizeof(float), sizeof bits);
-      bad |= static_cast<std::uint32_t>((bits & kExponent) == kExponent);
-    }
-    if (bad != 0) {
-      for (std::size_t i = first / 3; i < last / 3; ++i) {
-        if (!AllFinite(values[i])) return Indexed(field, i).append(": not finite");
-      }
-    }
-  }
-  return std::nullopt;
+  const std::size_t bad = detail::FirstNonFiniteFloat3(
+      {values.empty() ? nullptr : values.data()->data(), 3 * values.size()}, values.size());
+  if (bad == detail::kAllFinite) return std::nullopt;
+  return Indexed(field, bad).append(": not finite");
 }
 
 Message CheckMesh(const Mesh& mesh) {

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <utility>
 
@@ -19,6 +21,8 @@
 
 #include "gltf_paths.h"
 #include "wirerig/rig/atomic_file.h"
+#include "wirerig/rig/input_file.h"
+#include "wirerig/rig/temp_files.h"
 
 namespace wirerig::gltf {
 namespace {
@@ -71,7 +75,9 @@ std::uint32_t GetU32(const unsigned char* bytes) {
 Result<fs::path> WriteStreamAtomically(
     const fs::path& path, std::uintmax_t size, const std::function<bool(const ByteSink&)>& produce,
     const std::function<std::optional<std::string>(int)>& check = nullptr) {
-  const fs::path temp = path.string() + ".tmp" + std::to_string(::getpid());
+  RemoveStaleTemporaryFiles(path);
+  const fs::path temp = TemporaryPathFor(path);
+  TemporaryFile registered(temp);  // removed if SIGINT or SIGTERM comes before the rename
   const int fd = ::open(temp.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) return Error{path.string() + ": cannot write (" + std::strerror(errno) + ")"};
   std::uintmax_t written = 0;
@@ -191,10 +197,64 @@ std::optional<std::string> CheckWritten(const fs::path& path, std::size_t size) 
   return std::nullopt;
 }
 
+// Whether `name` is a .bin this writer gives the .gltf of stem `stem`: "<stem>.bin" or
+// "<stem>.<n>.bin" (n decimal).
+bool IsOwnBinName(std::string_view name, std::string_view stem) {
+  constexpr std::string_view kTail = ".bin";
+  if (name.size() < stem.size() + kTail.size() || !name.starts_with(stem) || !name.ends_with(kTail))
+    return false;
+  std::string_view middle = name.substr(stem.size(), name.size() - stem.size() - kTail.size());
+  if (middle.empty()) return true;  // "<stem>.bin"
+  if (middle.size() < 2 || middle.front() != '.') return false;
+  middle.remove_prefix(1);
+  return std::all_of(middle.begin(), middle.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// The name of the new .bin: "<stem>.bin", or else "<stem>.<n>.bin" for the first n from 1 with
+// no such file: never a file that exists, so the old pair is untouched until the switch.
+fs::path FreshBinPath(const fs::path& out) {
+  fs::path bin = out;
+  bin.replace_extension(".bin");
+  std::error_code error;
+  for (int n = 1; fs::symlink_status(bin, error).type() != fs::file_type::not_found; ++n) {
+    bin = out;
+    std::string extension = ".";
+    extension.append(std::to_string(n)).append(".bin");
+    bin.replace_extension(extension);
+  }
+  return bin;
+}
+
+// The .bin the existing .gltf at `out` refers to, when it is one this writer named (same
+// folder, IsOwnBinName): the file to remove once the new .gltf has replaced the old one.
+std::optional<fs::path> OwnBinOf(const fs::path& out) {
+  Result<std::string> text = ReadInputFile(out, "glTF file");
+  if (!text) return std::nullopt;
+  const nlohmann::json document =
+      nlohmann::json::parse(text.value(), nullptr, /*allow_exceptions=*/false);
+  if (!document.is_object()) return std::nullopt;
+  const auto buffers = document.find("buffers");
+  if (buffers == document.end() || !buffers->is_array() || buffers->size() != 1 ||
+      !(*buffers)[0].is_object())
+    return std::nullopt;
+  const auto uri = (*buffers)[0].find("uri");
+  if (uri == (*buffers)[0].end() || !uri->is_string()) return std::nullopt;
+  const std::string name = uri->get<std::string>();
+  if (name.find('/') != std::string::npos || name.find('%') != std::string::npos ||
+      !IsOwnBinName(name, out.stem().string()))
+    return std::nullopt;
+  return out.parent_path() / name;
+}
+
+// The .gltf and its .bin switch together or not at all: the new .bin goes to a name no file
+// has (FreshBinPath), the new .gltf referring to it replaces the old one atomically (the
+// switch), and only then is the old .bin removed. A failure before the switch removes the new
+// .bin and leaves the old pair as it was; a kill before it leaves at most the new .bin (removed
+// by the signal cleanup, temp_files.h).
 Result<std::vector<fs::path>> WriteGltfAndBin(tinygltf::Model model, const BufferTail& tail,
                                               const fs::path& out) {
-  fs::path bin_path = out;
-  bin_path.replace_extension(".bin");
+  const fs::path bin_path = FreshBinPath(out);
+  const std::optional<fs::path> old_bin = OwnBinOf(out);
   std::vector<unsigned char> data;
   if (!model.buffers.empty()) data = std::move(model.buffers[0].data);
   const std::size_t buffer_size = data.size() + tail.size;
@@ -210,24 +270,23 @@ Result<std::vector<fs::path>> WriteGltfAndBin(tinygltf::Model model, const Buffe
   const std::string json = document.dump(2).append("\n");
 
   std::vector<fs::path> files;
+  // Until the switch the new .bin is removed on SIGINT or SIGTERM like a temporary file.
+  TemporaryFile new_bin(buffer_size > 0 ? bin_path : fs::path());
   if (buffer_size > 0) {
     Result<fs::path> written = WriteStreamAtomically(
         bin_path, buffer_size, [&](const ByteSink& sink) { return WriteBuffer(data, tail, sink); });
     if (!written) return Error{written.error()};
     files.push_back(bin_path);
   }
-  std::optional<std::string> problem;
+  std::error_code ignored;
   if (Result<fs::path> written = WriteFileAtomically(out, json); !written) {
-    problem = written.error();
-  } else {
-    files.push_back(out);
-    problem = CheckWritten(out, json.size());
+    if (buffer_size > 0) fs::remove(bin_path, ignored);
+    return Error{written.error()};
   }
-  if (problem) {
-    std::error_code ignored;
-    for (const fs::path& file : files) fs::remove(file, ignored);
-    return Error{*problem};
-  }
+  new_bin.Keep();
+  files.push_back(out);
+  if (old_bin && *old_bin != bin_path) fs::remove(*old_bin, ignored);
+  if (std::optional<std::string> problem = CheckWritten(out, json.size())) return Error{*problem};
   return files;
 }
 

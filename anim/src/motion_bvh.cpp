@@ -3,13 +3,12 @@
 #include <cfenv>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <numbers>
-#include <sstream>
 #include <unordered_set>
 
 #include "wirerig/anim/motion_capture.h"
 #include "wirerig/rig/floating_point_hold.h"
+#include "wirerig/rig/input_file.h"
 
 namespace wirerig {
 namespace {
@@ -381,14 +380,9 @@ Result<MotionCapture> ParseBvh(std::string_view text, const std::string& source)
 }
 
 Result<MotionCapture> LoadBvh(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    return Error{path.string() + ": no such motion file"};
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path.string() + ": cannot open the motion file"};
-  std::stringstream text;
-  text << in.rdbuf();
-  return ParseBvh(text.str(), path.string());
+  Result<std::string> text = ReadInputFile(path, "motion file (BVH)");
+  if (!text) return Error{text.error()};
+  return ParseBvh(text.value(), path.string());
 }
 
 }  // namespace wirerig

@@ -1,12 +1,11 @@
 // Mapping files: how a motion capture's joints drive a rig's parts.
 #include <cfenv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "wirerig/anim/motion_mapping.h"
+#include "wirerig/rig/input_file.h"
 #include "wirerig/rig/json_fields.h"
 
 namespace wirerig {
@@ -95,10 +94,8 @@ Result<MotionMapping> ParseMotionMapping(const nlohmann::json& document) {
 }
 
 Result<MotionMapping> LoadMotionMapping(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path.string() + ": cannot open the mapping file"};
-  std::stringstream text;
-  text << in.rdbuf();
+  Result<std::string> text = ReadInputFile(path, "motion mapping file (JSON)");
+  if (!text) return Error{text.error()};
   json document;
   std::string syntax;
   {
@@ -106,7 +103,7 @@ Result<MotionMapping> LoadMotionMapping(const std::filesystem::path& path) {
     std::fenv_t saved;
     std::feholdexcept(&saved);
     try {
-      document = json::parse(text.str());
+      document = json::parse(text.value());
     } catch (const json::exception& e) {
       syntax = e.what();
     }

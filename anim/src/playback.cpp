@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "float_finite.h"
+
 namespace wirerig {
 
 Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
@@ -180,13 +182,28 @@ void Playback::ApplyInteractiveLoad() {
   extra.line_loads = {};
 }
 
+namespace {
+
+Status NotFloatFinite(std::string_view field, std::size_t vertex) {
+  return Status::InvalidElement(field, static_cast<int>(vertex), {},
+                                "not finite as a float (the deformation overflowed)");
+}
+
+}  // namespace
+
 Status Playback::Evaluate(double t, std::span<Vec3> positions, std::span<Vec3> normals,
                           std::span<PartWarnings> warnings) {
   EvaluateRigJob job;
   job.positions = positions;
   job.normals = normals;
   job.warnings = warnings;
-  return Run(t, job);
+  if (Status s = Run(t, job); !s) return s;
+  // Every consumer (renderer, export) takes floats: a deformation that overflowed them fails.
+  if (const std::size_t i = detail::FirstNotFloatFinite(positions); i != detail::kAllFinite)
+    return NotFloatFinite("positions", i);
+  if (const std::size_t i = detail::FirstNotFloatFinite(normals); i != detail::kAllFinite)
+    return NotFloatFinite("normals", i);
+  return Status::Ok();
 }
 
 Status Playback::Evaluate(double t, const FloatOutput& output, std::span<PartWarnings> warnings) {
@@ -197,7 +214,20 @@ Status Playback::Evaluate(double t, const FloatOutput& output, std::span<PartWar
   job.float_normal_stride = output.normal_stride;
   job.float_vertex_order = output.vertex_order;
   job.warnings = warnings;
-  return Run(t, job);
+  if (Status s = Run(t, job); !s) return s;
+  const std::size_t count =
+      output.vertex_order.empty() ? model_->vertices.size() : output.vertex_order.size();
+  if (const std::size_t i =
+          detail::FirstNonFiniteFloat3(output.positions, count, output.position_stride);
+      i != detail::kAllFinite)
+    return NotFloatFinite("positions", i);
+  if (!output.normals.empty()) {
+    if (const std::size_t i =
+            detail::FirstNonFiniteFloat3(output.normals, count, output.normal_stride);
+        i != detail::kAllFinite)
+      return NotFloatFinite("normals", i);
+  }
+  return Status::Ok();
 }
 
 Status Playback::Run(double t, EvaluateRigJob& job) {

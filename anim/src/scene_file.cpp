@@ -1,14 +1,13 @@
 // Reading and writing scene files (docs/scene-format.md).
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "wirerig/anim/clip_json.h"
 #include "wirerig/anim/scene.h"
 #include "wirerig/rig/atomic_file.h"
+#include "wirerig/rig/input_file.h"
 #include "wirerig/rig/json_physics.h"
 
 namespace wirerig {
@@ -360,11 +359,9 @@ Result<SceneDescription> ParseScene(const nlohmann::json& document,
 }
 
 Result<SceneDescription> LoadScene(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path.string() + ": cannot open the scene file"};
-  std::stringstream text;
-  text << in.rdbuf();
-  const json document = json::parse(text.str(), nullptr, false);
+  Result<std::string> text = ReadInputFile(path, "scene file (JSON)");
+  if (!text) return Error{text.error()};
+  const json document = json::parse(text.value(), nullptr, false);
   if (document.is_discarded()) return Error{path.string() + ": not valid JSON"};
   Result<SceneDescription> scene = ParseScene(document, path.parent_path());
   if (!scene) return Error{path.string() + ": " + scene.error()};

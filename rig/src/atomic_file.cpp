@@ -6,12 +6,16 @@
 #include <fstream>
 #include <system_error>
 
+#include "wirerig/rig/temp_files.h"
+
 namespace wirerig {
 
 Result<std::filesystem::path> WriteFileAtomically(const std::filesystem::path& path,
                                                   std::string_view bytes) {
   namespace fs = std::filesystem;
-  const fs::path temp = path.string() + ".tmp" + std::to_string(::getpid());
+  RemoveStaleTemporaryFiles(path);
+  const fs::path temp = TemporaryPathFor(path);
+  TemporaryFile registered(temp);  // removed if SIGINT or SIGTERM comes before the rename
   {
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
     if (!out) return Error{path.string() + ": cannot write (" + std::strerror(errno) + ")"};

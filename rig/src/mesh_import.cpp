@@ -25,6 +25,8 @@
 #include <utility>
 #include <vector>
 
+#include "wirerig/rig/input_file.h"
+
 namespace wirerig {
 namespace {
 
@@ -1048,19 +1050,11 @@ bool ParseUpAxis(std::string_view name, UpAxis* out) {
 }
 
 Result<ImportedMesh> ImportMesh(const fs::path& path, const ImportOptions& options) {
-  // The file itself: exists, is a regular file, can be read, is not empty.
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (ec || !fs::exists(status)) {
-    if (ec && ec != std::errc::no_such_file_or_directory) {
-      return Fail(path, "cannot access (" + ec.message() + ")");
-    }
-    return Fail(path, "no such file");
-  }
-  if (fs::is_directory(status)) return Fail(path, "is a directory, not a mesh file");
-  if (!fs::is_regular_file(status)) return Fail(path, "is not a regular file");
-  const std::uintmax_t file_size = fs::file_size(path, ec);
-  if (ec) return Fail(path, "cannot read its size (" + ec.message() + ")");
+  // The file itself: exists, is a regular file (input_file.h), can be read, is not empty.
+  Result<std::uintmax_t> checked =
+      CheckInputFile(path, "mesh file", std::numeric_limits<std::uintmax_t>::max());
+  if (!checked) return Error{checked.error()};
+  const std::uintmax_t file_size = checked.value();
 
   std::string head;
   {

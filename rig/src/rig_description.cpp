@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
+#include "wirerig/rig/input_file.h"
 #include "wirerig/rig/json_fields.h"
 #include "wirerig/rig/json_physics.h"
 
@@ -111,9 +111,9 @@ Result<RigDescription> ParseRigDescription(const nlohmann::json& document) {
 }
 
 Result<RigDescription> LoadRigDescription(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path.string() + ": cannot open file"};
-  const nlohmann::json document = nlohmann::json::parse(in, nullptr, false);
+  Result<std::string> text = ReadInputFile(path, "rig description (JSON)");
+  if (!text) return Error{text.error()};
+  const nlohmann::json document = nlohmann::json::parse(text.value(), nullptr, false);
   if (document.is_discarded()) return Error{path.string() + ": not valid JSON"};
   Result<RigDescription> description = ParseRigDescription(document);
   if (!description) return Error{path.string() + ": " + description.error()};

@@ -1,12 +1,12 @@
 #include "wirerig/rig/rig_file.h"
 
 #include <cmath>
-#include <fstream>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "wirerig/rig/atomic_file.h"
+#include "wirerig/rig/input_file.h"
 #include "wirerig/rig/json_fields.h"
 #include "wirerig/rig/json_physics.h"
 
@@ -204,9 +204,9 @@ Result<std::filesystem::path> SaveRig(const Rig& rig, const std::filesystem::pat
 }
 
 Result<Rig> LoadRig(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path.string() + ": cannot open file"};
-  const nlohmann::json document = nlohmann::json::parse(in, nullptr, false);
+  Result<std::string> text = ReadInputFile(path, "rig file (JSON)");
+  if (!text) return Error{text.error()};
+  const nlohmann::json document = nlohmann::json::parse(text.value(), nullptr, false);
   if (document.is_discarded()) return Error{path.string() + ": not valid JSON"};
   Result<Rig> rig = RigFromJson(document);
   if (!rig) return Error{path.string() + ": " + rig.error()};

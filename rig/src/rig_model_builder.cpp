@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "joint_skin_spread.h"
@@ -210,6 +211,53 @@ void BindJoints(const RigModel& model, const std::vector<RestBridge>& rest_bridg
   }
 }
 
+// The rig's geometry (central curves, profile origins and points, spine points) lies within the
+// mesh's box grown by kRigReach of its diagonal on every side; else the first point that does
+// not is named ("part 'arm': profiles[3].points[5]: ...").
+std::string CheckRigWithinMesh(const Mesh& mesh, const Rig& rig) {
+  if (mesh.welded_positions.empty()) return {};
+  Vec3 low = mesh.welded_positions.front(), high = low;
+  for (const Vec3& p : mesh.welded_positions) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  const double diagonal = (high - low).norm();
+  const double reach = kRigReach * diagonal;
+  auto outside = [&](const Vec3& p) {
+    for (int c = 0; c < 3; ++c)
+      if (!(p[c] >= low[c] - reach && p[c] <= high[c] + reach)) return true;  // NaN too
+    return false;
+  };
+  auto name = [](const std::string& field, std::size_t i) {
+    return field + "[" + std::to_string(i) + "]";
+  };
+  auto refuse = [&](const RigPart& part, const std::string& field, const Vec3& p) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  ": (%.4g, %.4g, %.4g) m lies far outside the mesh's box (more than %g x its "
+                  "diagonal, %.4g m, beyond it): a rig for another mesh, or other units?",
+                  p.x(), p.y(), p.z(), kRigReach, diagonal);
+    return "part '" + part.name + "': " + field + text;
+  };
+  for (const RigPart& part : rig.parts) {
+    for (std::size_t i = 0; i < part.central_curve.size(); ++i)
+      if (outside(part.central_curve[i]))
+        return refuse(part, name("central_curve", i), part.central_curve[i]);
+    for (std::size_t i = 0; i < part.spine_points.size(); ++i)
+      if (outside(part.spine_points[i]))
+        return refuse(part, name("spine_points", i), part.spine_points[i]);
+    for (std::size_t j = 0; j < part.profiles.size(); ++j) {
+      const ProfileCurve& profile = part.profiles[j];
+      if (outside(profile.origin))
+        return refuse(part, name("profiles", j) + ".origin", profile.origin);
+      for (std::size_t i = 0; i < profile.points.size(); ++i)
+        if (outside(profile.points[i]))
+          return refuse(part, name("profiles", j) + name(".points", i), profile.points[i]);
+    }
+  }
+  return {};
+}
+
 }  // namespace
 
 Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
@@ -220,6 +268,7 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
                  std::to_string(mesh.welded_triangles.size()) +
                  " triangles; the rig was built for " + std::to_string(rig.mesh_vertices) +
                  " and " + std::to_string(rig.mesh_triangles)};
+  if (std::string far = CheckRigWithinMesh(mesh, rig); !far.empty()) return Error{far};
   BuiltRigModel built;
   RigModel& model = built.model;
   model.triangles = mesh.welded_triangles;

@@ -1,9 +1,14 @@
 #include "wirerig/rig/wire_problem.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <istream>
+#include <iterator>
 
 #include <nlohmann/json.hpp>
 
+#include "wirerig/rig/input_file.h"
 #include "wirerig/rig/json_fields.h"
 #include "wirerig/rig/json_physics.h"
 #include "wirerig/runtime/axial_job.h"
@@ -85,6 +90,29 @@ Error JobError(const Status& status, std::string_view part) {
   return Error{JobFieldPath(status, part) + ": " + std::string(status.reason)};
 }
 
+// "/: ..." when the problem's work is over the limit, else empty.
+std::string CheckWork(const WireProblem& problem) {
+  const double operations = EstimateWireOperations(problem);
+  if (operations <= WireProblem::kMaxOperations) return {};
+  std::string what = std::to_string(problem.samples) + " samples";
+  if (problem.bending && problem.bending->mode == BendingMode::kSeries)
+    what += " x " + std::to_string(problem.bending->series_terms) + " series terms";
+  if (problem.bending)
+    what +=
+        ", " +
+        std::to_string(problem.bending->point_loads.size() + problem.bending->line_loads.size()) +
+        " bending loads";
+  if (problem.axial)
+    what += ", " +
+            std::to_string(problem.axial->point_loads.size() + problem.axial->line_loads.size()) +
+            " axial loads";
+  char numbers[160];
+  std::snprintf(numbers, sizeof numbers, "about %.3g operations, more than the %.3g allowed",
+                operations, WireProblem::kMaxOperations);
+  return "/: too much work (" + what + "): " + numbers +
+         "; use fewer samples, terms or loads (docs/wire-format.md)";
+}
+
 }  // namespace
 
 Result<WireProblem> ParseWireProblem(const nlohmann::json& document) {
@@ -102,23 +130,74 @@ Result<WireProblem> ParseWireProblem(const nlohmann::json& document) {
     if (root.Has("axial")) problem.axial = ReadAxial(root.Object("axial"));
     if (!problem.bending && !problem.axial)
       throw FieldError("/", "needs \"bending\", \"axial\" or both");
+    if (std::string work = CheckWork(problem); !work.empty()) return Error{work};
     return problem;
   } catch (const FieldError& e) {
     return Error{e.what()};
   }
 }
 
-Result<WireProblem> LoadWireProblem(std::istream& in, std::string_view source_name) {
-  const nlohmann::json document = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+namespace {
+
+// Parses one wire problem's JSON text; errors start with `source_name`.
+Result<WireProblem> ParseWireProblemText(std::string_view text, std::string_view source_name) {
+  const nlohmann::json document = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (document.is_discarded()) return Error{std::string(source_name) + ": not valid JSON"};
   Result<WireProblem> problem = ParseWireProblem(document);
   if (!problem) return Error{std::string(source_name) + ": " + problem.error()};
   return problem;
 }
 
+}  // namespace
+
+Result<WireProblem> LoadWireProblem(std::istream& in, std::string_view source_name) {
+  // Read whole (bounded) before parsing: a stream whose buffer throws (libstdc++'s filebuf on a
+  // directory throws std::ios_base::failure) or fails is an error, never an escaping exception.
+  std::string text;
+  try {
+    std::istreambuf_iterator<char> it(in), end;
+    for (; it != end && text.size() <= kMaxJsonFileBytes; ++it) text.push_back(*it);
+  } catch (const std::exception& e) {
+    return Error{std::string(source_name) + ": cannot read (" + e.what() + ")"};
+  }
+  if (in.bad()) return Error{std::string(source_name) + ": cannot read"};
+  if (text.size() > kMaxJsonFileBytes)
+    return Error{std::string(source_name) + ": more than the " + std::to_string(kMaxJsonFileBytes) +
+                 " bytes a wire problem may have"};
+  return ParseWireProblemText(text, source_name);
+}
+
+Result<WireProblem> LoadWireProblem(const std::filesystem::path& path) {
+  Result<std::string> text = ReadInputFile(path, "wire problem (JSON)");
+  if (!text) return Error{text.error()};
+  return ParseWireProblemText(text.value(), path.string());
+}
+
+double EstimateWireOperations(const WireProblem& problem) {
+  const double samples = problem.samples;
+  double operations = 0.0;
+  if (problem.bending) {
+    const WireBendingSpec& b = *problem.bending;
+    const double loads = double(b.point_loads.size()) + double(b.line_loads.size());
+    if (b.mode == BendingMode::kSeries) {
+      // Terms out of range are the bending job's to refuse, by their own field.
+      const double terms = std::clamp(b.series_terms, 0, BendingJob::kMaxSeriesTerms);
+      operations += samples * terms + 2.0 * terms * loads;
+    } else {
+      operations += samples * (1.0 + loads);
+    }
+  }
+  if (problem.axial) {
+    const WireAxialSpec& a = *problem.axial;
+    operations += samples * (1.0 + double(a.point_loads.size()) + double(a.line_loads.size()));
+  }
+  return operations;
+}
+
 Result<WireSolution> SolveWireProblem(const WireProblem& problem) {
   if (problem.samples < 2 || problem.samples > WireProblem::kMaxSamples)
     return Error{"/samples: must lie in [2, 1000000]"};
+  if (std::string work = CheckWork(problem); !work.empty()) return Error{work};
   WireSolution solution;
   solution.stiffness = ComputeStiffness(problem.material, problem.section);
   const auto n = static_cast<std::size_t>(problem.samples);
@@ -163,6 +242,30 @@ Result<WireSolution> SolveWireProblem(const WireProblem& problem) {
     if (const Status status = job.Run(); !status) return JobError(status, "axial");
   }
   return solution;
+}
+
+std::vector<std::string> WireSolutionWarnings(const WireProblem& problem,
+                                              const WireSolution& solution) {
+  std::vector<std::string> warnings;
+  auto check = [&](const char* part, std::size_t count, auto magnitude) {
+    double largest = 0.0;
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (const double m = magnitude(i); m > largest) largest = m, at = i;
+    }
+    if (!(largest > problem.length)) return;
+    char text[256];
+    std::snprintf(
+        text, sizeof text,
+        "%s displacement %.3g m at v = %.3g exceeds the wire's length %.3g m: linear beam "
+        "theory no longer holds (the loads are far too large for the stiffness)",
+        part, largest, solution.v[at], problem.length);
+    warnings.emplace_back(text);
+  };
+  check("bending", solution.bending.size(),
+        [&](std::size_t i) { return solution.bending[i].norm(); });
+  check("axial", solution.axial.size(), [&](std::size_t i) { return std::abs(solution.axial[i]); });
+  return warnings;
 }
 
 nlohmann::json WireSolutionToJson(const WireSolution& solution) {

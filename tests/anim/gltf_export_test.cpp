@@ -30,6 +30,7 @@
 #include <assimp/Importer.hpp>
 
 #include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/rig/temp_files.h"
 
 namespace wirerig {
 namespace {
@@ -711,6 +712,80 @@ TEST(GltfExport, UsesTheNodeNameAndKeepsAnExistingFileOnError) {
   EXPECT_FALSE(ExportGltf(scene.mesh, scene.bake, options, out).ok());
   EXPECT_EQ(fs::file_size(out), size);
   EXPECT_EQ(FileCount(dir.path()), 2u);
+}
+
+// The buffer URI a .gltf refers to.
+std::string BinUri(const fs::path& gltf) {
+  std::FILE* f = std::fopen(gltf.c_str(), "rb");
+  std::string text;
+  char block[4096];
+  for (std::size_t n; (n = std::fread(block, 1, sizeof block, f)) > 0;) text.append(block, n);
+  std::fclose(f);
+  const std::string key = "\"uri\": \"";
+  const std::size_t at = text.rfind(key);
+  if (at == std::string::npos) return "";
+  return text.substr(at + key.size(), text.find('"', at + key.size()) - at - key.size());
+}
+
+// The new .bin replaced the old one before the .gltf was written; when writing the .gltf failed
+// the new .bin was deleted and the old .gltf pointed at a missing file. Now the .bin goes to a
+// fresh name and the .gltf switches last: on failure the old pair is whole, on success the old
+// .bin is gone.
+TEST(GltfExport, GltfAndBinSwitchTogetherOrNotAtAll) {
+  TempDir dir;
+  Scene scene = MakeScene(BendCase{});
+  GltfExportOptions options;
+  const fs::path out = dir.path() / "pair.gltf";
+  Result<GltfExportReport> first = ExportGltf(scene.mesh, scene.bake, options, out);
+  ASSERT_TRUE(first.ok()) << first.error();
+  EXPECT_EQ(first.value().files.front(), dir.path() / "pair.bin");
+  EXPECT_EQ(BinUri(out), "pair.bin");
+  // A second export: a new .bin beside the old, the .gltf switched to it, the old .bin removed.
+  options.node_name = "second";
+  Result<GltfExportReport> second = ExportGltf(scene.mesh, scene.bake, options, out);
+  ASSERT_TRUE(second.ok()) << second.error();
+  EXPECT_EQ(second.value().files.front(), dir.path() / "pair.1.bin");
+  EXPECT_EQ(BinUri(out), "pair.1.bin");
+  EXPECT_FALSE(fs::exists(dir.path() / "pair.bin"));
+  EXPECT_EQ(FileCount(dir.path()), 2u);
+  EXPECT_EQ(LoadWithTinygltf(out).nodes.at(0).name, "second");
+  // Writing the .gltf fails (its temporary file's name is taken by a folder): the old .gltf
+  // and the .bin it refers to are left whole, and the new .bin is gone.
+  const fs::path blocker = TemporaryPathFor(out);
+  fs::create_directories(blocker / "x");
+  const auto gltf_size = fs::file_size(out);
+  const auto bin_size = fs::file_size(dir.path() / "pair.1.bin");
+  options.node_name = "third";
+  EXPECT_FALSE(ExportGltf(scene.mesh, scene.bake, options, out).ok());
+  fs::remove_all(blocker);
+  EXPECT_EQ(fs::file_size(out), gltf_size);
+  EXPECT_EQ(BinUri(out), "pair.1.bin");
+  EXPECT_EQ(fs::file_size(dir.path() / "pair.1.bin"), bin_size);
+  EXPECT_FALSE(fs::exists(dir.path() / "pair.bin"));
+  EXPECT_EQ(FileCount(dir.path()), 2u);
+  EXPECT_EQ(LoadWithTinygltf(out).nodes.at(0).name, "second");
+  // And the next export succeeds, back on the first name.
+  ASSERT_TRUE(ExportGltf(scene.mesh, scene.bake, options, out).ok());
+  EXPECT_EQ(BinUri(out), "pair.bin");
+  EXPECT_FALSE(fs::exists(dir.path() / "pair.1.bin"));
+  EXPECT_EQ(FileCount(dir.path()), 2u);
+}
+
+// A .gltf that refers to a .bin this writer did not name keeps it when replaced.
+TEST(GltfExport, ReplacingAForeignGltfKeepsTheBinItReferred) {
+  TempDir dir;
+  Scene scene = MakeScene(BendCase{});
+  const fs::path out = dir.path() / "pair.gltf";
+  std::FILE* f = std::fopen(out.c_str(), "w");
+  std::fputs(
+      R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 4, "uri": "shared.bin"}]})", f);
+  std::fclose(f);
+  f = std::fopen((dir.path() / "shared.bin").c_str(), "w");
+  std::fputs("abcd", f);
+  std::fclose(f);
+  ASSERT_TRUE(ExportGltf(scene.mesh, scene.bake, GltfExportOptions{}, out).ok());
+  EXPECT_EQ(BinUri(out), "pair.bin");
+  EXPECT_TRUE(fs::exists(dir.path() / "shared.bin"));
 }
 
 TEST(GltfExport, PartsBecomePrimitivesSharingVerticesAndTargets) {

@@ -754,8 +754,7 @@ TEST(MotionErrors, BvhHierarchyAndMotionMustAgree) {
   EXPECT_EQ(BvhError(ThreeJointsWith("Frames: 2", "Frames: 8000000")),
             "bad.bvh: line 25: \"Frames: 8000000\" but the file holds 2 frame lines");
   // A file that is not there.
-  EXPECT_EQ(LoadBvh("/nonexistent/motion.bvh").error(),
-            "/nonexistent/motion.bvh: no such motion file");
+  EXPECT_EQ(LoadBvh("/nonexistent/motion.bvh").error(), "/nonexistent/motion.bvh: no such file");
 }
 
 TEST(MotionErrors, MappingsMustNameJointsAndPartsThatExist) {
@@ -811,7 +810,7 @@ TEST(MotionErrors, MappingsMustNameJointsAndPartsThatExist) {
   json scene = ChainScene(bvh, folder / "missing.mapping.json");
   EXPECT_EQ(samples::SceneError(scene), "scene \"chain\": /clips/0/motion/mapping: " +
                                             (folder / "missing.mapping.json").string() +
-                                            ": cannot open the mapping file");
+                                            ": no such file");
   scene["clips"][0]["duration"] = 3;
   EXPECT_EQ(samples::SceneError(scene),
             "/clips/0/duration: a clip with a motion takes its duration from the motion (cut it "

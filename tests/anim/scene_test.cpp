@@ -4,6 +4,7 @@
 #include "wirerig/anim/scene.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -140,7 +141,36 @@ TEST(Scene, LoadNamesTheFile) {
   std::ofstream(path) << "{\"format\": ";
   EXPECT_EQ(LoadScene(path).error(), path.string() + ": not valid JSON");
   EXPECT_EQ(LoadScene(path.string() + ".missing").error(),
-            path.string() + ".missing: cannot open the scene file");
+            path.string() + ".missing: no such file");
+}
+
+// `bake /dev/zero` read forever; a FIFO blocked: neither is opened for reading.
+TEST(Scene, LoadRefusesWhatIsNotARegularFile) {
+  const std::string zero = LoadScene("/dev/zero").error();
+  EXPECT_EQ(zero.rfind("/dev/zero: is not a regular file", 0), 0u) << zero;
+  const fs::path dir = fs::temp_directory_path() / "wirerig_scene_test";
+  fs::create_directories(dir);
+  EXPECT_EQ(LoadScene(dir).error(), dir.string() + ": is a directory, not a scene file (JSON)");
+  const fs::path fifo = dir / "pipe.scene.json";
+  fs::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string piped = LoadScene(fifo).error();
+  fs::remove(fifo);
+  EXPECT_NE(piped.find("pipe.scene.json: is not a regular file"), std::string::npos) << piped;
+}
+
+// A scene whose rig file is "." (its own folder) aborted the build with an escaping exception.
+TEST(Scene, BuildRefusesARigFileThatIsADirectory) {
+  json d = CylinderScene();
+  d["rig"] = {{"file", "."}};
+  const fs::path folder = fs::temp_directory_path();
+  Result<SceneDescription> scene = ParseScene(d, folder);
+  ASSERT_TRUE(scene.ok()) << scene.error();
+  Result<BuiltScene> built(Error{""});
+  ASSERT_NO_THROW(built = BuildScene(scene.value()));
+  ASSERT_FALSE(built.ok());
+  EXPECT_NE(built.error().find("is a directory, not a rig file (JSON)"), std::string::npos)
+      << built.error();
 }
 
 TEST(Scene, BuildsAProceduralSceneReadyToPlay) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cfenv>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -94,7 +95,7 @@ TEST(BakeCommand, FailuresNameTheFileAndFieldAndWriteNothing) {
       {kData + "bad_track.scene.json", "",
        "bad_track.scene.json: /clips/0/parts/0/tip_force/keys/1/1: must be an array of 3 "
        "numbers"},
-      {kData + "missing.scene.json", "", "missing.scene.json: cannot open the scene file"},
+      {kData + "missing.scene.json", "", "missing.scene.json: no such file"},
       {kOctopus, "dance", "octopus.scene.json: no clip is named \"dance\""},
   };
   for (const Case& c : cases) {
@@ -114,6 +115,80 @@ TEST(BakeCommand, FailuresNameTheFileAndFieldAndWriteNothing) {
   const CommandRun run = Bake(options);
   EXPECT_EQ(run.code, 1);
   EXPECT_FALSE(fs::exists(options.output));
+}
+
+// A procedural beam scene (a cylinder, one steel part) whose clip pushes the tip with
+// `force` N for `duration` s, written to `name`.
+fs::path BeamScene(const std::string& name, double duration, double force) {
+  const fs::path path = Output(name);
+  char text[1400];
+  std::snprintf(text, sizeof text, R"({
+    "format": "wirerig.scene", "version": 1, "name": "beam",
+    "mesh": {"procedural": "cylinder", "parameters": {"radius": 0.1, "height": 1.0}},
+    "rig": {"description": {"parts": [{"name": "beam", "central_curve": [[0, 0, 0], [0, 1, 0]],
+                                       "profile_count": 8, "points_per_profile": 16}]}},
+    "parts": {"beam": {"kind": "deformable", "spine": {"material": "steel"}}},
+    "clips": [{"name": "push", "duration": %.17g, "parts": [
+      {"part": "beam", "boundary": [{"time": 0, "boundary": "cantilever_free"}],
+       "tip_force": {"keys": [{"time": 0, "value": [%.17g, 0, 0]}]}}]}]})",
+                duration, force);
+  FILE* f = std::fopen(path.c_str(), "w");
+  std::fputs(text, f);
+  std::fclose(f);
+  return path;
+}
+
+// A 1e5 s clip threw std::bad_alloc, and a 1,000 s one took 8 GB and 17 s before the .glb was
+// refused: both are refused with their numbers before anything is baked.
+TEST(BakeCommand, AClipTooLargeIsRefusedWithItsNumbersBeforeBaking) {
+  const fs::path scene = BeamScene("long.scene.json", 1e5, 1.0);
+  BakeCommandOptions options;
+  options.scene = scene.string();
+  options.output = Output("long.glb").string();
+  options.fps = 1000;
+  const auto start = std::chrono::steady_clock::now();
+  CommandRun run = Bake(options);
+  EXPECT_EQ(run.code, 1);
+  EXPECT_NE(run.err.find("long.glb: 100000001 keys (100000 s at 1000 fps) x "), std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("more than a .glb holds (4.29 GB); write .gltf"), std::string::npos)
+      << run.err;
+  EXPECT_FALSE(fs::exists(options.output));
+  // As .gltf the export could be written, but the bake would not fit the memory it may take.
+  options.output = Output("long.gltf").string();
+  run = Bake(options);
+  EXPECT_EQ(run.code, 1);
+  EXPECT_NE(run.err.find("the bake would hold 100000001 keys"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(options.output));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
+}
+
+// A tip deflection of ~1e45 m: finite in double, infinite in float. `bake` refused it while
+// `render` drew it and exited 0; both now fail with the same check's message.
+TEST(SceneCommands, BakeAndRenderRefuseGeometryBeyondFloatAlike) {
+  // Steel beam, r = 0.1 m, L = 1 m: EI = 2e11 * pi r^4 / 4 = 1.57e7 N m^2; F = 3 EI d / L^3.
+  const fs::path scene = BeamScene("overflow.scene.json", 1.0, 3.0 * 1.57e7 * 1e45);
+  fedisableexcept(FE_ALL_EXCEPT);  // the float rounding overflows, by design here
+  BakeCommandOptions bake;
+  bake.scene = scene.string();
+  bake.output = Output("overflow.glb").string();
+  const CommandRun baked = Bake(bake);
+  const char* kReason = "positions[";
+  const char* kWhy = "not finite as a float (the deformation overflowed)";
+  EXPECT_EQ(baked.code, 1);
+  EXPECT_NE(baked.err.find(kReason), std::string::npos) << baked.err;
+  EXPECT_NE(baked.err.find(kWhy), std::string::npos) << baked.err;
+  EXPECT_FALSE(fs::exists(bake.output));
+  RenderCommandOptions render;
+  render.scene = scene.string();
+  render.size = "64x64";
+  render.output = Output("overflow.png").string();
+  const CommandRun rendered = Render(render);
+  feenableexcept(FE_DIVBYZERO | FE_INVALID | FE_OVERFLOW);
+  EXPECT_EQ(rendered.code, 1);
+  EXPECT_NE(rendered.err.find(kReason), std::string::npos) << rendered.err;
+  EXPECT_NE(rendered.err.find(kWhy), std::string::npos) << rendered.err;
+  EXPECT_FALSE(fs::exists(render.output));
 }
 
 // Mesa's software rasterizer raises floating-point exceptions inside its own code (context

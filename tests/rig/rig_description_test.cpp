@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <map>
 
 #include <nlohmann/json.hpp>
@@ -23,6 +24,15 @@ nlohmann::json Good() {
       {"name": "arm", "parent": "body", "central_curve": [[0, 0.8, 0], [0.5, 0.8, 0]],
        "profile_count": 4, "mesh_parts": ["arm_mesh"]}
     ]})");
+}
+
+// `rig --description DIR` aborted: reading a directory through a stream threw.
+TEST(RigDescription, LoadRefusesADirectoryByName) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path();
+  Result<RigDescription> d(Error{""});
+  ASSERT_NO_THROW(d = LoadRigDescription(dir));
+  ASSERT_FALSE(d.ok());
+  EXPECT_EQ(d.error(), dir.string() + ": is a directory, not a rig description (JSON)");
 }
 
 TEST(RigDescription, ParsesFieldsAndDefaults) {

@@ -159,8 +159,19 @@ TEST(RigFile, LoadErrorsNameTheFile) {
   const Result<Rig> rig = LoadRig(path);
   ASSERT_FALSE(rig.ok());
   EXPECT_EQ(rig.error(), path.string() + ": not valid JSON");
-  EXPECT_EQ(LoadRig("/nonexistent/x.rig.json").error(),
-            "/nonexistent/x.rig.json: cannot open file");
+  EXPECT_EQ(LoadRig("/nonexistent/x.rig.json").error(), "/nonexistent/x.rig.json: no such file");
+}
+
+// A directory (reading it through a stream threw std::ios_base::failure) and a device that
+// never ends are refused by name.
+TEST(RigFile, LoadRefusesWhatIsNotARegularFile) {
+  const fs::path dir = fs::temp_directory_path();
+  Result<Rig> rig(Error{""});
+  ASSERT_NO_THROW(rig = LoadRig(dir));
+  ASSERT_FALSE(rig.ok());
+  EXPECT_EQ(rig.error(), dir.string() + ": is a directory, not a rig file (JSON)");
+  EXPECT_NE(LoadRig("/dev/zero").error().find("/dev/zero: is not a regular file"),
+            std::string::npos);
 }
 
 TEST(RigFile, FailedSaveLeavesNothingBehind) {

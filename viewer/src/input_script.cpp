@@ -2,8 +2,9 @@
 
 #include <cctype>
 #include <charconv>
-#include <fstream>
 #include <sstream>
+
+#include "wirerig/rig/input_file.h"
 
 namespace wirerig {
 namespace {
@@ -117,11 +118,9 @@ Result<std::vector<InputEvent>> ParseInputScript(std::string_view text,
 }
 
 Result<std::vector<InputEvent>> LoadInputScript(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path.string() + ": cannot open the input script"};
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ParseInputScript(text.str(), path.string());
+  Result<std::string> text = ReadInputFile(path, "input script");
+  if (!text) return Error{text.error()};
+  return ParseInputScript(text.value(), path.string());
 }
 
 }  // namespace wirerig

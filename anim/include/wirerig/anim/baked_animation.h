@@ -41,6 +41,9 @@ struct BakedAnimation {
   // Joints are numbered over all spines in order, samples in order (spine 0's samples first).
   std::vector<std::array<std::uint32_t, 4>> skin_joints;  // #V
   std::vector<Vec4f> skin_weights;                        // #V, sum to 1
+  // What the bake found, for the modeller: parts whose deflection exceeded their length at
+  // some key (DeflectionWarning). Not exported.
+  std::vector<std::string> warnings;
 
   std::size_t KeyCount() const { return times.size(); }
 };

@@ -53,12 +53,14 @@ class Playback {
 
   // Positions (and normals, if not empty) of the welded vertices at playback time t (s); the
   // clip's loop mode maps t to clip time. `warnings`, if not empty, gets one entry per part.
+  // Every consumer draws or exports floats: an output that is not finite as a float (a
+  // deformation that overflowed) fails, naming it ("positions[12]: not finite as a float ...").
   Status Evaluate(double t, std::span<Vec3> positions, std::span<Vec3> normals,
                   std::span<PartWarnings> warnings = {});
   // The same into float buffers (EvaluateRigJob's float outputs): vertex i's position at
   // positions[i * position_stride .. + 3), its normal likewise (normals may be empty); output
   // vertex i is welded vertex vertex_order[i] (e.g. the mesh's weld map: the source asset's
-  // vertices), or welded vertex i when vertex_order is empty.
+  // vertices), or welded vertex i when vertex_order is empty. Non-finite outputs fail likewise.
   struct FloatOutput {
     std::span<float> positions;
     std::size_t position_stride = 3;

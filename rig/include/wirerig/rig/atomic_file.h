@@ -10,7 +10,9 @@
 namespace wirerig {
 
 // Returns the path written, or an error naming the file and the cause. On failure the target
-// is untouched and no temporary file is left behind.
+// is untouched and no temporary file is left behind, nor when SIGINT or SIGTERM kills the
+// process meanwhile; stale temporary files of dead processes beside `path` are removed first
+// (temp_files.h).
 Result<std::filesystem::path> WriteFileAtomically(const std::filesystem::path& path,
                                                   std::string_view bytes);
 

@@ -46,7 +46,12 @@ struct BuiltRigModel {
   RigModelReport report;
 };
 
-// The mesh must be the one the rig was built on (same welded counts).
+// How far outside the mesh's box a rig's geometry may lie, in box diagonals.
+inline constexpr double kRigReach = 1.0;
+
+// The mesh must be the one the rig was built on (same welded counts), and the rig's geometry
+// (every curve point) must lie within the mesh's box grown by kRigReach x its diagonal: a rig
+// file point of 2e9 m is refused, naming the part and the point.
 Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
                                     const RigModelOptions& options = {});
 

@@ -3,8 +3,10 @@
 // runtime jobs, whose validation errors come back with the JSON pointer of the field.
 #pragma once
 
+#include <filesystem>
 #include <iosfwd>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -38,6 +40,9 @@ struct WireAxialSpec {
 struct WireProblem {
   // Largest accepted "samples": bounds memory and time for hostile input.
   static constexpr int kMaxSamples = 1000000;
+  // Largest accepted work (EstimateWireOperations): bounds the time of valid but huge problems
+  // (1e6 samples x 1e5 series terms or point loads) to seconds. docs/wire-format.md.
+  static constexpr double kMaxOperations = 2e9;
 
   double length = 0.0;  // m
   Material material;
@@ -54,13 +59,30 @@ struct WireSolution {
   std::vector<double> axial, normal_force;      // empty when the problem has no axial part
 };
 
-// Errors read "<json pointer>: <reason>".
-Result<WireProblem> ParseWireProblem(const nlohmann::json& document);
-// Reads JSON text; errors read "<source_name>: <json pointer>: <reason>" (or the parse error).
-Result<WireProblem> LoadWireProblem(std::istream& in, std::string_view source_name);
+// The work of solving `problem`, in load (or series term) evaluations: per sample, one for each
+// point and line load in exact mode (plus one), one per term in series mode (whose coefficients
+// cost terms x loads more); per sample, one per axial load (plus one).
+double EstimateWireOperations(const WireProblem& problem);
 
-// Runs the bending and axial jobs at every sample.
+// Errors read "<json pointer>: <reason>". A problem whose work is over kMaxOperations is refused
+// with its estimate.
+Result<WireProblem> ParseWireProblem(const nlohmann::json& document);
+// Reads JSON text (at most kMaxJsonFileBytes); errors read "<source_name>: <json pointer>:
+// <reason>" (or the parse or read error). A stream that fails to read (a directory) is an error.
+Result<WireProblem> LoadWireProblem(std::istream& in, std::string_view source_name);
+// The same from a file, refused unless it is a regular file of at most kMaxJsonFileBytes
+// (input_file.h); errors start with the path.
+Result<WireProblem> LoadWireProblem(const std::filesystem::path& path);
+
+// Runs the bending and axial jobs at every sample; refuses (as ParseWireProblem does) samples
+// out of range and work over kMaxOperations.
 Result<WireSolution> SolveWireProblem(const WireProblem& problem);
+
+// What a solution warns about: a bending or axial displacement larger than the wire's length,
+// where linear beam theory no longer holds (a 1e12 N load on a soft wire: 3e24 m). Messages
+// name the part, the largest displacement, where, and the length.
+std::vector<std::string> WireSolutionWarnings(const WireProblem& problem,
+                                              const WireSolution& solution);
 
 // {"v": [...], "bending": [[x,y,z], ...], "axial": [...]}; absent parts are omitted.
 nlohmann::json WireSolutionToJson(const WireSolution& solution);

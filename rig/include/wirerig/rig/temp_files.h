@@ -1,0 +1,37 @@
+// Temporary files that never outlive their process: a file registered here is removed if the
+// process is killed by SIGINT or SIGTERM (an async-signal-safe handler unlinks every registered
+// path, then re-raises the signal with its default action), and a temporary file left by a
+// process that died otherwise (SIGKILL, a crash) is removed by the next write beside it.
+// Temporary files are named "<target>.tmp<pid>" (TemporaryPathFor).
+#pragma once
+
+#include <filesystem>
+
+namespace wirerig {
+
+// "<target>.tmp<pid of this process>".
+std::filesystem::path TemporaryPathFor(const std::filesystem::path& target);
+
+// Removes "<target>.tmp<pid>" files beside `target` whose process is no longer alive (kill(pid,
+// 0) fails with ESRCH); another live process's temporary file, and this process's, are kept.
+void RemoveStaleTemporaryFiles(const std::filesystem::path& target);
+
+// Registers `path` (if not empty) for removal on SIGINT or SIGTERM until destruction or Keep().
+// The handlers are installed on first use, for signals whose action is still the default (an
+// application's own handler or an ignored signal is left alone). At most 32 files are
+// registered at a time; beyond that a file is simply not covered.
+class TemporaryFile {
+ public:
+  explicit TemporaryFile(const std::filesystem::path& path);
+  ~TemporaryFile();
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+
+  // The file stays (it was renamed into place, or removed by the caller): no longer covered.
+  void Keep();
+
+ private:
+  int slot_ = -1;
+};
+
+}  // namespace wirerig

@@ -1,0 +1,144 @@
+// The real `wirerig` executable: one exit-code policy for every command (0 success, 1 bad
+// input or failure, 2 usage error, stated in --help), and inputs that used to abort
+// (SIGABRT from an escaping std::ios_base::failure) or hang (a FIFO, /dev/zero) end with a
+// message naming the file and exit code 1.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <thread>
+
+#include "wirerig_process.h"
+
+#ifndef WIRERIG_SOURCE_DIR
+#error "the tests need WIRERIG_SOURCE_DIR (set by CMake)"
+#endif
+
+namespace wirerig::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::ProcessResult;
+using testing::RunWirerig;
+
+const std::string kOctopus =
+    std::string(WIRERIG_SOURCE_DIR) + "/samples/octopus/octopus.scene.json";
+
+fs::path Scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / "wirerig_main_test";
+  fs::create_directories(dir);
+  fs::remove_all(dir / name);
+  return dir / name;
+}
+
+// Exited (no signal, no timeout) with `code`, standard error holding `text`.
+void ExpectExit(const ProcessResult& run, int code, const std::string& text) {
+  EXPECT_FALSE(run.timed_out);
+  EXPECT_EQ(run.signal, 0) << run.err;
+  EXPECT_EQ(run.exit_code, code) << run.err;
+  EXPECT_NE(run.err.find(text), std::string::npos) << run.err;
+}
+
+TEST(WirerigExitCodes, HelpStatesThePolicyAndExitsZero) {
+  const ProcessResult run = RunWirerig({"--help"});
+  EXPECT_EQ(run.exit_code, 0);
+  EXPECT_NE(run.out.find("Exit codes (every command): 0 success; 1 bad input or failure"),
+            std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("2 usage error"), std::string::npos) << run.out;
+  EXPECT_EQ(RunWirerig({"--version"}).exit_code, 0);
+}
+
+TEST(WirerigExitCodes, UsageErrorsExitTwo) {
+  ExpectExit(RunWirerig({}), 2, "subcommand");              // was 106
+  ExpectExit(RunWirerig({"frobnicate"}), 2, "subcommand");  // unknown subcommand
+  ExpectExit(RunWirerig({"wire"}), 2, "input");             // missing argument
+  ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--fps", "abc"}), 2, "--fps");  // 105
+  ExpectExit(RunWirerig({"wire", "x.json", "--format", "xml"}), 2, "--format");
+}
+
+TEST(WirerigExitCodes, BadInputExitsOne) {
+  ExpectExit(RunWirerig({"wire", Scratch("missing.json").string()}), 1,
+             "missing.json: no such file");
+}
+
+TEST(WirerigDirectoryInput, WireExitsOneNamingTheDirectory) {
+  const fs::path dir = Scratch("dir.json");
+  fs::create_directories(dir);
+  ExpectExit(RunWirerig({"wire", dir.string()}), 1, dir.string() + ": is a directory");
+}
+
+TEST(WirerigDirectoryInput, RigDescriptionExitsOneNamingTheDirectory) {
+  const fs::path dir = Scratch("description");
+  fs::create_directories(dir);
+  ExpectExit(RunWirerig({"rig", "mesh.obj", "--description", dir.string(), "-o",
+                         Scratch("out.rig.json").string()}),
+             1, dir.string() + ": is a directory");
+}
+
+TEST(WirerigDirectoryInput, SceneRigFileExitsOneNamingTheDirectory) {
+  const fs::path scene = Scratch("dot_rig.scene.json");
+  FILE* f = std::fopen(scene.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs(R"({"format": "wirerig.scene", "version": 1, "name": "dot",
+    "mesh": {"procedural": "cylinder", "parameters": {"radius": 0.1, "height": 1.0}},
+    "rig": {"file": "."}, "clips": []})",
+             f);
+  std::fclose(f);
+  ExpectExit(RunWirerig({"bake", scene.string(), "-o", Scratch("dot.glb").string()}), 1,
+             "is a directory, not a rig file");
+}
+
+TEST(WirerigSpecialFiles, WireOnAFifoExitsOneWithoutBlocking) {
+  const fs::path fifo = Scratch("pipe.json");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  ExpectExit(RunWirerig({"wire", fifo.string()}, std::chrono::seconds(20)), 1,
+             "pipe.json: is not a regular file");
+  fs::remove(fifo);
+}
+
+TEST(WirerigSpecialFiles, BakeAndRenderOfDevZeroExitOne) {
+  ExpectExit(RunWirerig({"bake", "/dev/zero", "-o", Scratch("zero.glb").string()},
+                        std::chrono::seconds(20)),
+             1, "/dev/zero: is not a regular file");
+  EXPECT_FALSE(fs::exists(Scratch("zero.glb")));
+#ifdef WIRERIG_HAS_VIEWER
+  ExpectExit(RunWirerig({"render", "/dev/zero", "-o", Scratch("zero.png").string()},
+                        std::chrono::seconds(20)),
+             1, "/dev/zero: is not a regular file");
+#endif
+}
+
+// Entries of `dir` whose name holds ".tmp".
+int TemporaryEntries(const fs::path& dir) {
+  int n = 0;
+  std::error_code error;
+  for (fs::directory_iterator it(dir, error), end; !error && it != end; it.increment(error))
+    n += it->path().filename().string().find(".tmp") != std::string::npos;
+  return n;
+}
+
+// A bake killed while writing left OUT.glb.tmpPID beside the target: SIGTERM now removes it
+// and still ends the process by SIGTERM.
+TEST(WirerigSignals, ABakeKilledWhileWritingLeavesNoTemporaryFile) {
+  const fs::path dir = Scratch("killed");
+  fs::create_directories(dir);
+  const fs::path out = dir / "octopus.glb";
+  testing::WirerigProcess bake({"bake", kOctopus, "-o", out.string(), "--fps", "120"});
+  // Waits for the temporary file to appear, then kills the bake.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (TemporaryEntries(dir) == 0 && std::chrono::steady_clock::now() < deadline &&
+         ::kill(bake.pid(), 0) == 0 && !fs::exists(out))
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  ASSERT_EQ(TemporaryEntries(dir), 1) << "the bake never wrote its temporary file";
+  bake.Signal(SIGTERM);
+  const ProcessResult run = bake.Wait();
+  EXPECT_EQ(run.signal, SIGTERM) << run.err;
+  EXPECT_EQ(TemporaryEntries(dir), 0);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace wirerig::cli

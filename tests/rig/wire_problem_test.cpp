@@ -1,0 +1,125 @@
+// Loading wire problems: a stream that cannot be read (an ifstream on a directory, whose
+// libstdc++ buffer throws) and paths that are not regular files come back as errors naming the
+// source, never as exceptions.
+#include "wirerig/rig/wire_problem.h"
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "wirerig/rig/input_file.h"
+
+namespace wirerig {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path ScratchDir() {
+  const fs::path dir = fs::path(testing::TempDir()) / "wirerig_wire_problem_test";
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(LoadWireProblem, AStreamOnADirectoryIsAnError) {
+  std::ifstream in(ScratchDir(), std::ios::binary);  // opens on Linux; reading throws
+  Result<WireProblem> problem(Error{""});
+  ASSERT_NO_THROW(problem = LoadWireProblem(in, "dir.json"));
+  ASSERT_FALSE(problem.ok());
+  EXPECT_EQ(problem.error().rfind("dir.json: cannot read", 0), 0u) << problem.error();
+}
+
+TEST(LoadWireProblem, ADirectoryPathIsNamed) {
+  const Result<WireProblem> problem = LoadWireProblem(ScratchDir());
+  ASSERT_FALSE(problem.ok());
+  EXPECT_EQ(problem.error(), ScratchDir().string() + ": is a directory, not a wire problem (JSON)");
+}
+
+TEST(LoadWireProblem, AFifoIsRefusedWithoutBlocking) {
+  const fs::path path = ScratchDir() / "pipe.json";
+  fs::remove(path);
+  ASSERT_EQ(mkfifo(path.c_str(), 0600), 0);
+  const Result<WireProblem> problem = LoadWireProblem(path);
+  fs::remove(path);
+  ASSERT_FALSE(problem.ok());
+  EXPECT_NE(problem.error().find("pipe.json: is not a regular file"), std::string::npos)
+      << problem.error();
+}
+
+TEST(LoadWireProblem, AnEndlessStreamIsCutAtTheLimit) {
+  // A stream longer than kMaxJsonFileBytes is refused (not parsed, not read to its end).
+  std::istringstream in(std::string(kMaxJsonFileBytes + 10, ' '));
+  const Result<WireProblem> problem = LoadWireProblem(in, "<stdin>");
+  ASSERT_FALSE(problem.ok());
+  EXPECT_NE(problem.error().find("<stdin>: more than the"), std::string::npos) << problem.error();
+}
+
+TEST(LoadWireProblem, AGoodFileLoads) {
+  const fs::path path = ScratchDir() / "good.json";
+  std::ofstream(path) << R"({"length": 1, "material": {"E": 1e9, "nu": 0.3},
+    "section": {"A": 1e-4, "I": 1e-8}, "samples": 3, "bending": {"bc": "clamped"}})";
+  const Result<WireProblem> problem = LoadWireProblem(path);
+  ASSERT_TRUE(problem.ok()) << problem.error();
+  EXPECT_EQ(problem.value().samples, 3);
+}
+
+nlohmann::json Cantilever(int samples) {
+  nlohmann::json d = nlohmann::json::parse(R"({"length": 1, "material": {"E": 1e9, "nu": 0.3},
+    "section": {"A": 1e-4, "I": 1e-8}, "bending": {"bc": "cantilever_free"}})");
+  d["samples"] = samples;
+  return d;
+}
+
+TEST(WireWork, EstimateCountsSamplesTimesLoadsOrTerms) {
+  nlohmann::json d = Cantilever(1001);
+  d["bending"]["point_loads"] = nlohmann::json::array();
+  for (int i = 0; i < 4; ++i)
+    d["bending"]["point_loads"].push_back({{"at", 0.2 * i}, {"force", {0, 1, 0}}});
+  d["axial"] = {{"point_loads", {{{"at", 1.0}, {"force", 1.0}}}}};
+  WireProblem p = ParseWireProblem(d).value();
+  EXPECT_EQ(EstimateWireOperations(p), 1001.0 * 5 + 1001.0 * 2);
+  p.bending->mode = BendingMode::kSeries;
+  p.bending->series_terms = 50;
+  EXPECT_EQ(EstimateWireOperations(p), 1001.0 * 50 + 2.0 * 50 * 4 + 1001.0 * 2);
+}
+
+// Valid inputs that ran for minutes are refused with their estimate.
+TEST(WireWork, SeriesSamplesTimesTermsOverTheLimitIsRefused) {
+  nlohmann::json d = Cantilever(1000000);
+  d["bending"]["mode"] = "series";
+  d["bending"]["terms"] = 100000;
+  const Result<WireProblem> p = ParseWireProblem(d);
+  ASSERT_FALSE(p.ok());
+  EXPECT_EQ(p.error().rfind("/: too much work (1000000 samples x 100000 series terms, 0 bending "
+                            "loads): about 1e+11 operations, more than the 2e+09 allowed",
+                            0),
+            0u)
+      << p.error();
+  d["bending"]["terms"] = 2000;  // 2e9 + 0: at the limit
+  EXPECT_TRUE(ParseWireProblem(d).ok());
+}
+
+TEST(WireWork, ExactSamplesTimesPointLoadsOverTheLimitIsRefused) {
+  nlohmann::json d = Cantilever(1000000);
+  nlohmann::json loads = nlohmann::json::array();
+  for (int i = 0; i < 100000; ++i) loads.push_back({{"at", i / 100000.0}, {"force", {0, 1, 0}}});
+  d["bending"]["point_loads"] = loads;
+  const Result<WireProblem> p = ParseWireProblem(d);
+  ASSERT_FALSE(p.ok());
+  EXPECT_NE(p.error().find("1000000 samples, 100000 bending loads): about 1e+11 operations"),
+            std::string::npos)
+      << p.error();
+  // SolveWireProblem refuses a problem built in code alike, before any work.
+  WireProblem built = ParseWireProblem(Cantilever(1000000)).value();
+  built.bending->point_loads.assign(100000, PointLoad{0.5, Vec3(0, 1, 0)});
+  const Result<WireSolution> solved = SolveWireProblem(built);
+  ASSERT_FALSE(solved.ok());
+  EXPECT_EQ(solved.error().rfind("/: too much work", 0), 0u) << solved.error();
+}
+
+}  // namespace
+}  // namespace wirerig
