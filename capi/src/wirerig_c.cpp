@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <new>
@@ -77,8 +78,18 @@ wr_status CheckPart(const char* function, const wr_context* context, uint32_t pa
   return WR_OK;
 }
 
-// The bytes of a regular file, or a status with the message set.
+// The bytes of a regular file of at most 2 GiB, or a status with the message set. What is not a
+// regular file (a directory, a FIFO that would block, a device that never ends) is refused by
+// its type before it is opened.
 wr_status ReadFile(const char* path, std::vector<std::uint8_t>* bytes) {
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (error || !std::filesystem::exists(status))
+    return Fail(WR_IO_ERROR, std::string(path) + ": no such file");
+  if (!std::filesystem::is_regular_file(status))
+    return Fail(WR_IO_ERROR, std::string(path) + ": not a regular file");
+  if (std::filesystem::file_size(path, error) > (std::uintmax_t(1) << 31) || error)
+    return Fail(WR_IO_ERROR, std::string(path) + ": larger than 2 GiB, or of unknown size");
   std::ifstream file(path, std::ios::binary | std::ios::ate);
   if (!file) return Fail(WR_IO_ERROR, std::string(path) + ": cannot open");
   const std::streamoff size = file.tellg();

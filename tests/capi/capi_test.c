@@ -38,7 +38,9 @@ int main(int argc, char** argv) {
   wr_rig* rig = NULL;
   /* A missing file and garbage bytes are refused with a message and no rig. */
   CHECK(wr_rig_load_file("/nonexistent/rig.wrig", &rig) == WR_IO_ERROR && rig == NULL);
-  CHECK(strstr(wr_last_error(), "/nonexistent/rig.wrig") != NULL);
+  CHECK(strstr(wr_last_error(), "/nonexistent/rig.wrig: no such file") != NULL);
+  CHECK(wr_rig_load_file("/", &rig) == WR_IO_ERROR && rig == NULL);
+  CHECK(strstr(wr_last_error(), "not a regular file") != NULL);
   const char garbage[40] = "WRIG and then nothing that makes sense";
   CHECK(wr_rig_load_memory(garbage, sizeof garbage, &rig) == WR_BAD_ASSET && rig == NULL);
   CHECK(strstr(wr_last_error(), "rig asset") != NULL);
