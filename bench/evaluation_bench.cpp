@@ -11,7 +11,8 @@
 //    midpoint 1-to-4 split of every triangle, then the longest edges split once more).
 //  * /2_threads: the wire evaluation with its vertex and normal passes on a 2-thread pool
 //    (EvaluateRigJob::parallel); wall time.
-//  * BM_WireEvaluationFloat: the same into float engine buffers (the float evaluation);
+//  * BM_WireEvaluationFloat: the same into float engine buffers (the float evaluation; avx2:1
+//    lets it use eight lanes where the CPU has AVX2, avx2:0 keeps SSE2's four);
 //    BM_ReferenceLinearBlend: linear blend skinning as engines write it (float, one array per
 //    attribute, 4 influences; rig/reference_skinning.h), one bone per part, same pose.
 //  * BM_BindingPrecompute: BuildRigModel alone on the subdivided mesh. Target: under 200 ms
@@ -438,6 +439,7 @@ void BM_WireEvaluationFloat(benchmark::State& state, const Scene& (*get)()) {
   job.float_normals = std::span<float>(buffer).subspan(3);
   job.float_normal_stride = 6;
   job.parallel = pool;
+  job.allow_avx2 = state.range(1) != 0;
   for (auto _ : state) {
     const Status status = job.Run();
     if (!status) {
@@ -561,21 +563,26 @@ BENCHMARK_CAPTURE(BM_WireEvaluation, subdivided_2_threads, &Subdivided)
     ->ComputeStatistics("min", Minimum)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_WireEvaluationFloat, human, &Human)
-    ->Arg(1)
+    ->ArgNames({"threads", "avx2"})
+    ->Args({1, 1})
+    ->Args({1, 0})
     ->ComputeStatistics("min", Minimum)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_ReferenceLinearBlend, human, &Human)
     ->ComputeStatistics("min", Minimum)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_WireEvaluationFloat, subdivided, &Subdivided)
-    ->Arg(1)
+    ->ArgNames({"threads", "avx2"})
+    ->Args({1, 1})
+    ->Args({1, 0})
     ->ComputeStatistics("min", Minimum)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_ReferenceLinearBlend, subdivided, &Subdivided)
     ->ComputeStatistics("min", Minimum)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_WireEvaluationFloat, subdivided_2_threads, &Subdivided)
-    ->Arg(2)
+    ->ArgNames({"threads", "avx2"})
+    ->Args({2, 1})
     ->UseRealTime()
     ->ComputeStatistics("min", Minimum)
     ->Unit(benchmark::kMicrosecond);

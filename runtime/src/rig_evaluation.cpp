@@ -422,7 +422,8 @@ Status EvaluateRigJob::Run() const {
                                  float_normals.empty() ? nullptr : float_normals.data(),
                                  float_normal_stride,
                                  float_vertex_order.empty() ? nullptr : float_vertex_order.data(),
-                                 float_vertex_order.size()};
+                                 float_vertex_order.size(),
+                                 allow_avx2};
     RunVertexStage(*model, w, w.stage32, out, parallel);
   }
   return Status::Ok();

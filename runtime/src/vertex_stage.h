@@ -20,6 +20,7 @@ struct StageOutput {
   std::size_t normal_stride = 3;
   const std::uint32_t* order = nullptr;
   std::size_t order_size = 0;
+  bool allow_avx2 = true;  // float: eight lanes where the CPU has AVX2 (identical results)
 };
 
 // The stage's plan for `model`; `layout` holds the joint entries and undo samples.
@@ -36,5 +37,14 @@ void MakeVertexStage(const RigModel& model, const RigEvaluationLayout& layout,
 template <class Real>
 void RunVertexStage(const RigModel& model, RigWorkspace& w, VertexStage<Real>& stage,
                     const StageOutput<Real>& output, const ParallelFor* parallel);
+
+#if WIRERIG_HAVE_AVX2_STAGE
+// Whether this CPU (and OS) runs AVX2, asked once.
+bool CpuHasAvx2();
+// RunVertexStage<float> with eight-float packs (vertex_stage_avx2.cpp); call only when
+// CpuHasAvx2().
+void RunVertexStageAvx2(const RigModel& model, RigWorkspace& w, VertexStage<float>& stage,
+                        const StageOutput<float>& output, const ParallelFor* parallel);
+#endif
 
 }  // namespace wirerig

@@ -651,7 +651,7 @@ TEST(RigEvaluation, ParallelEvaluationIsBitIdenticalToSequential) {
 // the same positions and normals to float precision, into an interleaved buffer (position and
 // normal of a vertex side by side, stride 6), bit-identical on any number of threads.
 std::vector<float> EvaluateBusyFloat(const Scene& scene, const BusyPose& pose,
-                                     const ParallelFor* parallel) {
+                                     const ParallelFor* parallel, bool allow_avx2 = true) {
   RigWorkspace workspace = MakeRigWorkspace(scene.model);
   std::vector<float> buffer(6 * scene.model.vertices.size(), -7.0f);
   EvaluateRigJob job;
@@ -665,9 +665,22 @@ std::vector<float> EvaluateBusyFloat(const Scene& scene, const BusyPose& pose,
   job.float_normal_stride = 6;
   job.preserve_volume = true;
   job.parallel = parallel;
+  job.allow_avx2 = allow_avx2;
   const Status status = job.Run();
   EXPECT_TRUE(status.ok()) << ToString(status);
   return buffer;
+}
+
+// Eight lanes (AVX2, where this CPU has it) and four (SSE2) do the same IEEE operations per
+// vertex: the same bits, on one thread and on several.
+TEST(RigEvaluation, WidePacksGiveTheBaselinesBits) {
+  const Scene& human = Human();
+  const BusyPose pose = MakeBusyPose(human);
+  const std::vector<float> baseline = EvaluateBusyFloat(human, pose, nullptr, false);
+  EXPECT_EQ(EvaluateBusyFloat(human, pose, nullptr, true), baseline);
+  const ThreadPool pool(3);
+  EXPECT_EQ(EvaluateBusyFloat(human, pose, &pool, true), baseline);
+  EXPECT_EQ(EvaluateBusyFloat(human, pose, &pool, false), baseline);
 }
 
 TEST(RigEvaluation, FloatEngineBuffersHoldTheDoubleEvaluationToFloatPrecision) {

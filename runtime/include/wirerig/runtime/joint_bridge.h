@@ -110,7 +110,8 @@ struct BridgeSegment {
   simd::M3<P> map[2], turn[2], parent_turn, child_turn;
   V map_offset[2], turn_offset[2], centre[2], inward[2], parent_offset, child_offset;
 
-  BridgeSegment(const BasicBridgeSamples<Real>& bridge, int k) {
+  // Always inlined (simd_pack.h): into passes compiled for wider instruction sets too.
+  [[gnu::always_inline]] BridgeSegment(const BasicBridgeSamples<Real>& bridge, int k) {
     for (int i = 0; i < 2; ++i) {
       const auto& s = bridge.samples[k + i];
       map[i] = simd::M3<P>::Splat(s.map);
@@ -130,7 +131,8 @@ struct BridgeSegment {
   // bridge: `fraction` of the swept cross-section's motion (taking `section` of its growth), the
   // rest the two sides' motions blended by smoothstep(t); *parent_image: the parent side's
   // rigid motion of q.
-  V Image(Value f, Value t, Value fraction, Value section, const V& q, V* parent_image) const {
+  [[gnu::always_inline]] V Image(Value f, Value t, Value fraction, Value section, const V& q,
+                                 V* parent_image) const {
     const Value one = P::Broadcast(Real(1)), zero = P::Broadcast(Real(0));
     const Value g = one - f;
     V swept = g * (map[0] * q + map_offset[0]) + f * (map[1] * q + map_offset[1]);

@@ -181,6 +181,10 @@ struct EvaluateRigJob {
   // outside the frame loop). Null (the default): everything on the calling thread. The results
   // are bit-identical either way; Run() allocates nothing if `parallel` does not.
   const ParallelFor* parallel = nullptr;
+  // The float evaluation runs eight vertices at a time where the CPU has AVX2 (checked once at
+  // run time), else four (SSE2, x86-64's baseline); the results are bit-identical. False keeps
+  // it on the baseline (for comparisons).
+  bool allow_avx2 = true;
 
   Status Validate() const;
   Status Run() const;  // validates, then evaluates; never allocates

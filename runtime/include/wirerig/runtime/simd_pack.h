@@ -97,48 +97,53 @@ struct Float4 {
 };
 #endif
 
+// The helpers below are always inlined into the pass that uses them, so a pass compiled for a
+// wider instruction set (vertex_stage_avx2.cpp) never calls an out-of-line copy compiled
+// without it.
+#define WIRERIG_SIMD_INLINE [[gnu::always_inline]] inline
+
 // A 3-vector of lanes (x, y, z each a pack or a scalar).
 template <class T>
 struct V3 {
   T x, y, z;
 };
 template <class T>
-V3<T> operator+(const V3<T>& a, const V3<T>& b) {
+WIRERIG_SIMD_INLINE V3<T> operator+(const V3<T>& a, const V3<T>& b) {
   return {a.x + b.x, a.y + b.y, a.z + b.z};
 }
 template <class T>
-V3<T> operator-(const V3<T>& a, const V3<T>& b) {
+WIRERIG_SIMD_INLINE V3<T> operator-(const V3<T>& a, const V3<T>& b) {
   return {a.x - b.x, a.y - b.y, a.z - b.z};
 }
 template <class T>
-V3<T> operator*(const T& s, const V3<T>& a) {
+WIRERIG_SIMD_INLINE V3<T> operator*(const T& s, const V3<T>& a) {
   return {s * a.x, s * a.y, s * a.z};
 }
 template <class T>
-T Dot(const V3<T>& a, const V3<T>& b) {
+WIRERIG_SIMD_INLINE T Dot(const V3<T>& a, const V3<T>& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
 template <class T>
-V3<T> Cross(const V3<T>& a, const V3<T>& b) {
+WIRERIG_SIMD_INLINE V3<T> Cross(const V3<T>& a, const V3<T>& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 
 // Broadcasts of a scalar vector and matrix (Eigen, column-major) into packs.
 template <class P, class Vector>
-V3<typename P::Value> Splat(const Vector& v) {
+WIRERIG_SIMD_INLINE V3<typename P::Value> Splat(const Vector& v) {
   return {P::Broadcast(v.x()), P::Broadcast(v.y()), P::Broadcast(v.z())};
 }
 template <class P>
 struct M3 {
   typename P::Value m[3][3];  // m[row][column]
   template <class Matrix>
-  static M3 Splat(const Matrix& a) {
+  [[gnu::always_inline]] static M3 Splat(const Matrix& a) {
     M3 out;
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) out.m[r][c] = P::Broadcast(a(r, c));
     return out;
   }
-  V3<typename P::Value> operator*(const V3<typename P::Value>& v) const {
+  [[gnu::always_inline]] V3<typename P::Value> operator*(const V3<typename P::Value>& v) const {
     return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
             m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
             m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};

@@ -1,0 +1,402 @@
+// The vertex stage's passes (vertex_stage.h), written once against a pack type Wide and compiled
+// twice: by vertex_stage.cpp for the baseline (one double lane; four floats with SSE2) and by
+// vertex_stage_avx2.cpp inside an AVX2 target region (eight floats). Everything here lies in an
+// unnamed namespace, so the two compilations share no symbol: no AVX2 code can stand in for
+// baseline code at link time. Include only from those two files.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "vertex_stage.h"
+#include "wirerig/runtime/simd_pack.h"
+
+namespace wirerig {
+namespace {
+
+// Vertices, entries and triangles per parallel task: large enough that claiming a task costs
+// nothing next to it, small enough that two threads share out a mesh evenly. A multiple of
+// every pack width (kBucketMultiple: eight floats with AVX2).
+constexpr std::size_t kTaskSize = 2048;
+constexpr std::uint32_t kBucketMultiple = 8;
+
+// ApplyPairFast's bounds, per lane type: while squared lengths stay within them no product
+// below overflows or underflows, and the frame is regular enough for the lane's precision
+// (sine of the angle between e and d above 1e-8 in double, 1e-3 in float); outside them the
+// vertex goes through ApplyPairBinding in double.
+template <class Real>
+struct PairBounds;
+template <>
+struct PairBounds<double> {
+  static constexpr double kMinSquared = 1e-140, kMaxSquared = 1e140, kSine2 = 1e-16;
+};
+template <>
+struct PairBounds<float> {
+  static constexpr float kMinSquared = 1e-30f, kMaxSquared = 1e30f, kSine2 = 1e-6f;
+};
+
+std::size_t Tasks(std::size_t items) { return (items + kTaskSize - 1) / kTaskSize; }
+
+// Lanes of a 3-vector from one array per coordinate, at c[index[l]]. Always inlined: called
+// per vertex in every pass (a call per gather cost a quarter of a frame).
+template <class P, class Coordinates>
+[[gnu::always_inline]] inline simd::V3<typename P::Value> GatherV3(const Coordinates& c,
+                                                                   const std::uint32_t* index) {
+  return {P::Gather(c.x.data(), index), P::Gather(c.y.data(), index), P::Gather(c.z.data(), index)};
+}
+
+template <class Real, class Wide>
+struct StagePasses {
+  using S = VertexStage<Real>;
+  using One = simd::OneLane<Real>;
+
+  const RigModel* model;
+  const RigWorkspace* w;
+  S* s;
+  const BasicBridgeSamples<Real>* bridges;  // by part
+  StageOutput<Real> out;
+
+  // PHYSICS.md section 6, step "apply", for regular frames: with e = p2 - p1, d = c - p1 and
+  // n = e x d, the point is p1 + alpha e + beta (n_hat x e) + gamma |e| n_hat (ApplyPairBinding
+  // up to rounding). Returns the lanes (bits) whose frame needs ApplyPairBinding itself.
+  template <class P>
+  int PairPack(std::size_t i) const {
+    using Value = typename P::Value;
+    using V = simd::V3<Value>;
+    const S& st = *s;
+    auto gather = [](const typename S::Coordinates& c, const std::uint32_t* index) {
+      return GatherV3<P>(c, index);
+    };
+    const Value one = P::Broadcast(Real(1));
+    const Value l1 = P::Load(&st.plan->lambda1[i]), l2 = P::Load(&st.plan->lambda2[i]);
+    const V p1 =
+        (one - l1) * gather(st.wire, &st.plan->a0[i]) + l1 * gather(st.wire, &st.plan->a1[i]);
+    const V p2 =
+        (one - l2) * gather(st.wire, &st.plan->b0[i]) + l2 * gather(st.wire, &st.plan->b1[i]);
+    const V e = p2 - p1;
+    const V d = gather(st.pair_centre, &st.plan->profile[i]) - p1;
+    const Value ee = simd::Dot(e, e), dd = simd::Dot(d, d);
+    const V n = simd::Cross(e, d);
+    const Value nn = simd::Dot(n, n);
+    using B = PairBounds<Real>;
+    const Value lo = P::Broadcast(B::kMinSquared), hi = P::Broadcast(B::kMaxSquared);
+    const auto ok = P::And(P::And(P::And(P::Greater(ee, lo), P::Greater(hi, ee)),
+                                  P::And(P::Greater(dd, lo), P::Greater(hi, dd))),
+                           P::Greater(nn, P::Broadcast(B::kSine2) * ee * dd));
+    const Value safe_nn = P::Select(ok, nn, one), safe_ee = P::Select(ok, ee, one);
+    const V n_hat = (one / P::Sqrt(safe_nn)) * n;
+    const V p = p1 + P::Load(&st.plan->alpha[i]) * e +
+                P::Load(&st.plan->beta[i]) * simd::Cross(n_hat, e) +
+                (P::Load(&st.plan->gamma[i]) * P::Sqrt(safe_ee)) * n_hat;
+    P::Store(&s->position.x[i], p.x);
+    P::Store(&s->position.y[i], p.y);
+    P::Store(&s->position.z[i], p.z);
+    return ~P::Bits(ok) & ((1 << P::kWidth) - 1);
+  }
+
+  // ApplyPairBinding itself (double), on the wires as spans.
+  void SlowPair(std::size_t slot) const {
+    const std::uint32_t vertex = s->plan->vertex_of_slot[slot];
+    const VertexAttachment& a = model->vertices[vertex];
+    const PartModel& part = model->parts[a.part];
+    const WirePolyline wire_i{w->profile_points[a.part][a.profile],
+                              part.profiles[a.profile].closed};
+    const WirePolyline wire_j{w->profile_points[a.part][a.profile + 1],
+                              part.profiles[a.profile + 1].closed};
+    const Vec3 p = ApplyPairBinding(a.pair, wire_i, wire_j, w->profile_origins[a.part][a.profile],
+                                    w->profile_origins[a.part][a.profile + 1]);
+    s->position.x[slot] = Real(p.x()), s->position.y[slot] = Real(p.y());
+    s->position.z[slot] = Real(p.z());
+  }
+
+  template <class P>
+  void Pairs(std::size_t begin, std::size_t end) const {
+    std::size_t i = begin;
+    for (; i + P::kWidth <= end; i += P::kWidth)
+      if (const int failed = PairPack<P>(i))
+        for (int l = 0; l < P::kWidth; ++l)
+          if (failed & (1 << l)) SlowPair(i + std::size_t(l));
+    for (; i < end; ++i)
+      if (PairPack<One>(i)) SlowPair(i);
+  }
+
+  // Task k: pair slots [k kTaskSize, (k + 1) kTaskSize), then the cap slots likewise.
+  static void Vertices(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    S& st = *self.s;
+    const std::size_t pair_tasks = Tasks(st.plan->pair_count);
+    if (k < pair_tasks) {
+      self.template Pairs<Wide>(k * kTaskSize, std::min(st.plan->pair_count, (k + 1) * kTaskSize));
+      return;
+    }
+    const std::size_t caps = st.plan->cap_profile.size();
+    const std::size_t end = std::min(caps, (k - pair_tasks + 1) * kTaskSize);
+    for (std::size_t c = (k - pair_tasks) * kTaskSize; c < end; ++c) {
+      const std::uint32_t g = st.plan->cap_profile[c];
+      const typename S::V local(st.plan->cap_local.x[c], st.plan->cap_local.y[c],
+                                st.plan->cap_local.z[c]);
+      const typename S::V p =
+          typename S::V(st.cap_origin.x[g], st.cap_origin.y[g], st.cap_origin.z[g]) +
+          st.cap_axes[g] * local;
+      const std::size_t slot = st.plan->pair_count + c;
+      st.position.x[slot] = p.x(), st.position.y[slot] = p.y(), st.position.z[slot] = p.z();
+    }
+  }
+
+  // Bridged vertices [k kTaskSize, ...): where their own part put them, undone into rest space.
+  static void Undo(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    S& st = *self.s;
+    const std::size_t end = std::min(st.plan->bridged_slot.size(), (k + 1) * kTaskSize);
+    for (std::size_t b = k * kTaskSize; b < end; ++b) {
+      const std::uint32_t slot = st.plan->bridged_slot[b], u = st.plan->bridged_undo[b];
+      const typename S::V own(st.position.x[slot], st.position.y[slot], st.position.z[slot]);
+      const typename S::V rest = st.undo_rest_point[u] + st.undo[u] * (own - st.undo_point[u]);
+      st.rest.x[b] = rest.x(), st.rest.y[b] = rest.y(), st.rest.z[b] = rest.z();
+    }
+  }
+
+  // The buckets of task k: each entry's correction, weight * (the bridge's image of its rest
+  // point - the rigid motion of its own side: its own position for the child's skin, the
+  // parent's motion of its rest point otherwise).
+  template <class P>
+  void Bucket(const typename S::Bucket& bucket) const {
+    using Value = typename P::Value;
+    using V = simd::V3<Value>;
+    S& st = *s;
+    const BridgeSegment<P> segment(bridges[bucket.joint], bucket.segment);
+    for (std::size_t e = bucket.begin; e < bucket.end; e += P::kWidth) {
+      const std::uint32_t* bridged = &st.plan->entry_bridged[e];
+      const std::uint32_t* slot = &st.plan->entry_slot[e];
+      const V q = GatherV3<P>(st.rest, bridged);
+      V parent;
+      const V image = segment.Image(P::Load(&st.plan->entry_f[e]), P::Load(&st.plan->entry_u[e]),
+                                    P::Load(&st.plan->entry_fraction[e]),
+                                    P::Load(&st.plan->entry_section[e]), q, &parent);
+      const auto child = P::Greater(P::Load(&st.plan->entry_child[e]), P::Broadcast(Real(0.5)));
+      const V own = GatherV3<P>(st.position, slot);
+      const V base{P::Select(child, own.x, parent.x), P::Select(child, own.y, parent.y),
+                   P::Select(child, own.z, parent.z)};
+      const V correction = P::Load(&st.plan->entry_weight[e]) * (image - base);
+      P::Store(&st.correction.x[e], correction.x);
+      P::Store(&st.correction.y[e], correction.y);
+      P::Store(&st.correction.z[e], correction.z);
+    }
+  }
+
+  static void Buckets(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    const S& st = *self.s;
+    for (std::uint32_t b = st.plan->bucket_task_starts[k]; b < st.plan->bucket_task_starts[k + 1];
+         ++b)
+      self.template Bucket<Wide>(st.plan->buckets[b]);
+  }
+
+  // Bridged vertices: their own position plus their entries' corrections, in entry order.
+  static void Sums(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    S& st = *self.s;
+    const std::size_t end = std::min(st.plan->bridged_slot.size(), (k + 1) * kTaskSize);
+    for (std::size_t b = k * kTaskSize; b < end; ++b) {
+      Real x = 0, y = 0, z = 0;
+      for (std::uint32_t j = st.plan->entry_offsets[b]; j < st.plan->entry_offsets[b + 1]; ++j) {
+        const std::uint32_t e = st.plan->entry_of[j];
+        x += st.correction.x[e], y += st.correction.y[e], z += st.correction.z[e];
+      }
+      const std::uint32_t slot = st.plan->bridged_slot[b];
+      st.position.x[slot] += x, st.position.y[slot] += y, st.position.z[slot] += z;
+    }
+  }
+
+  // Triangles [f, f + P::kWidth): (p1 - p0) x (p2 - p0).
+  template <class P>
+  simd::V3<typename P::Value> FaceNormalOf(std::size_t f) const {
+    const S& st = *s;
+    const auto p0 = GatherV3<P>(st.position, &st.plan->t0[f]);
+    return simd::Cross(GatherV3<P>(st.position, &st.plan->t1[f]) - p0,
+                       GatherV3<P>(st.position, &st.plan->t2[f]) - p0);
+  }
+
+  template <class P>
+  void FaceNormal(std::size_t f) const {
+    const auto n = FaceNormalOf<P>(f);
+    P::Store(&s->face_normal.x[f], n.x);
+    P::Store(&s->face_normal.y[f], n.y);
+    P::Store(&s->face_normal.z[f], n.z);
+  }
+
+  static void FaceNormals(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    const std::size_t end = std::min(self.s->plan->t0.size(), (k + 1) * kTaskSize);
+    std::size_t f = k * kTaskSize;
+    for (; f + Wide::kWidth <= end; f += Wide::kWidth) self.template FaceNormal<Wide>(f);
+    for (; f < end; ++f) self.template FaceNormal<One>(f);
+  }
+
+  template <class P>
+  void FaceNormalAndScatter(std::size_t f) const {
+    const auto n = FaceNormalOf<P>(f);
+    S& st = *s;
+    P::ScatterAdd4(st.normal_sum.data(), n.x, n.y, n.z, &st.plan->t0[f], &st.plan->t1[f],
+                   &st.plan->t2[f]);
+  }
+
+  // One thread: every triangle's normal added into its vertices' sums in triangle order.
+  void ScatterNormals() const {
+    S& st = *s;
+    std::fill(st.normal_sum.begin(), st.normal_sum.end(), Real(0));
+    const std::size_t triangles = st.plan->t0.size();
+    std::size_t f = 0;
+    for (; f + Wide::kWidth <= triangles; f += Wide::kWidth) FaceNormalAndScatter<Wide>(f);
+    for (; f < triangles; ++f) FaceNormalAndScatter<One>(f);
+  }
+
+  // Threads, after FaceNormals: slots [k kTaskSize, ...) each sum their triangles' normals in
+  // increasing triangle order (the same terms in the same order as ScatterNormals: identical
+  // sums).
+  static void GatherNormals(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    S& st = *self.s;
+    const std::size_t end = std::min(st.plan->slot_of_vertex.size(), (k + 1) * kTaskSize);
+    for (std::size_t slot = k * kTaskSize; slot < end; ++slot) {
+      Real x = 0, y = 0, z = 0;
+      for (std::uint32_t t = st.plan->slot_triangle_offsets[slot];
+           t < st.plan->slot_triangle_offsets[slot + 1]; ++t) {
+        const std::uint32_t f = st.plan->slot_triangles[t];
+        x += st.face_normal.x[f], y += st.face_normal.y[f], z += st.face_normal.z[f];
+      }
+      Real* sum = &st.normal_sum[4 * slot];
+      sum[0] = x, sum[1] = y, sum[2] = z;
+    }
+  }
+
+  // Slots [k kTaskSize, ...) into the output: positions, and the normal sums normalised (+Y
+  // where a sum vanishes), packs at a time (the sums are padded to whole packs). With an output
+  // order, the unit normals go to the stage (OrderedOutput copies them out).
+  static void Output(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    S& st = *self.s;
+    const StageOutput<Real>& out = self.out;
+    const bool direct = out.order == nullptr;
+    const std::size_t slots = st.plan->vertex_of_slot.size();
+    const std::size_t begin = k * kTaskSize, end = std::min(slots, (k + 1) * kTaskSize);
+    for (std::size_t i = begin; i < end && direct; ++i) {
+      Real* p = out.positions + st.plan->vertex_of_slot[i] * out.position_stride;
+      p[0] = st.position.x[i], p[1] = st.position.y[i], p[2] = st.position.z[i];
+    }
+    if (!out.normals) return;
+    using P = Wide;
+    using Value = typename P::Value;
+    const Value zero = P::Broadcast(Real(0)), one = P::Broadcast(Real(1));
+    alignas(16) Real unit[3][P::kWidth];
+    for (std::size_t i = begin; i < end; i += P::kWidth) {
+      simd::V3<Value> n;
+      P::Load4(&st.normal_sum[4 * i], &n.x, &n.y, &n.z);
+      const Value length = P::Sqrt(simd::Dot(n, n));
+      const auto regular = P::Greater(length, zero);
+      const Value inverse = one / P::Select(regular, length, one);
+      const Value x = P::Select(regular, inverse * n.x, zero);
+      const Value y = P::Select(regular, inverse * n.y, one);
+      const Value z = P::Select(regular, inverse * n.z, zero);
+      if (!direct) {
+        P::Store(&st.unit_normal.x[i], x);
+        P::Store(&st.unit_normal.y[i], y);
+        P::Store(&st.unit_normal.z[i], z);
+        continue;
+      }
+      P::Store(unit[0], x);
+      P::Store(unit[1], y);
+      P::Store(unit[2], z);
+      for (std::size_t l = 0; l < std::size_t(P::kWidth) && i + l < end; ++l) {
+        Real* o = out.normals + st.plan->vertex_of_slot[i + l] * out.normal_stride;
+        o[0] = unit[0][l], o[1] = unit[1][l], o[2] = unit[2][l];
+      }
+    }
+  }
+
+  // Output vertices [k kTaskSize, ...) of an output order: each a copy of its welded vertex.
+  static void OrderedOutput(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    const S& st = *self.s;
+    const StageOutput<Real>& out = self.out;
+    const std::size_t end = std::min(out.order_size, (k + 1) * kTaskSize);
+    for (std::size_t i = k * kTaskSize; i < end; ++i) {
+      const std::uint32_t slot = st.plan->slot_of_vertex[out.order[i]];
+      Real* p = out.positions + i * out.position_stride;
+      p[0] = st.position.x[slot], p[1] = st.position.y[slot], p[2] = st.position.z[slot];
+      if (!out.normals) continue;
+      Real* n = out.normals + i * out.normal_stride;
+      n[0] = st.unit_normal.x[slot], n[1] = st.unit_normal.y[slot], n[2] = st.unit_normal.z[slot];
+    }
+  }
+};
+
+template <class Real>
+const BasicBridgeSamples<Real>* StageBridges(RigWorkspace& w, VertexStage<Real>& stage) {
+  if constexpr (std::is_same_v<Real, double>) {
+    (void)stage;
+    return w.bridges.data();
+  } else {
+    for (std::uint32_t part : w.plan->layout.bridged_parts)
+      stage.bridges[part] = w.bridges[part].template Cast<Real>();
+    return stage.bridges.data();
+  }
+}
+
+// RunVertexStage with packs of type Wide.
+template <class Real, class Wide>
+void RunStage(const RigModel& model, RigWorkspace& w, VertexStage<Real>& s,
+              const StageOutput<Real>& output, const ParallelFor* parallel) {
+  const RigEvaluationLayout& layout = w.plan->layout;
+  // The frame's wires, pair centres and cap frames, in Real.
+  for (std::size_t i = 0; i < model.parts.size(); ++i) {
+    const std::size_t profiles = model.parts[i].profiles.size();
+    for (std::size_t p = 0; p < profiles; ++p) {
+      const std::size_t g = layout.profile_base[i] + p;
+      std::size_t point = layout.point_base[g];
+      for (const Vec3& q : w.profile_points[i][p]) {
+        s.wire.x[point] = Real(q.x()), s.wire.y[point] = Real(q.y());
+        s.wire.z[point] = Real(q.z());
+        ++point;
+      }
+      const Vec3& origin = w.profile_origins[i][p];
+      if (p + 1 < profiles) {
+        const Vec3 centre = 0.5 * (origin + w.profile_origins[i][p + 1]);
+        s.pair_centre.x[g] = Real(centre.x()), s.pair_centre.y[g] = Real(centre.y());
+        s.pair_centre.z[g] = Real(centre.z());
+      }
+      s.cap_origin.x[g] = Real(origin.x()), s.cap_origin.y[g] = Real(origin.y());
+      s.cap_origin.z[g] = Real(origin.z());
+      s.cap_axes[g] = w.cap_axes[g].template cast<Real>();
+    }
+  }
+  for (std::size_t u = 0; u < layout.undo_samples.size(); ++u) {
+    const auto [part, sample] = layout.undo_samples[u];
+    s.undo[u] = w.spine_undo[part][sample].template cast<Real>();
+    s.undo_rest_point[u] = model.parts[part].spine_points[sample].template cast<Real>();
+    s.undo_point[u] = w.spine_points[part][sample].template cast<Real>();
+  }
+  const StagePasses<Real, Wide> passes{&model, &w, &s, StageBridges(w, s), output};
+  using Passes = StagePasses<Real, Wide>;
+  RunTasks(parallel, Tasks(s.plan->pair_count) + Tasks(s.plan->cap_profile.size()),
+           &Passes::Vertices, &passes);
+  if (!s.plan->bridged_slot.empty()) {
+    RunTasks(parallel, Tasks(s.plan->bridged_slot.size()), &Passes::Undo, &passes);
+    RunTasks(parallel, s.plan->bucket_task_starts.size() - 1, &Passes::Buckets, &passes);
+    RunTasks(parallel, Tasks(s.plan->bridged_slot.size()), &Passes::Sums, &passes);
+  }
+  if (output.normals) {
+    if (parallel == nullptr || parallel->concurrency() <= 1) {
+      passes.ScatterNormals();
+    } else {
+      RunTasks(parallel, Tasks(s.plan->t0.size()), &Passes::FaceNormals, &passes);
+      RunTasks(parallel, Tasks(s.plan->slot_of_vertex.size()), &Passes::GatherNormals, &passes);
+    }
+  }
+  RunTasks(parallel, Tasks(s.plan->vertex_of_slot.size()), &Passes::Output, &passes);
+  if (output.order) RunTasks(parallel, Tasks(output.order_size), &Passes::OrderedOutput, &passes);
+}
+
+}  // namespace
+}  // namespace wirerig
