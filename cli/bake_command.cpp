@@ -64,7 +64,7 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
     return 1;
   };
   const auto start = std::chrono::steady_clock::now();
-  Result<BuiltScene> built = LoadAndBuildScene(options.scene);
+  Result<BuiltScene> built = LoadAndBuildScene(options.scene, ImportIsolation{});
   if (!built) return fail(built.error());
   const BuiltScene& scene = built.value();
   const Clip* clip = scene.FindClip(options.clip);

@@ -32,7 +32,7 @@ int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::
   };
   if (std::filesystem::path(options.output).extension() != ".wrig")
     return fail(options.output + ": the output must be a .wrig file");
-  Result<BuiltScene> built = LoadAndBuildScene(options.scene);
+  Result<BuiltScene> built = LoadAndBuildScene(options.scene, ImportIsolation{});
   if (!built) return fail(built.error());
   // The clips first, while the scene is whole; nothing is written until everything is made.
   std::vector<std::pair<std::filesystem::path, std::vector<std::uint8_t>>> clip_files;

@@ -61,7 +61,7 @@ int RunRenderCommand(const RenderCommandOptions& options, std::ostream& out, std
   Size size;
   if (!ParseSize(options.size, &size))
     return fail("--size: must be WIDTHxHEIGHT, each in [16, 8192], e.g. 1280x720");
-  Result<BuiltScene> built = LoadAndBuildScene(options.scene);
+  Result<BuiltScene> built = LoadAndBuildScene(options.scene, ImportIsolation{});
   if (!built) return fail(built.error());
   const BuiltScene& scene = built.value();
   const Clip* clip = scene.FindClip(options.clip);

@@ -151,6 +151,7 @@ int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostr
     import.up_axis = axis;
   }
   if (options.unit_scale > 0.0) import.unit_scale = options.unit_scale;
+  import.isolation = ImportIsolation{};  // a crash or hang of Assimp must not take wirerig down
   Result<ImportedMesh> imported = ImportMesh(options.mesh, import);
   if (!imported) return fail(imported.error());
   const Mesh& mesh = imported.value().mesh;

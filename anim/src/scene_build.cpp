@@ -333,9 +333,11 @@ Result<BuiltScene> BuildScene(const SceneDescription& scene) {
   return out;
 }
 
-Result<BuiltScene> LoadAndBuildScene(const std::filesystem::path& path) {
+Result<BuiltScene> LoadAndBuildScene(const std::filesystem::path& path,
+                                     const std::optional<ImportIsolation>& import_isolation) {
   Result<SceneDescription> description = LoadScene(path);
   if (!description) return Error{description.error()};
+  description.value().mesh.import.isolation = import_isolation;
   Result<BuiltScene> built = BuildScene(description.value());
   if (!built) return Error{path.string() + ": " + built.error()};
   return built;

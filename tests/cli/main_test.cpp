@@ -7,11 +7,16 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <thread>
 
 #include "wirerig_process.h"
 
+#ifndef WIRERIG_ASSET_DIR
+#error "the tests need WIRERIG_ASSET_DIR (set by CMake)"
+#endif
 #ifndef WIRERIG_SOURCE_DIR
 #error "the tests need WIRERIG_SOURCE_DIR (set by CMake)"
 #endif
@@ -62,6 +67,27 @@ TEST(WirerigExitCodes, UsageErrorsExitTwo) {
 TEST(WirerigExitCodes, BadInputExitsOne) {
   ExpectExit(RunWirerig({"wire", Scratch("missing.json").string()}), 1,
              "missing.json: no such file");
+}
+
+// One byte of Assimp's binary X test cube changed: Assimp 5.2.5 segfaults reading it. The
+// import runs in a child process, so wirerig itself reports it and exits 1.
+TEST(WirerigImporterCrash, RigAndBakeExitOneNamingTheFile) {
+  const fs::path source = fs::path(WIRERIG_ASSET_DIR) / "assimp/X/test_cube_binary.x";
+  if (!fs::exists(source)) FAIL() << "asset missing: " << source << " (run scripts/setup.sh)";
+  std::ifstream in(source, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(bytes.size(), 2816u);
+  bytes[2609] = static_cast<char>(0xb2);
+  const fs::path mesh = Scratch("corrupted.x");
+  std::ofstream(mesh, std::ios::binary) << bytes;
+  const std::string crashed = mesh.string() + ": the importer crashed on this file";
+  ExpectExit(RunWirerig({"rig", mesh.string(), "-o", Scratch("c.rig.json").string()}), 1, crashed);
+
+  const fs::path scene = Scratch("corrupted.scene.json");
+  std::ofstream(scene) << R"({"format": "wirerig.scene", "version": 1, "name": "corrupted",
+    "mesh": {"file": "corrupted.x"}, "rig": {"from": "automatic"}})";
+  ExpectExit(RunWirerig({"bake", scene.string(), "-o", Scratch("c.glb").string()}), 1, crashed);
+  EXPECT_FALSE(fs::exists(Scratch("c.glb")));
 }
 
 TEST(WirerigDirectoryInput, WireExitsOneNamingTheDirectory) {

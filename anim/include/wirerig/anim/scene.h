@@ -114,8 +114,11 @@ struct BuiltScene {
 };
 
 Result<BuiltScene> BuildScene(const SceneDescription& scene);
-// LoadScene then BuildScene; every error starts with the file's path.
-Result<BuiltScene> LoadAndBuildScene(const std::filesystem::path& path);
+// LoadScene then BuildScene; every error starts with the file's path. `import_isolation`, when
+// set, imports the scene's mesh file in a child process (mesh_import.h).
+Result<BuiltScene> LoadAndBuildScene(
+    const std::filesystem::path& path,
+    const std::optional<ImportIsolation>& import_isolation = std::nullopt);
 
 // A clip that holds every part of `model` at rest (for scenes without clips).
 Clip RestClip(const RigModel& model);
