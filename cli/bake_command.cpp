@@ -69,9 +69,7 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   const BuiltScene& scene = built.value();
   const Clip* clip = scene.FindClip(options.clip);
   if (!clip) {
-    return fail(options.scene + ": " +
-                (options.clip.empty() ? std::string("the scene has no clips")
-                                      : "no clip is named \"" + options.clip + "\""));
+    return fail(options.scene + ": " + scene.MissingClipMessage(options.clip));
   }
   out << "scene: " << options.scene << ": " << scene.mesh.positions.size() << " vertices, "
       << scene.mesh.triangles.size() << " triangles, " << scene.model.parts.size()

@@ -66,7 +66,7 @@ int RunRenderCommand(const RenderCommandOptions& options, std::ostream& out, std
   const BuiltScene& scene = built.value();
   const Clip* clip = scene.FindClip(options.clip);
   if (!options.clip.empty() && !clip)
-    return fail(options.scene + ": no clip is named \"" + options.clip + "\"");
+    return fail(options.scene + ": " + scene.MissingClipMessage(options.clip));
   const Clip rest = RestClip(scene.model);  // a scene without clips is drawn at rest
   if (!clip) clip = &rest;
   Result<Playback> made = Playback::Make(scene.model, *clip, scene.description.playback);

@@ -111,6 +111,9 @@ struct BuiltScene {
 
   // The clip named `name`, the first clip if `name` is empty; null if there is none.
   const Clip* FindClip(const std::string& name) const;
+  // Why FindClip(name) found nothing: `no clip is named "wav"; did you mean "wave"? (clips:
+  // wave, pose)`, or "the scene has no clips".
+  std::string MissingClipMessage(const std::string& name) const;
 };
 
 Result<BuiltScene> BuildScene(const SceneDescription& scene);
