@@ -90,6 +90,33 @@ TEST(WirerigImporterCrash, RigAndBakeExitOneNamingTheFile) {
   EXPECT_FALSE(fs::exists(Scratch("c.glb")));
 }
 
+// Outputs are checked before any work: the scene named here does not even exist, and the
+// output is what is refused.
+TEST(WirerigOutputs, RefusedBeforeAnyWork) {
+  const std::string missing_scene = Scratch("missing.scene.json").string();
+  ExpectExit(RunWirerig({"bake", missing_scene, "-o", "m.fbx"}), 1,
+             "m.fbx: the output must be a .glb or .gltf file (not .fbx)");
+  ExpectExit(RunWirerig({"render", missing_scene, "-o", "x.jpg"}), 1,
+             "x.jpg: the output must be a .png file (not .jpg)");
+  ExpectExit(RunWirerig({"build", missing_scene, "-o", "x.glb"}), 1,
+             "x.glb: the output must be a .wrig file (not .glb)");
+  ExpectExit(RunWirerig({"rig", "mesh.obj", "-o", "x.rig"}), 1,
+             "x.rig: the output must be a .json file (not .rig)");
+  const fs::path deep = Scratch("absent") / "deeper" / "x.glb";
+  ExpectExit(RunWirerig({"bake", missing_scene, "-o", deep.string()}), 1,
+             deep.string() + ": the folder " + Scratch("absent").string() + " does not exist");
+}
+
+// Out-of-range option values state their bound readably (usage errors: exit 2).
+TEST(WirerigOutputs, OptionBoundsAreReadable) {
+  ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--fps", "0"}), 2,
+             "--fps: must be in [1, 1000] (got 0)");
+  ExpectExit(RunWirerig({"rig", "m.obj", "-o", "x.json", "--skin-thickness", "-1"}), 2,
+             "--skin-thickness: must be > 0 (got -1)");
+  ExpectExit(RunWirerig({"render", kOctopus, "-o", "x.png", "-t", "-2"}), 2,
+             "--time: must be >= 0 (got -2)");
+}
+
 TEST(WirerigDirectoryInput, WireExitsOneNamingTheDirectory) {
   const fs::path dir = Scratch("dir.json");
   fs::create_directories(dir);
