@@ -1,4 +1,5 @@
 #include "bake_command.h"
+#include "option_checks.h"
 
 #include <cctype>
 #include <chrono>
@@ -11,6 +12,7 @@
 #include "wirerig/anim/bake.h"
 #include "wirerig/anim/gltf_export.h"
 #include "wirerig/anim/scene.h"
+#include "wirerig/rig/output_file.h"
 
 namespace wirerig::cli {
 namespace {
@@ -47,7 +49,7 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
       ->check(CLI::IsMember({"morph", "skin"}))
       ->capture_default_str();
   bake->add_option("--fps", options.fps, "Keys per second")
-      ->check(CLI::Range(1.0, 1000.0))
+      ->check(InRange(1, 1000))
       ->capture_default_str();
   bake->add_option("--clip", options.clip, "Clip to bake (default: the scene's first clip)");
   bake->add_flag("--residual", options.residual,
@@ -63,15 +65,16 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
     err << "wirerig bake: " << message << "\n";
     return 1;
   };
+  // Where the output goes is checked before any work.
+  if (Result<bool> writable = CheckOutputFile(options.output, {".glb", ".gltf"}); !writable)
+    return fail(writable.error());
   const auto start = std::chrono::steady_clock::now();
-  Result<BuiltScene> built = LoadAndBuildScene(options.scene);
+  Result<BuiltScene> built = LoadAndBuildScene(options.scene, ImportIsolation{});
   if (!built) return fail(built.error());
   const BuiltScene& scene = built.value();
   const Clip* clip = scene.FindClip(options.clip);
   if (!clip) {
-    return fail(options.scene + ": " +
-                (options.clip.empty() ? std::string("the scene has no clips")
-                                      : "no clip is named \"" + options.clip + "\""));
+    return fail(options.scene + ": " + scene.MissingClipMessage(options.clip));
   }
   out << "scene: " << options.scene << ": " << scene.mesh.positions.size() << " vertices, "
       << scene.mesh.triangles.size() << " triangles, " << scene.model.parts.size()

@@ -1,4 +1,5 @@
 #include "build_command.h"
+#include "option_checks.h"
 
 #include <cctype>
 #include <ostream>
@@ -8,6 +9,7 @@
 #include "wirerig/anim/clip_asset_export.h"
 #include "wirerig/anim/scene.h"
 #include "wirerig/rig/atomic_file.h"
+#include "wirerig/rig/output_file.h"
 #include "wirerig/runtime/rig_asset.h"
 
 namespace wirerig::cli {
@@ -20,7 +22,7 @@ CLI::App* AddBuildCommand(CLI::App& app, BuildCommandOptions& options) {
   build->add_flag("--clips", options.clips,
                   "Also write each clip, sampled for the runtime, as OUT.<clip>.wclip");
   build->add_option("--fps", options.fps, "Frames per second of the sampled clips")
-      ->check(CLI::Range(1.0, 1000.0))
+      ->check(InRange(1, 1000))
       ->capture_default_str();
   return build;
 }
@@ -30,9 +32,9 @@ int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::
     err << "wirerig build: " << message << "\n";
     return 1;
   };
-  if (std::filesystem::path(options.output).extension() != ".wrig")
-    return fail(options.output + ": the output must be a .wrig file");
-  Result<BuiltScene> built = LoadAndBuildScene(options.scene);
+  if (Result<bool> writable = CheckOutputFile(options.output, {".wrig"}); !writable)
+    return fail(writable.error());
+  Result<BuiltScene> built = LoadAndBuildScene(options.scene, ImportIsolation{});
   if (!built) return fail(built.error());
   // The clips first, while the scene is whole; nothing is written until everything is made.
   std::vector<std::pair<std::filesystem::path, std::vector<std::uint8_t>>> clip_files;

@@ -1,4 +1,5 @@
 #include "render_command.h"
+#include "option_checks.h"
 
 #include <cstdio>
 #include <ostream>
@@ -7,6 +8,7 @@
 
 #include "wirerig/anim/bake.h"
 #include "wirerig/anim/scene.h"
+#include "wirerig/rig/output_file.h"
 #include "wirerig/viewer/headless.h"
 #include "wirerig/viewer/scene_frame.h"
 
@@ -35,7 +37,7 @@ CLI::App* AddRenderCommand(CLI::App& app, RenderCommandOptions& options) {
   render->add_option("scene", options.scene, "Scene file (JSON)")->required();
   render->add_option("-o,--output", options.output, "PNG file to write")->required();
   render->add_option("-t,--time", options.time, "Time in the clip, s")
-      ->check(CLI::NonNegativeNumber)
+      ->check(AtLeast(0))
       ->capture_default_str();
   render->add_option("--size", options.size, "Image (or tile) size, WIDTHxHEIGHT")
       ->capture_default_str();
@@ -43,7 +45,7 @@ CLI::App* AddRenderCommand(CLI::App& app, RenderCommandOptions& options) {
   render
       ->add_option("--sheet", options.sheet,
                    "Draw a contact sheet of this many times spread over the clip")
-      ->check(CLI::Range(1, 64));
+      ->check(InRange(1, 64));
   render->add_flag("!--no-wires", options.wires, "Hide the profile and spine wires");
   render
       ->add_option("--color", options.color,
@@ -58,15 +60,18 @@ int RunRenderCommand(const RenderCommandOptions& options, std::ostream& out, std
     err << "wirerig render: " << message << "\n";
     return 1;
   };
+  // Where the output goes is checked before any work (PNG only: no other image writer).
+  if (Result<bool> writable = CheckOutputFile(options.output, {".png"}); !writable)
+    return fail(writable.error());
   Size size;
   if (!ParseSize(options.size, &size))
     return fail("--size: must be WIDTHxHEIGHT, each in [16, 8192], e.g. 1280x720");
-  Result<BuiltScene> built = LoadAndBuildScene(options.scene);
+  Result<BuiltScene> built = LoadAndBuildScene(options.scene, ImportIsolation{});
   if (!built) return fail(built.error());
   const BuiltScene& scene = built.value();
   const Clip* clip = scene.FindClip(options.clip);
   if (!options.clip.empty() && !clip)
-    return fail(options.scene + ": no clip is named \"" + options.clip + "\"");
+    return fail(options.scene + ": " + scene.MissingClipMessage(options.clip));
   const Clip rest = RestClip(scene.model);  // a scene without clips is drawn at rest
   if (!clip) clip = &rest;
   Result<Playback> made = Playback::Make(scene.model, *clip, scene.description.playback);

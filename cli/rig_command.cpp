@@ -1,4 +1,5 @@
 #include "rig_command.h"
+#include "option_checks.h"
 
 #include <cstdio>
 #include <ostream>
@@ -9,6 +10,7 @@
 #include "wirerig/rig/joint_skin_report.h"
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/mesh_statistics.h"
+#include "wirerig/rig/output_file.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_file.h"
 #include "wirerig/rig/rig_model_builder.h"
@@ -111,10 +113,10 @@ CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options) {
   rig->add_option("--up", options.up_axis, "Source up axis, overriding the file")
       ->check(CLI::IsMember({"x", "y", "z"}));
   rig->add_option("--unit-scale", options.unit_scale, "Metres per source unit, overriding the file")
-      ->check(CLI::PositiveNumber);
+      ->check(Above(0));
   rig->add_option("--skin-thickness", options.skin_thickness,
                   "Skin thickness for wire sections (m)")
-      ->check(CLI::PositiveNumber)
+      ->check(Above(0))
       ->capture_default_str();
   rig->add_flag("--strict", options.strict,
                 "Refuse the rig (write nothing, exit 1) when its build has any warning");
@@ -124,7 +126,7 @@ CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options) {
                   "Without a description, for an open, non-manifold or many-piece mesh: the size "
                   "(m) of the watertight wrap its skeleton is taken from (default: its bounding "
                   "box diagonal / 60)")
-      ->check(CLI::PositiveNumber);
+      ->check(Above(0));
   rig->add_flag("--joint-report", options.joint_report,
                 "Bend every joint through 30-120 degrees and a 90-degree twist; print folded "
                 "edges, stretch, limb volume and cross-section perimeters per skinning method");
@@ -136,6 +138,9 @@ int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostr
     err << "wirerig rig: " << message << "\n";
     return 1;
   };
+  // Where the rig goes is checked before any work.
+  if (Result<bool> writable = CheckOutputFile(options.output, {".json"}); !writable)
+    return fail(writable.error());
   RigDescription description;
   std::string source;
   if (!options.description.empty()) {
@@ -151,6 +156,7 @@ int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostr
     import.up_axis = axis;
   }
   if (options.unit_scale > 0.0) import.unit_scale = options.unit_scale;
+  import.isolation = ImportIsolation{};  // a crash or hang of Assimp must not take wirerig down
   Result<ImportedMesh> imported = ImportMesh(options.mesh, import);
   if (!imported) return fail(imported.error());
   const Mesh& mesh = imported.value().mesh;

@@ -1,4 +1,5 @@
 #include "view_command.h"
+#include "option_checks.h"
 
 #include <ostream>
 
@@ -19,7 +20,7 @@ CLI::App* AddViewCommand(CLI::App& app, ViewCommandOptions& options) {
   view->add_option("--clip", options.clip, "Clip to play (default: the scene's first)");
   view->add_option("--size", options.size, "Window size, WIDTHxHEIGHT")->capture_default_str();
   view->add_option("--frames", options.frames, "Stop after this many frames (0: run until closed)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(AtLeast(0));
   view->add_option("--input", options.input, "Replay an input script (mouse and keys per frame)");
   view->add_option("--screenshot", options.screenshot, "Write the last frame to this PNG");
   view->add_flag("--no-window", options.no_window, "Run headless (EGL), for scripts and tests");

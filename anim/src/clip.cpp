@@ -1,4 +1,5 @@
 #include "wirerig/anim/clip.h"
+#include "wirerig/rig/name_hint.h"
 
 #include <algorithm>
 #include <cmath>
@@ -253,9 +254,11 @@ Result<Clip> BuildClip(const RawClip& raw, const RigModel& model) {
       if (model.parts[p].name == name) return static_cast<int>(p);
     return -1;
   };
-  auto unknown_part = [](const std::string& where, const std::string& name) {
+  auto unknown_part = [&](const std::string& where, const std::string& name) {
+    std::vector<std::string> names;
+    for (const PartModel& part : model.parts) names.push_back(part.name);
     std::string message = At(where, "part: no part of the rig is named \"");
-    return Error{message.append(name).append("\"")};
+    return Error{message.append(name).append("\"").append(NameHint(name, names, "parts"))};
   };
   Clip clip;
   clip.name = raw.name;

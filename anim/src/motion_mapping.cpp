@@ -1,5 +1,4 @@
 // Mapping files: how a motion capture's joints drive a rig's parts.
-#include <cfenv>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
@@ -7,6 +6,7 @@
 #include "wirerig/anim/motion_mapping.h"
 #include "wirerig/rig/input_file.h"
 #include "wirerig/rig/json_fields.h"
+#include "wirerig/rig/json_text.h"
 
 namespace wirerig {
 namespace {
@@ -96,21 +96,9 @@ Result<MotionMapping> ParseMotionMapping(const nlohmann::json& document) {
 Result<MotionMapping> LoadMotionMapping(const std::filesystem::path& path) {
   Result<std::string> text = ReadInputFile(path, "motion mapping file (JSON)");
   if (!text) return Error{text.error()};
-  json document;
-  std::string syntax;
-  {
-    // Huge literals (1e999) overflow while parsing: traps are held, the parser refuses them.
-    std::fenv_t saved;
-    std::feholdexcept(&saved);
-    try {
-      document = json::parse(text.value());
-    } catch (const json::exception& e) {
-      syntax = e.what();
-    }
-    std::fesetenv(&saved);
-  }
-  if (!syntax.empty()) return Error{path.string() + ": not valid JSON (" + syntax + ")"};
-  Result<MotionMapping> mapping = ParseMotionMapping(document);
+  const Result<json> document = ParseJsonText(text.value(), path.string());
+  if (!document) return Error{document.error()};
+  Result<MotionMapping> mapping = ParseMotionMapping(document.value());
   if (!mapping) return Error{path.string() + ": " + mapping.error()};
   mapping.value().source_file = path.string();
   return mapping;

@@ -5,6 +5,7 @@
 
 #include "motion_rotation.h"
 #include "wirerig/anim/motion_import.h"
+#include "wirerig/rig/name_hint.h"
 
 namespace wirerig {
 namespace {
@@ -93,7 +94,12 @@ Result<RetargetedMotion> RetargetMotion(const MotionCapture& motion, const Motio
     int part = -1;
     for (std::size_t p = 0; p < part_count; ++p)
       if (model.parts[p].name == entry.part) part = static_cast<int>(p);
-    if (part < 0) return fail(pointer + "/part", "the rig has no part \"" + entry.part + "\"");
+    if (part < 0) {
+      std::vector<std::string> names;
+      for (const PartModel& p : model.parts) names.push_back(p.name);
+      return fail(pointer + "/part", "the rig has no part \"" + entry.part + "\"" +
+                                         NameHint(entry.part, names, "parts"));
+    }
     if (sources[std::size_t(part)].joint >= 0)
       return fail(pointer, "part \"" + entry.part + "\" is already driven by joint \"" +
                                sources[std::size_t(part)].mapping_key + "\"");

@@ -1,11 +1,14 @@
 // BuildScene: from a scene description to a mesh, rig, runtime model and built clips.
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "wirerig/anim/scene.h"
 #include "wirerig/rig/automatic_description.h"
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/mesh_subdivision.h"
+#include "wirerig/rig/name_hint.h"
 #include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/procedural_octopus.h"
 #include "wirerig/rig/procedural_props.h"
@@ -199,12 +202,21 @@ Result<Generated> Generate(const MeshSource& source) {
   return out;
 }
 
+std::vector<std::string> PartNames(const Rig& rig) {
+  std::vector<std::string> names;
+  for (const RigPart& part : rig.parts) names.push_back(part.name);
+  return names;
+}
+
 // Applies the scene's per-part wire settings over the rig's own.
 std::string ApplyWireSettings(const SceneDescription& scene, Rig& rig) {
   for (const auto& [name, settings] : scene.parts) {
     const auto part = std::find_if(rig.parts.begin(), rig.parts.end(),
                                    [&](const RigPart& p) { return p.name == name; });
-    if (part == rig.parts.end()) return "/parts/" + name + ": the rig has no part of this name";
+    if (part == rig.parts.end()) {
+      return "/parts/" + name + ": the rig has no part of this name" +
+             NameHint(name, PartNames(rig), "parts");
+    }
     if (settings.spine_material) part->spine_wire.material = *settings.spine_material;
     if (settings.spine_section) part->spine_wire.section = *settings.spine_section;
     for (WireProperties& wire : part->profile_wires) {
@@ -223,6 +235,13 @@ const Clip* BuiltScene::FindClip(const std::string& name) const {
   for (const Clip& clip : clips)
     if (clip.name == name) return &clip;
   return nullptr;
+}
+
+std::string BuiltScene::MissingClipMessage(const std::string& name) const {
+  if (clips.empty()) return "the scene has no clips";
+  std::vector<std::string> names;
+  for (const Clip& clip : clips) names.push_back(clip.name);
+  return "no clip is named \"" + name + "\"" + NameHint(name, names, "clips");
 }
 
 Result<BuiltScene> BuildScene(const SceneDescription& scene) {
@@ -304,8 +323,10 @@ Result<BuiltScene> BuildScene(const SceneDescription& scene) {
   if (scene.camera && !scene.camera->follow.empty()) {
     const auto& parts = out.model.parts;
     if (std::none_of(parts.begin(), parts.end(),
-                     [&](const PartModel& p) { return p.name == scene.camera->follow; }))
-      return fail("/camera/follow: the rig has no part named \"" + scene.camera->follow + "\"");
+                     [&](const PartModel& p) { return p.name == scene.camera->follow; })) {
+      return fail("/camera/follow: the rig has no part named \"" + scene.camera->follow + "\"" +
+                  NameHint(scene.camera->follow, PartNames(out.rig), "parts"));
+    }
   }
 
   // The clips, against the model.
@@ -333,9 +354,11 @@ Result<BuiltScene> BuildScene(const SceneDescription& scene) {
   return out;
 }
 
-Result<BuiltScene> LoadAndBuildScene(const std::filesystem::path& path) {
+Result<BuiltScene> LoadAndBuildScene(const std::filesystem::path& path,
+                                     const std::optional<ImportIsolation>& import_isolation) {
   Result<SceneDescription> description = LoadScene(path);
   if (!description) return Error{description.error()};
+  description.value().mesh.import.isolation = import_isolation;
   Result<BuiltScene> built = BuildScene(description.value());
   if (!built) return Error{path.string() + ": " + built.error()};
   return built;

@@ -9,6 +9,7 @@
 #include "wirerig/rig/atomic_file.h"
 #include "wirerig/rig/input_file.h"
 #include "wirerig/rig/json_physics.h"
+#include "wirerig/rig/json_text.h"
 
 namespace wirerig {
 namespace {
@@ -361,9 +362,9 @@ Result<SceneDescription> ParseScene(const nlohmann::json& document,
 Result<SceneDescription> LoadScene(const std::filesystem::path& path) {
   Result<std::string> text = ReadInputFile(path, "scene file (JSON)");
   if (!text) return Error{text.error()};
-  const json document = json::parse(text.value(), nullptr, false);
-  if (document.is_discarded()) return Error{path.string() + ": not valid JSON"};
-  Result<SceneDescription> scene = ParseScene(document, path.parent_path());
+  const Result<json> document = ParseJsonText(text.value(), path.string());
+  if (!document) return Error{document.error()};
+  Result<SceneDescription> scene = ParseScene(document.value(), path.parent_path());
   if (!scene) return Error{path.string() + ": " + scene.error()};
   return scene;
 }

@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "wirerig/rig/name_hint.h"
+
 namespace wirerig {
 
 JsonObject::JsonObject(const nlohmann::json& value, std::string path)
@@ -20,9 +22,13 @@ std::string JsonObject::PathOf(std::string_view key) const {
 bool JsonObject::Has(std::string_view key) const { return json_.contains(key); }
 
 void JsonObject::RejectUnknownKeys(std::initializer_list<std::string_view> allowed) const {
-  for (const auto& item : json_.items())
-    if (std::find(allowed.begin(), allowed.end(), item.key()) == allowed.end())
-      throw FieldError(PathOf(item.key()), "unknown field");
+  for (const auto& item : json_.items()) {
+    if (std::find(allowed.begin(), allowed.end(), item.key()) == allowed.end()) {
+      const std::vector<std::string> known(allowed.begin(), allowed.end());
+      throw FieldError(PathOf(item.key()),
+                       "unknown field" + NameHint(item.key(), known, "known fields"));
+    }
+  }
 }
 
 const nlohmann::json& JsonObject::Required(std::string_view key) const {

@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "isolated_import.h"
 #include "wirerig/rig/input_file.h"
 
 namespace wirerig {
@@ -186,8 +187,19 @@ std::uint64_t PlyScalarSize(std::string_view type) {
 // PLY: "element <name> <count>" lines, each followed by its properties.
 std::optional<std::string> CheckPlyHeader(std::string_view head, std::uint64_t file_size,
                                           std::uint64_t max_elements) {
-  const std::size_t end = head.find("end_header");
-  if (end == std::string_view::npos) return std::nullopt;  // longer header: Assimp decides
+  // Assimp 5.2.5 reads a header without an "end_header" line forever.
+  std::size_t end = std::string_view::npos;
+  for (std::size_t at = head.find("end_header"); at != std::string_view::npos;
+       at = head.find("end_header", at + 1)) {
+    if (head[at - 1] == '\n' || head[at - 1] == '\r') {
+      end = at;
+      break;
+    }
+  }
+  if (end == std::string_view::npos) {
+    return "its PLY header has no \"end_header\" line in its first " + std::to_string(head.size()) +
+           " bytes (truncated or corrupted header)";
+  }
   bool ascii = true;
   std::uint64_t needed = 0;
   std::uint64_t count = 0;  // of the current element
@@ -1076,6 +1088,8 @@ Result<ImportedMesh> ImportMesh(const fs::path& path, const ImportOptions& optio
   if (const auto problem = CheckClaimedSizes(head, extension, file_size, options.max_elements)) {
     return Fail(path, *problem);
   }
+  // What was cheap to check is checked here; the rest runs in a child when asked.
+  if (options.isolation) return ImportMeshIsolated(path, options);
 
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
@@ -1109,6 +1123,10 @@ Result<ImportedMesh> ImportMesh(const fs::path& path, const ImportOptions& optio
     if (assimp_error.find("mNumMeshes is 0") != std::string::npos ||
         assimp_error.find("No meshes remaining") != std::string::npos) {
       return Fail(path, kNoMeshes);
+    }
+    // Assimp catches its own allocation failures and reports their what().
+    if (assimp_error.find("bad_alloc") != std::string::npos) {
+      return Fail(path, "cannot import: out of memory");
     }
     if (assimp_error.empty()) assimp_error = "unknown Assimp error";
     return Fail(path, "cannot import: " + assimp_error);

@@ -1,4 +1,5 @@
 #include "wirerig/rig/rig_description.h"
+#include "wirerig/rig/json_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -113,9 +114,9 @@ Result<RigDescription> ParseRigDescription(const nlohmann::json& document) {
 Result<RigDescription> LoadRigDescription(const std::filesystem::path& path) {
   Result<std::string> text = ReadInputFile(path, "rig description (JSON)");
   if (!text) return Error{text.error()};
-  const nlohmann::json document = nlohmann::json::parse(text.value(), nullptr, false);
-  if (document.is_discarded()) return Error{path.string() + ": not valid JSON"};
-  Result<RigDescription> description = ParseRigDescription(document);
+  const Result<nlohmann::json> document = ParseJsonText(text.value(), path.string());
+  if (!document) return Error{document.error()};
+  Result<RigDescription> description = ParseRigDescription(document.value());
   if (!description) return Error{path.string() + ": " + description.error()};
   if (!description.value().mesh.empty() && description.value().mesh.is_relative())
     description.value().mesh = path.parent_path() / description.value().mesh;

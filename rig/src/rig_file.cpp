@@ -1,4 +1,5 @@
 #include "wirerig/rig/rig_file.h"
+#include "wirerig/rig/json_text.h"
 
 #include <cmath>
 #include <set>
@@ -206,9 +207,9 @@ Result<std::filesystem::path> SaveRig(const Rig& rig, const std::filesystem::pat
 Result<Rig> LoadRig(const std::filesystem::path& path) {
   Result<std::string> text = ReadInputFile(path, "rig file (JSON)");
   if (!text) return Error{text.error()};
-  const nlohmann::json document = nlohmann::json::parse(text.value(), nullptr, false);
-  if (document.is_discarded()) return Error{path.string() + ": not valid JSON"};
-  Result<Rig> rig = RigFromJson(document);
+  const Result<nlohmann::json> document = ParseJsonText(text.value(), path.string());
+  if (!document) return Error{document.error()};
+  Result<Rig> rig = RigFromJson(document.value());
   if (!rig) return Error{path.string() + ": " + rig.error()};
   return rig;
 }

@@ -1,4 +1,5 @@
 #include "wirerig/rig/wire_problem.h"
+#include "wirerig/rig/json_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -141,9 +142,9 @@ namespace {
 
 // Parses one wire problem's JSON text; errors start with `source_name`.
 Result<WireProblem> ParseWireProblemText(std::string_view text, std::string_view source_name) {
-  const nlohmann::json document = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (document.is_discarded()) return Error{std::string(source_name) + ": not valid JSON"};
-  Result<WireProblem> problem = ParseWireProblem(document);
+  const Result<nlohmann::json> document = ParseJsonText(text, source_name);
+  if (!document) return Error{document.error()};
+  Result<WireProblem> problem = ParseWireProblem(document.value());
   if (!problem) return Error{std::string(source_name) + ": " + problem.error()};
   return problem;
 }

@@ -153,7 +153,9 @@ TEST(ArticulatedTracking, BadOptionsAreRefusedNamingTheField) {
   scene["playback"]["tracking"]["stiffness"] = 3;
   parsed = ParseScene(scene, ".");
   ASSERT_FALSE(parsed.ok());
-  EXPECT_EQ(parsed.error(), "/playback/tracking/stiffness: unknown field");
+  EXPECT_EQ(parsed.error(),
+            "/playback/tracking/stiffness: unknown field (known fields: frequency, "
+            "damping_ratio, gravity)");
 }
 
 }  // namespace

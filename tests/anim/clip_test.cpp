@@ -47,7 +47,7 @@ TEST(Clip, RefusesUnknownPartsAndProfilesByName) {
   RawClip raw = PointLoadClip();
   raw.parts[0].part = "tentacle";
   EXPECT_EQ(BuildClip(raw, Beam().model).error(),
-            "parts[0].part: no part of the rig is named \"tentacle\"");
+            "parts[0].part: no part of the rig is named \"tentacle\" (parts: beam)");
   raw = PointLoadClip();
   RawProfileTracks bulge;
   bulge.part = "beam";
@@ -263,7 +263,7 @@ TEST(Clip, RefusesJointAnglesOnTheRootAndOnJointsThatDoNotExist) {
             "parts[0].joint_angles: part \"base\" is the root: it has no joint to turn");
   raw.parts[0].part = "elbow";
   EXPECT_EQ(BuildClip(raw, rig.model).error(),
-            "parts[0].part: no part of the rig is named \"elbow\"");
+            "parts[0].part: no part of the rig is named \"elbow\" (parts: base, arm)");
 }
 
 }  // namespace

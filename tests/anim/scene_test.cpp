@@ -118,7 +118,15 @@ TEST(Scene, ErrorsNameTheFieldByJsonPointer) {
   EXPECT_EQ(ParseError(d), "/parts/beam/kind: must be \"rigid\" or \"deformable\"");
   d = CylinderScene();
   d["colour"] = "red";
-  EXPECT_EQ(ParseError(d), "/colour: unknown field");
+  EXPECT_EQ(ParseError(d),
+            "/colour: unknown field (known fields: format, version, name, mesh, rig, "
+            "skin_thickness, default_kind, parts, playback, clips, camera)");
+  d = CylinderScene();
+  d["clips"][0]["durration"] = d["clips"][0]["duration"];
+  d["clips"][0].erase("duration");
+  EXPECT_EQ(
+      ParseError(d).rfind("/clips/0/durration: unknown field; did you mean \"duration\"? (", 0), 0u)
+      << ParseError(d);
 }
 
 TEST(Scene, SaveThenLoadGivesTheSameDocument) {
@@ -139,7 +147,15 @@ TEST(Scene, LoadNamesTheFile) {
   const fs::path path = fs::temp_directory_path() / "wirerig_scene_test" / "broken.scene.json";
   fs::create_directories(path.parent_path());
   std::ofstream(path) << "{\"format\": ";
-  EXPECT_EQ(LoadScene(path).error(), path.string() + ": not valid JSON");
+  EXPECT_EQ(LoadScene(path).error(),
+            path.string() +
+                ": not valid JSON: line 1, column 12: syntax error while parsing value - "
+                "unexpected end of input; expected '[', '{', or a literal");
+  std::ofstream(path)
+      << "{\n  \"format\": \"wirerig.scene\",\n  \"version\": 1\n  \"name\": \"x\"\n}\n";
+  EXPECT_EQ(
+      LoadScene(path).error().rfind(path.string() + ": not valid JSON: line 4, column 8: ", 0), 0u)
+      << LoadScene(path).error();
   EXPECT_EQ(LoadScene(path.string() + ".missing").error(),
             path.string() + ".missing: no such file");
 }
@@ -202,10 +218,12 @@ TEST(Scene, BuildNamesWhatIsWrong) {
             "scene \"beam\": /mesh/parameters/radius: must be a positive length (m)");
   d = CylinderScene();
   d["parts"]["arm"] = json::object();
-  EXPECT_EQ(BuildError(d), "scene \"beam\": /parts/arm: the rig has no part of this name");
+  EXPECT_EQ(BuildError(d),
+            "scene \"beam\": /parts/arm: the rig has no part of this name (parts: beam)");
   d = CylinderScene();
   d["camera"]["follow"] = "arm";
-  EXPECT_EQ(BuildError(d), "scene \"beam\": /camera/follow: the rig has no part named \"arm\"");
+  EXPECT_EQ(BuildError(d),
+            "scene \"beam\": /camera/follow: the rig has no part named \"arm\" (parts: beam)");
   d["camera"]["follow"] = "beam";
   EXPECT_EQ(BuildError(d), "ok");
   d = CylinderScene();

@@ -7,11 +7,16 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <thread>
 
 #include "wirerig_process.h"
 
+#ifndef WIRERIG_ASSET_DIR
+#error "the tests need WIRERIG_ASSET_DIR (set by CMake)"
+#endif
 #ifndef WIRERIG_SOURCE_DIR
 #error "the tests need WIRERIG_SOURCE_DIR (set by CMake)"
 #endif
@@ -62,6 +67,54 @@ TEST(WirerigExitCodes, UsageErrorsExitTwo) {
 TEST(WirerigExitCodes, BadInputExitsOne) {
   ExpectExit(RunWirerig({"wire", Scratch("missing.json").string()}), 1,
              "missing.json: no such file");
+}
+
+// One byte of Assimp's binary X test cube changed: Assimp 5.2.5 segfaults reading it. The
+// import runs in a child process, so wirerig itself reports it and exits 1.
+TEST(WirerigImporterCrash, RigAndBakeExitOneNamingTheFile) {
+  const fs::path source = fs::path(WIRERIG_ASSET_DIR) / "assimp/X/test_cube_binary.x";
+  if (!fs::exists(source)) FAIL() << "asset missing: " << source << " (run scripts/setup.sh)";
+  std::ifstream in(source, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(bytes.size(), 2816u);
+  bytes[2609] = static_cast<char>(0xb2);
+  const fs::path mesh = Scratch("corrupted.x");
+  std::ofstream(mesh, std::ios::binary) << bytes;
+  const std::string crashed = mesh.string() + ": the importer crashed on this file";
+  ExpectExit(RunWirerig({"rig", mesh.string(), "-o", Scratch("c.rig.json").string()}), 1, crashed);
+
+  const fs::path scene = Scratch("corrupted.scene.json");
+  std::ofstream(scene) << R"({"format": "wirerig.scene", "version": 1, "name": "corrupted",
+    "mesh": {"file": "corrupted.x"}, "rig": {"from": "automatic"}})";
+  ExpectExit(RunWirerig({"bake", scene.string(), "-o", Scratch("c.glb").string()}), 1, crashed);
+  EXPECT_FALSE(fs::exists(Scratch("c.glb")));
+}
+
+// Outputs are checked before any work: the scene named here does not even exist, and the
+// output is what is refused.
+TEST(WirerigOutputs, RefusedBeforeAnyWork) {
+  const std::string missing_scene = Scratch("missing.scene.json").string();
+  ExpectExit(RunWirerig({"bake", missing_scene, "-o", "m.fbx"}), 1,
+             "m.fbx: the output must be a .glb or .gltf file (not .fbx)");
+  ExpectExit(RunWirerig({"render", missing_scene, "-o", "x.jpg"}), 1,
+             "x.jpg: the output must be a .png file (not .jpg)");
+  ExpectExit(RunWirerig({"build", missing_scene, "-o", "x.glb"}), 1,
+             "x.glb: the output must be a .wrig file (not .glb)");
+  ExpectExit(RunWirerig({"rig", "mesh.obj", "-o", "x.rig"}), 1,
+             "x.rig: the output must be a .json file (not .rig)");
+  const fs::path deep = Scratch("absent") / "deeper" / "x.glb";
+  ExpectExit(RunWirerig({"bake", missing_scene, "-o", deep.string()}), 1,
+             deep.string() + ": the folder " + Scratch("absent").string() + " does not exist");
+}
+
+// Out-of-range option values state their bound readably (usage errors: exit 2).
+TEST(WirerigOutputs, OptionBoundsAreReadable) {
+  ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--fps", "0"}), 2,
+             "--fps: must be in [1, 1000] (got 0)");
+  ExpectExit(RunWirerig({"rig", "m.obj", "-o", "x.json", "--skin-thickness", "-1"}), 2,
+             "--skin-thickness: must be > 0 (got -1)");
+  ExpectExit(RunWirerig({"render", kOctopus, "-o", "x.png", "-t", "-2"}), 2,
+             "--time: must be >= 0 (got -2)");
 }
 
 TEST(WirerigDirectoryInput, WireExitsOneNamingTheDirectory) {

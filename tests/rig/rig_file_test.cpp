@@ -150,7 +150,10 @@ TEST(RigFile, EveryMalformedFieldIsNamed) {
   ExpectRefused(d, "/vertex_part: needs one entry per mesh vertex (5)");
   d = good;
   d["parts"][0]["colour"] = "red";
-  ExpectRefused(d, "/parts/0/colour: unknown field");
+  ExpectRefused(d, "/parts/0/colour: unknown field (known fields: name, parent, ");
+  d = good;
+  d["parts"][0]["parnet"] = d["parts"][0]["parent"];
+  ExpectRefused(d, "/parts/0/parnet: unknown field; did you mean \"parent\"? (known fields: ");
 }
 
 TEST(RigFile, LoadErrorsNameTheFile) {
@@ -158,7 +161,10 @@ TEST(RigFile, LoadErrorsNameTheFile) {
   std::ofstream(path) << "{ not json";
   const Result<Rig> rig = LoadRig(path);
   ASSERT_FALSE(rig.ok());
-  EXPECT_EQ(rig.error(), path.string() + ": not valid JSON");
+  EXPECT_EQ(rig.error(), path.string() +
+                             ": not valid JSON: line 1, column 4: syntax error while parsing "
+                             "object key - invalid literal; last read: '{ no'; expected string "
+                             "literal");
   EXPECT_EQ(LoadRig("/nonexistent/x.rig.json").error(), "/nonexistent/x.rig.json: no such file");
 }
 

@@ -26,7 +26,7 @@ Result<bool> SceneViewer::Open(const SceneDescription& description) {
   auto scene = std::make_unique<BuiltScene>(std::move(built).value());
   const Clip* clip = scene->FindClip(options_.clip);
   if (!clip && !options_.clip.empty() && !scene->clips.empty())
-    return Error{"no clip is named \"" + options_.clip + "\""};
+    return Error{scene->MissingClipMessage(options_.clip)};
   rest_clip_ = RestClip(scene->model);
   if (!clip) clip = &rest_clip_;
   Result<Playback> playback = Playback::Make(scene->model, *clip, description.playback);

@@ -111,11 +111,17 @@ struct BuiltScene {
 
   // The clip named `name`, the first clip if `name` is empty; null if there is none.
   const Clip* FindClip(const std::string& name) const;
+  // Why FindClip(name) found nothing: `no clip is named "wav"; did you mean "wave"? (clips:
+  // wave, pose)`, or "the scene has no clips".
+  std::string MissingClipMessage(const std::string& name) const;
 };
 
 Result<BuiltScene> BuildScene(const SceneDescription& scene);
-// LoadScene then BuildScene; every error starts with the file's path.
-Result<BuiltScene> LoadAndBuildScene(const std::filesystem::path& path);
+// LoadScene then BuildScene; every error starts with the file's path. `import_isolation`, when
+// set, imports the scene's mesh file in a child process (mesh_import.h).
+Result<BuiltScene> LoadAndBuildScene(
+    const std::filesystem::path& path,
+    const std::optional<ImportIsolation>& import_isolation = std::nullopt);
 
 // A clip that holds every part of `model` at rest (for scenes without clips).
 Clip RestClip(const RigModel& model);

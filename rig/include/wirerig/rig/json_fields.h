@@ -32,7 +32,8 @@ class JsonObject {
   std::string PathOf(std::string_view key) const;
   bool Has(std::string_view key) const;
 
-  // Throws FieldError if a key is not among `allowed` (catches misspelt fields).
+  // Throws FieldError if a key is not among `allowed` (catches misspelt fields); the message
+  // suggests the nearest allowed key and lists them (name_hint.h).
   void RejectUnknownKeys(std::initializer_list<std::string_view> allowed) const;
 
   // Required and optional fields of each type; a present field of the wrong type throws.

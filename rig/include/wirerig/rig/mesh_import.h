@@ -29,6 +29,19 @@ namespace wirerig {
 
 enum class UpAxis : int { kY = 0, kZ = 1, kX = 2 };
 
+// Importing in a child process. Assimp 5.2.5 crashes (segfaults, assertions) or loops forever
+// on some corrupted files; with isolation, a forked child runs the import and sends the mesh
+// back over a pipe, so a crash or a hang ends the child only and comes back as an error
+// ("<path>: the importer crashed on this file (Segmentation fault)", "... timed out ..."). The
+// fork copies the caller: call it while no other thread of the caller holds a lock the import
+// needs (glibc's malloc is fork-safe); the child never returns into the caller's code.
+struct ImportIsolation {
+  // Wall-clock seconds the child may take before it is killed; must be > 0.
+  double time_limit_seconds = 60.0;
+  // Address space the child may add to what it inherits (RLIMIT_AS); 0: no limit.
+  std::uint64_t memory_limit_bytes = std::uint64_t{8} << 30;
+};
+
 struct ImportOptions {
   // Source up axis; when unset, taken from the file's metadata, else assumed +Y.
   std::optional<UpAxis> up_axis;
@@ -37,6 +50,9 @@ struct ImportOptions {
   // Files claiming more than this many vertices or triangles are refused before any large
   // allocation happens.
   std::uint64_t max_elements = 20'000'000;
+  // When set, Assimp runs in a child process (see ImportIsolation); the wirerig command sets
+  // it for every mesh it imports. Never read from or written to files.
+  std::optional<ImportIsolation> isolation;
 };
 
 // What the importer found and did, for the user to see.
@@ -58,7 +74,8 @@ struct ImportedMesh {
 // vertices, more than the limit of 2e7", "<path>: cannot read (...)"). Refused: missing,
 // unreadable, empty or unknown files, headers (OFF, PLY, binary STL) claiming more elements
 // than max_elements or than the file can hold, non-finite coordinates, coordinates beyond
-// 1e7 m, files without a usable triangle. Floating-point traps are masked while Assimp runs.
+// 1e7 m, files without a usable triangle, PLY headers without "end_header" in their first 64 KB.
+// Floating-point traps are masked while Assimp runs.
 Result<ImportedMesh> ImportMesh(const std::filesystem::path& path,
                                 const ImportOptions& options = {});
 

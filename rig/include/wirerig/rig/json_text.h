@@ -1,0 +1,28 @@
+// Parsing JSON text for wirerig's loaders: a syntax error comes back as a Result error giving
+// the line and column where it was found, never as an exception.
+#pragma once
+
+#include <cstddef>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "wirerig/rig/result.h"
+
+namespace wirerig {
+
+struct TextPosition {
+  std::size_t line = 1;    // 1-based
+  std::size_t column = 1;  // 1-based, in bytes
+};
+
+// The line and column of byte `offset` (0-based) of `text`; an offset past the end is the
+// position just after the last byte.
+TextPosition PositionInText(std::string_view text, std::size_t offset);
+
+// Errors read "<source_name>: not valid JSON: line 3, column 14: <what the parser expected>",
+// the position being where the parser stopped (the last byte of the offending token).
+// Floating-point traps are held while parsing (huge literals overflow).
+Result<nlohmann::json> ParseJsonText(std::string_view text, std::string_view source_name);
+
+}  // namespace wirerig

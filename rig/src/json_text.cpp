@@ -1,0 +1,54 @@
+#include "wirerig/rig/json_text.h"
+
+#include <algorithm>
+#include <string>
+
+#include "wirerig/rig/floating_point_hold.h"
+
+namespace wirerig {
+
+TextPosition PositionInText(std::string_view text, std::size_t offset) {
+  offset = std::min(offset, text.size());
+  const std::string_view before = text.substr(0, offset);
+  TextPosition position;
+  position.line = 1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
+  const std::size_t newline = before.rfind('\n');
+  position.column = newline == std::string_view::npos ? offset + 1 : offset - newline;
+  return position;
+}
+
+Result<nlohmann::json> ParseJsonText(std::string_view text, std::string_view source_name) {
+  try {
+    const ScopedFloatingPointHold hold;
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.byte counts the bytes read, the offending one included.
+    const TextPosition at = PositionInText(text, e.byte > 0 ? e.byte - 1 : 0);
+    // what(): "[json.exception.parse_error.101] parse error at line 1, column 2: <reason>".
+    std::string reason = e.what();
+    if (const std::size_t colon = reason.find(": "); colon != std::string::npos)
+      reason.erase(0, colon + 2);
+    return Error{std::string(source_name) + ": not valid JSON: line " + std::to_string(at.line) +
+                 ", column " + std::to_string(at.column) + ": " + reason};
+  } catch (const nlohmann::json::exception& e) {
+    // A number too large for a double: "[json.exception.out_of_range.406] number overflow
+    // parsing '1e999'"; its first occurrence gives the position.
+    std::string reason = e.what();
+    if (const std::size_t bracket = reason.find("] "); bracket != std::string::npos)
+      reason.erase(0, bracket + 2);
+    std::string where;
+    const std::size_t open = reason.find('\'');
+    const std::size_t close = reason.rfind('\'');
+    if (open != std::string::npos && close > open + 1) {
+      const std::size_t at = text.find(std::string_view(reason).substr(open + 1, close - open - 1));
+      if (at != std::string_view::npos) {
+        const TextPosition position = PositionInText(text, at);
+        where = "line " + std::to_string(position.line) + ", column " +
+                std::to_string(position.column) + ": ";
+      }
+    }
+    return Error{std::string(source_name) + ": not valid JSON: " + where + reason};
+  }
+}
+
+}  // namespace wirerig

@@ -1,0 +1,66 @@
+#include "wirerig/rig/output_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <string>
+#include <system_error>
+
+namespace wirerig {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Lowercase(std::string s) {
+  for (char& c : s) {
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  }
+  return s;
+}
+
+Error Fail(const fs::path& path, const std::string& reason) {
+  return Error{path.string() + ": " + reason};
+}
+
+}  // namespace
+
+Result<bool> CheckOutputFile(const fs::path& path,
+                             std::initializer_list<std::string_view> extensions) {
+  if (path.empty()) return Error{"the output path is empty"};
+  if (extensions.size() > 0) {
+    const std::string extension = Lowercase(path.extension().string());
+    bool known = false;
+    std::string listed;
+    for (const std::string_view allowed : extensions) {
+      known = known || extension == allowed;
+      if (!listed.empty()) listed += " or ";
+      listed += allowed;
+    }
+    if (!known) {
+      return Fail(path, "the output must be a " + listed + " file" +
+                            (extension.empty() ? std::string(" (it has no extension)")
+                                               : " (not " + extension + ")"));
+    }
+  }
+  std::error_code error;
+  if (fs::is_directory(path, error)) return Fail(path, "is a directory, not a file to write");
+  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  if (!fs::exists(folder, error)) {
+    // Name the nearest missing folder, once.
+    fs::path missing = folder;
+    while (missing.has_parent_path() && missing.parent_path() != missing &&
+           !fs::exists(missing.parent_path(), error)) {
+      missing = missing.parent_path();
+    }
+    return Fail(path, "the folder " + missing.string() + " does not exist");
+  }
+  if (!fs::is_directory(folder, error)) {
+    return Fail(path, folder.string() + " is not a folder");
+  }
+  if (::faccessat(AT_FDCWD, folder.c_str(), W_OK | X_OK, AT_EACCESS) != 0) {
+    return Fail(path, "the folder " + folder.string() + " is not writable");
+  }
+  return true;
+}
+
+}  // namespace wirerig

@@ -1,0 +1,62 @@
+// Tests for ParseJsonText: syntax errors give the line and column, never an exception.
+#include "wirerig/rig/json_text.h"
+
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace wirerig {
+namespace {
+
+TEST(PositionInText, CountsLinesAndColumnsFromOne) {
+  const std::string text = "ab\ncd\n\nef";
+  EXPECT_EQ(PositionInText(text, 0).line, 1u);
+  EXPECT_EQ(PositionInText(text, 0).column, 1u);
+  EXPECT_EQ(PositionInText(text, 1).column, 2u);
+  EXPECT_EQ(PositionInText(text, 3).line, 2u);  // 'c'
+  EXPECT_EQ(PositionInText(text, 3).column, 1u);
+  EXPECT_EQ(PositionInText(text, 7).line, 4u);  // 'e'
+  EXPECT_EQ(PositionInText(text, 100).line, 4u);
+  EXPECT_EQ(PositionInText(text, 100).column, 3u);  // just after the end
+}
+
+TEST(ParseJsonText, ValidTextParses) {
+  const Result<nlohmann::json> parsed = ParseJsonText(R"({"a": [1, 2]})", "x.json");
+  ASSERT_TRUE(parsed.ok()) << parsed.error();
+  EXPECT_EQ(parsed.value()["a"][1], 2);
+}
+
+// The column is where the parser stopped: the closing quote of "b".
+TEST(ParseJsonText, MissingCommaGivesLineAndColumn) {
+  const Result<nlohmann::json> parsed =
+      ParseJsonText("{\n  \"a\": 1\n  \"b\": 2\n}\n", "scene.json");
+  ASSERT_FALSE(parsed.ok());
+  EXPECT_EQ(parsed.error().rfind("scene.json: not valid JSON: line 3, column 5: ", 0), 0u)
+      << parsed.error();
+  EXPECT_NE(parsed.error().find("expected '}'"), std::string::npos) << parsed.error();
+}
+
+TEST(ParseJsonText, BadLiteralAndTruncatedText) {
+  const Result<nlohmann::json> literal = ParseJsonText("{\"a\": tru}", "a.json");
+  ASSERT_FALSE(literal.ok());
+  EXPECT_EQ(literal.error().rfind("a.json: not valid JSON: line 1, column ", 0), 0u)
+      << literal.error();
+  const Result<nlohmann::json> truncated = ParseJsonText("{\"a\": [1,\n", "b.json");
+  ASSERT_FALSE(truncated.ok());
+  EXPECT_EQ(truncated.error().rfind("b.json: not valid JSON: line 2, column 1: ", 0), 0u)
+      << truncated.error();
+  const Result<nlohmann::json> empty = ParseJsonText("", "c.json");
+  ASSERT_FALSE(empty.ok());
+  EXPECT_EQ(empty.error().rfind("c.json: not valid JSON: line 1, column 1: ", 0), 0u)
+      << empty.error();
+}
+
+TEST(ParseJsonText, HugeLiteralIsRefusedWithTrapsHeld) {
+  const Result<nlohmann::json> parsed = ParseJsonText("[1e999]", "huge.json");
+  ASSERT_FALSE(parsed.ok());
+  EXPECT_EQ(parsed.error(),
+            "huge.json: not valid JSON: line 1, column 2: number overflow parsing '1e999'");
+}
+
+}  // namespace
+}  // namespace wirerig

@@ -1,0 +1,83 @@
+// Tests for CheckOutputFile: extension, directory, missing and unwritable folders, nothing
+// written by the check.
+#include "wirerig/rig/output_file.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace wirerig {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path Scratch() {
+  const fs::path dir =
+      fs::path(testing::TempDir()) / ("wirerig_output_file_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+void ExpectRefused(const fs::path& path, std::initializer_list<std::string_view> extensions,
+                   const std::string& reason) {
+  const Result<bool> checked = CheckOutputFile(path, extensions);
+  ASSERT_FALSE(checked.ok()) << path;
+  EXPECT_EQ(checked.error(), path.string() + ": " + reason);
+}
+
+TEST(CheckOutputFile, AcceptsAWritableFolderAndAListedExtension) {
+  const fs::path path = Scratch() / "out.GLB";  // case-insensitive
+  EXPECT_TRUE(CheckOutputFile(path, {".glb", ".gltf"}).ok());
+  EXPECT_FALSE(fs::exists(path));  // nothing written
+  EXPECT_TRUE(CheckOutputFile(Scratch() / "anything.bin", {}).ok());
+}
+
+TEST(CheckOutputFile, RefusesOtherExtensions) {
+  ExpectRefused(Scratch() / "m.fbx", {".glb", ".gltf"},
+                "the output must be a .glb or .gltf file (not .fbx)");
+  ExpectRefused(Scratch() / "m", {".png"}, "the output must be a .png file (it has no extension)");
+}
+
+TEST(CheckOutputFile, NamesTheMissingFolderOnce) {
+  const fs::path missing = Scratch() / "no" / "such" / "folder" / "x.png";
+  ExpectRefused(missing, {".png"}, "the folder " + (Scratch() / "no").string() + " does not exist");
+}
+
+TEST(CheckOutputFile, RefusesADirectoryAndAFileAsFolder) {
+  const fs::path dir = Scratch() / "d.png";
+  fs::create_directories(dir);
+  ExpectRefused(dir, {".png"}, "is a directory, not a file to write");
+  const fs::path file = Scratch() / "plain";
+  {
+    std::FILE* f = std::fopen(file.c_str(), "w");
+    std::fclose(f);
+  }
+  ExpectRefused(file / "x.png", {".png"}, file.string() + " is not a folder");
+}
+
+TEST(CheckOutputFile, RefusesAnUnwritableFolder) {
+  const fs::path dir = Scratch() / "locked";
+  fs::create_directories(dir);
+  fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
+  // Root writes anywhere: drop the effective uid for the check (the saved uid stays 0).
+  const bool root = ::geteuid() == 0;
+  if (root) {
+    ASSERT_EQ(::seteuid(65534), 0);
+  }
+  const Result<bool> checked = CheckOutputFile(dir / "x.png", {".png"});
+  if (root) {
+    ASSERT_EQ(::seteuid(0), 0);
+  }
+  fs::permissions(dir, fs::perms::owner_all);
+  ASSERT_FALSE(checked.ok());
+  EXPECT_EQ(checked.error(),
+            (dir / "x.png").string() + ": the folder " + dir.string() + " is not writable");
+}
+
+}  // namespace
+}  // namespace wirerig
