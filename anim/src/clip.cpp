@@ -1,5 +1,7 @@
 #include "wirerig/anim/clip.h"
+
 #include "wirerig/rig/name_hint.h"
+#include "wirerig/runtime/clip_asset.h"
 
 #include <algorithm>
 #include <cmath>
@@ -227,18 +229,8 @@ std::string ValidateRawClip(const RawClip& raw) {
 }
 
 double Clip::LocalTime(double t) const {
-  if (!std::isfinite(t) || t <= 0.0) return 0.0;
-  switch (loop) {
-    case LoopMode::kOnce:
-      return std::min(t, duration);
-    case LoopMode::kLoop:
-      return std::fmod(t, duration);
-    case LoopMode::kPingPong: {
-      const double u = std::fmod(t, 2.0 * duration);
-      return u <= duration ? u : 2.0 * duration - u;
-    }
-  }
-  return 0.0;
+  // The runtime's clip assets loop by the same rule (clip_asset.h); one definition of it.
+  return ClipLocalTime(ClipLoop(int(loop)), duration, t);
 }
 
 bool Clip::HasDynamics() const {
