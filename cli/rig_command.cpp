@@ -102,6 +102,25 @@ void PrintJointReport(std::ostream& out, const std::vector<JointSkinRow>& rows) 
   print("all joints", all);
 }
 
+// The targets of the articulated-characters issue: no folded edge, no edge beyond 2x, limb
+// volume within 3%, smallest perimeter above 90%.
+bool MeetsSkinTargets(const SkinMeasures& m) {
+  return m.folded_edges == 0 && m.worst_stretch <= 2.0 && std::abs(m.volume_ratio - 1.0) <= 0.03 &&
+         m.smallest_perimeter >= 0.9;
+}
+
+// Each pose whose wire-rig skin misses a target, with its measures.
+void PrintMissedPoses(std::ostream& out, const std::vector<JointSkinRow>& rows) {
+  out << "poses where the wire rig misses a target (folded edges / worst stretch / limb volume "
+         "ratio / smallest perimeter ratio):\n";
+  for (const JointSkinRow& row : rows) {
+    const SkinMeasures& m = row.methods[0];
+    if (MeetsSkinTargets(m)) continue;
+    out << Format("  %-14s %-10s %4zu %6.2f %6.3f %6.3f\n", row.joint.c_str(), row.pose.c_str(),
+                  m.folded_edges, m.worst_stretch, m.volume_ratio, m.smallest_perimeter);
+  }
+}
+
 }  // namespace
 
 CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options) {
@@ -130,6 +149,8 @@ CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options) {
   rig->add_flag("--joint-report", options.joint_report,
                 "Bend every joint through 30-120 degrees and a 90-degree twist; print folded "
                 "edges, stretch, limb volume and cross-section perimeters per skinning method");
+  rig->add_flag("--joint-poses", options.joint_poses,
+                "With --joint-report: also list each pose where the wire rig misses a target");
   return rig;
 }
 
@@ -190,7 +211,10 @@ int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostr
     model_options.spine_kind = SpineKind::kRigid;
     Result<BuiltRigModel> model = BuildRigModel(mesh, built.value().rig, model_options);
     if (!model) return fail(options.mesh + ": " + model.error());
-    PrintJointReport(out, MeasureJointSweep(model.value().model, mesh.welded_positions));
+    const std::vector<JointSkinRow> rows =
+        MeasureJointSweep(model.value().model, mesh.welded_positions);
+    PrintJointReport(out, rows);
+    if (options.joint_poses) PrintMissedPoses(out, rows);
   }
   const auto saved = SaveRig(built.value().rig, options.output);
   if (!saved) return fail(saved.error());

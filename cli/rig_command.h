@@ -20,6 +20,7 @@ struct RigCommandOptions {
   double unit_scale = 0.0;  // optional override (metres per unit), 0 = unset
   double skin_thickness = 0.005;
   bool joint_report = false;     // sweep every joint; print the skin measures per method
+  bool joint_poses = false;      // with joint_report: also each pose where the wire rig misses
   bool strict = false;           // warnings are errors: nothing written
   bool ignore_skeleton = false;  // automatic: describe from the surface, not the file's bones
   double wrap_alpha = 0.0;       // automatic, open meshes: the wrap's alpha (m); 0 = from the mesh

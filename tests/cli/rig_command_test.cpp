@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -62,6 +63,37 @@ TEST(RigCommand, SkeletonAssetNeedsNoHandInput) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("from the skeleton (4 joints)"), std::string::npos) << run.out;
   EXPECT_TRUE(LoadRig(options.output).ok());
+}
+
+// --joint-poses lists exactly the wire rig's poses that miss a target, each with its measures.
+TEST(RigCommand, JointPosesListOnlyThePosesThatMissATarget) {
+  RigCommandOptions options;
+  options.mesh = std::string(WIRERIG_ASSET_DIR) + "/assimp/X/anim_test.x";
+  options.output = Output("anim_test_poses.rig.json").string();
+  options.joint_report = true;
+  options.joint_poses = true;
+  const CommandRun run = RunRig(options);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::size_t list = run.out.find("poses where the wire rig misses a target");
+  ASSERT_NE(list, std::string::npos) << run.out;
+  ASSERT_NE(run.out.find("all joints"), std::string::npos) << run.out;
+  std::istringstream lines(run.out.substr(list));
+  std::string line;
+  std::getline(lines, line);  // the heading
+  int listed = 0;
+  while (std::getline(lines, line) && line.rfind("  ", 0) == 0) {
+    std::istringstream fields(line);
+    std::string joint, pose;
+    std::size_t folds = 0;
+    double stretch = 0, volume = 0, perimeter = 0;
+    ASSERT_TRUE(fields >> joint >> pose >> folds >> stretch >> volume >> perimeter) << line;
+    // Printed rounded: a miss may print at the bound itself.
+    EXPECT_TRUE(folds > 0 || stretch >= 1.995 || std::abs(volume - 1.0) >= 0.0295 ||
+                perimeter <= 0.9005)
+        << line;
+    ++listed;
+  }
+  EXPECT_GT(listed, 0) << run.out;  // this tube's end joint misses the volume target
 }
 
 void ExpectFailure(const RigCommandOptions& options, const std::string& expected) {
