@@ -133,6 +133,7 @@ PartChannels<Track> Built(const PartChannels<RawTrack>& c) {
   out.joint_angles = Built(c.joint_angles);
   out.rigid_forces = BuiltList(c.rigid_forces);
   out.rigid_torque = Built(c.rigid_torque);
+  out.rigid_drag = c.rigid_drag;
   return out;
 }
 ProfileChannels<Track> Built(const ProfileChannels<RawTrack>& c) {
@@ -161,7 +162,7 @@ std::string CheckBoundaryKeys(const std::vector<BoundaryKey>& keys, double durat
 }
 
 bool HasRigidInput(const PartChannels<RawTrack>& c) {
-  return !c.rigid_forces.empty() || !c.rigid_torque.keys.empty();
+  return !c.rigid_forces.empty() || !c.rigid_torque.keys.empty() || !c.rigid_drag.IsZero();
 }
 
 }  // namespace
@@ -208,6 +209,12 @@ std::string ValidateRawClip(const RawClip& raw) {
     if (!std::isfinite(channels.axial_fixed_at) || channels.axial_fixed_at < 0.0 ||
         channels.axial_fixed_at > 1.0)
       return At(where, "axial_fixed_at: must lie in [0, 1]");
+    const RigidDrag& drag = channels.rigid_drag;
+    for (const auto& [name, value] :
+         {std::pair{"linear", drag.linear}, std::pair{"quadratic", drag.quadratic},
+          std::pair{"angular", drag.angular}})
+      if (!(std::isfinite(value) && value >= 0.0 && value <= 1e9))
+        return At(where, std::string("rigid_drag/") + name + ": must be finite, in [0, 1e9]");
     if (std::string boundary = CheckBoundaryKeys(channels.boundary, raw.duration, where);
         !boundary.empty())
       return boundary;
@@ -235,7 +242,8 @@ double Clip::LocalTime(double t) const {
 
 bool Clip::HasDynamics() const {
   for (const PartChannels<Track>& part : parts)
-    if (!part.rigid_forces.empty() || !part.rigid_torque.IsEmpty()) return true;
+    if (!part.rigid_forces.empty() || !part.rigid_torque.IsEmpty() || !part.rigid_drag.IsZero())
+      return true;
   return false;
 }
 

@@ -225,7 +225,7 @@ RawPartTracks ReadPartTracks(const JsonObject& o) {
   o.RejectUnknownKeys({"part", "boundary", "point_loads", "line_loads", "tip_force",
                        "start_displacement", "end_displacement", "axial_fixed_at",
                        "axial_point_loads", "axial_line_loads", "rotation", "translation",
-                       "joint_angles", "rigid_forces", "rigid_torque"});
+                       "joint_angles", "rigid_forces", "rigid_torque", "rigid_drag"});
   RawPartTracks tracks;
   tracks.part = o.String("part");
   PartChannels<RawTrack>& c = tracks.channels;
@@ -243,6 +243,12 @@ RawPartTracks ReadPartTracks(const JsonObject& o) {
   ReadOptionalTrack(o, "joint_angles", &c.joint_angles);
   c.rigid_forces = ReadList(o, "rigid_forces", ReadRigidForce);
   ReadOptionalTrack(o, "rigid_torque", &c.rigid_torque);
+  if (o.Has("rigid_drag")) {
+    const JsonObject drag = o.Object("rigid_drag");
+    drag.RejectUnknownKeys({"linear", "quadratic", "angular"});
+    c.rigid_drag = {drag.Number("linear", 0.0), drag.Number("quadratic", 0.0),
+                    drag.Number("angular", 0.0)};
+  }
   return tracks;
 }
 
@@ -268,6 +274,10 @@ json ToJson(const RawPartTracks& tracks) {
   WriteOptionalTrack(out, "joint_angles", c.joint_angles);
   WriteList(out, "rigid_forces", c.rigid_forces);
   WriteOptionalTrack(out, "rigid_torque", c.rigid_torque);
+  if (!c.rigid_drag.IsZero())
+    out["rigid_drag"] = {{"linear", c.rigid_drag.linear},
+                         {"quadratic", c.rigid_drag.quadratic},
+                         {"angular", c.rigid_drag.angular}};
   return out;
 }
 

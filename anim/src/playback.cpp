@@ -33,7 +33,8 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
     const PartChannels<Track>& c = clip.parts[p];
     // With tracking, the chain's articulated dynamics takes the keyed forces instead.
     if (part.kind == SpineKind::kRigid && options.tracking.frequency <= 0.0 &&
-        (!c.rigid_forces.empty() || !c.rigid_torque.IsEmpty() || options.gravity != Vec3::Zero())) {
+        (!c.rigid_forces.empty() || !c.rigid_torque.IsEmpty() || !c.rigid_drag.IsZero() ||
+         options.gravity != Vec3::Zero())) {
       if (!(part.mass.mass > 0.0))
         return Error{"part \"" + part.name + "\": a rigid part driven by forces needs a mass"};
       playback.dynamic_parts_.push_back(p);

@@ -52,6 +52,15 @@ Wrench SampleRigidWrench(const Clip& clip, std::size_t part, const RigidPartBody
     force += applied;
     torque += TorqueAbout(state.position, BodyPoint(body, state, f.at), applied);
   }
+  // Drag: the centre's velocity (a pinned body's turns about the joint) and the spin.
+  const RigidDrag& drag = c.rigid_drag;
+  if (!drag.IsZero()) {
+    const Vec3 omega = state.orientation * state.angular_velocity;  // world
+    const Vec3 v = state.velocity + omega.cross(center - state.position);
+    const Vec3 drag_force = -(drag.linear + drag.quadratic * v.norm()) * v;
+    force += drag_force;
+    torque += TorqueAbout(state.position, center, drag_force) - drag.angular * omega;
+  }
   if (body.pinned) {
     // About the joint: gravity's moment too; the joint's reaction takes the force.
     torque += TorqueAbout(state.position, center, body.mass * gravity);

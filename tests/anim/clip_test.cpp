@@ -1,8 +1,12 @@
 // Clips: the raw rules and the rig's rules name what is wrong; loop modes map time; sampling
 // turns tracks into the runtime's loads exactly as documented.
 #include "wirerig/anim/clip.h"
+#include "wirerig/anim/clip_json.h"
+#include "wirerig/rig/json_fields.h"
 
 #include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
 
 #include <numbers>
 
@@ -91,6 +95,21 @@ TEST(Clip, RefusesRigidBodyForcesOnDeformableParts) {
   raw.parts[0].channels.rigid_torque = Constant(Vec3(0, 1, 0));
   EXPECT_EQ(BuildClip(raw, Beam().model).error(),
             "parts[0].rigid_forces: rigid-body forces and torques need a rigid part");
+}
+
+TEST(Clip, RigidDragNeedsARigidPartAndSaneCoefficientsAndRoundTrips) {
+  RawClip raw = PointLoadClip();
+  raw.parts[0].channels.rigid_drag.linear = 2.0;
+  EXPECT_EQ(BuildClip(raw, Beam().model).error(),
+            "parts[0].rigid_forces: rigid-body forces and torques need a rigid part");
+  raw.parts[0].channels.rigid_drag.quadratic = -1.0;
+  EXPECT_EQ(ValidateRawClip(raw), "parts[0].rigid_drag/quadratic: must be finite, in [0, 1e9]");
+  raw.parts[0].channels.rigid_drag = {0.5, 0.25, 0.125};
+  const nlohmann::json saved = ClipToJson(raw);
+  const RawClip loaded = ReadClip(JsonObject(saved, ""));
+  EXPECT_EQ(loaded.parts[0].channels.rigid_drag.linear, 0.5);
+  EXPECT_EQ(loaded.parts[0].channels.rigid_drag.quadratic, 0.25);
+  EXPECT_EQ(loaded.parts[0].channels.rigid_drag.angular, 0.125);
 }
 
 TEST(Clip, LoopModesMapPlaybackTime) {

@@ -87,6 +87,52 @@ TEST(Playback, ConstantForceAtTheCentreMovesARigidPartByHalfATSquaredOverM) {
   }
 }
 
+// A constant force against linear drag c: x(t) = (F/c) (t - tau (1 - exp(-t/tau))), tau = m/c;
+// against quadratic drag k: v(t) = v_t tanh(k v_t t / m), v_t = sqrt(F/k). The drag is sampled at each step's
+// start state (first order in the step), hence the tolerances.
+TEST(Playback, DragSlowsARigidPartToItsTerminalSpeed) {
+  const RigModel& model = Block().model;
+  const PartModel& block = model.parts[0];
+  const double mass = block.mass.mass, push = 2.0;
+  for (const bool quadratic : {false, true}) {
+    RawClip raw;
+    raw.name = "drift";
+    raw.duration = 8.0;
+    RawPartTracks part;
+    part.part = "beam";
+    RigidForceChannels<RawTrack> force;
+    force.at = block.mass.center;
+    force.force = Constant(Vec3(0.0, push, 0.0));
+    part.channels.rigid_forces.push_back(force);
+    const double c = mass / 1.5;  // tau = 1.5 s
+    if (quadratic)
+      part.channels.rigid_drag.quadratic = c;
+    else
+      part.channels.rigid_drag.linear = c;
+    raw.parts.push_back(part);
+    const Clip clip = BuildClip(raw, model).value();
+    PlaybackOptions options;
+    options.rigid_step = 1.0 / 1000.0;
+    Playback playback = Playback::Make(model, clip, options).value();
+    std::vector<Vec3> positions(model.vertices.size());
+    for (double t : {0.5, 2.0, 8.0}) {
+      ASSERT_TRUE(playback.Evaluate(t, positions, {}).ok());
+      const RigidBodyState& body = playback.bodies()[0];
+      EXPECT_LE(std::abs(body.velocity.x()) + std::abs(body.velocity.z()), 1e-12);
+      if (quadratic) {
+        const double terminal = std::sqrt(push / c);  // v(t) = v_t tanh(c v_t t / m)
+        EXPECT_NEAR(body.velocity.y(), terminal * std::tanh(c * terminal * t / mass),
+                    1e-3 * terminal);
+        continue;
+      }
+      const double tau = mass / c;
+      const double x = push / c * (t - tau * (1.0 - std::exp(-t / tau)));
+      EXPECT_NEAR(body.position.y() - block.mass.center.y(), x, 1e-3 * x) << "t = " << t;
+      EXPECT_NEAR(body.velocity.y(), push / c * (1.0 - std::exp(-t / tau)), 1e-3 * push / c);
+    }
+  }
+}
+
 TEST(Playback, ScrubbingGivesTheStatesOfAFreshPlayback) {
   const RigModel& model = Block().model;
   const PartModel& block = model.parts[0];

@@ -12,7 +12,7 @@
 //   joint angles: degrees about the part's joint axes X, Y, Z (joint.h), clamped to the joint's
 //     type and limits when sampled; they turn the part about its root point (after `rotation`);
 //   rigid-body dynamics (rigid parts only): forces applied at points of the body and a torque,
-//     world axes, integrated by Playback.
+//     world axes, and a drag (RigidDrag), integrated by Playback.
 // and per profile wire (paper Fig. 8): the stretch [from, to] of the loop that deforms, its
 // boundary condition, point and line loads in the profile's spine frame.
 //
@@ -87,6 +87,16 @@ struct RigidForceChannels {
   TrackT<Vec3> force;      // N, world axes
 };
 
+// Drag on a rigid body moving through a fluid (water, air): a force -(linear + quadratic |v|) v
+// at the centre of mass, v its velocity, and a torque -angular w about it, w its angular
+// velocity. Constant over the clip; zero: no drag.
+struct RigidDrag {
+  double linear = 0.0;     // N s/m
+  double quadratic = 0.0;  // N s^2/m^2
+  double angular = 0.0;    // N m s
+  bool IsZero() const { return linear == 0.0 && quadratic == 0.0 && angular == 0.0; }
+};
+
 struct BoundaryKey {
   double time = 0.0;  // s; the family holds from this key to the next
   BoundaryCondition boundary = BoundaryCondition::kCantileverFree;
@@ -108,6 +118,7 @@ struct PartChannels {
   TrackT<Vec3> joint_angles;  // degrees about the joint's X, Y, Z axes
   std::vector<RigidForceChannels<TrackT>> rigid_forces;
   TrackT<Vec3> rigid_torque;  // N m, world axes
+  RigidDrag rigid_drag;       // rigid parts only
 };
 
 template <template <typename> class TrackT>
