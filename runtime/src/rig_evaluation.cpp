@@ -51,10 +51,16 @@ void SampleBridges(const RigModel& model, RigWorkspace& w) {
                                  FrameAxes(w.spine_frames[part][sample]).transpose();
 }
 
-Status ValidateLoads(const SpineLoads& loads) {
+Status ValidateLoads(const SpineLoads& loads, std::size_t samples) {
   for (const PointLoad& p : loads.bending_point_loads)
     if (!(std::isfinite(p.at) && std::isfinite(p.force.x()) && std::isfinite(p.force.y())))
       return Status::Invalid("poses", "spine bending loads must be finite");
+  for (const std::span<const Vec3> extra : {loads.extra_displacement, loads.extra_slope}) {
+    if (!extra.empty() && extra.size() != samples)
+      return Status::Invalid("poses", "extra spine bending must be empty or one per spine sample");
+    for (const Vec3& x : extra)
+      if (!x.allFinite()) return Status::Invalid("poses", "extra spine bending must be finite");
+  }
   return Status::Ok();
 }
 
@@ -215,7 +221,8 @@ Status EvaluateRigJob::Validate() const {
       workspace->plan->triangles != model->triangles.size() ||
       workspace->spine_points.size() != model->parts.size())
     return Status::Invalid("workspace", "was made for another model");
-  for (const PartPose& pose : poses) {
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const PartPose& pose = poses[i];
     const Eigen::Vector4d q = pose.rotation.coeffs();
     if (!(std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]) &&
           std::isfinite(q[3]) && std::abs(q.squaredNorm() - 1.0) < 1e-6))
@@ -223,7 +230,7 @@ Status EvaluateRigJob::Validate() const {
     if (!(std::isfinite(pose.translation.x()) && std::isfinite(pose.translation.y()) &&
           std::isfinite(pose.translation.z())))
       return Status::Invalid("poses", "translations must be finite");
-    if (Status s = ValidateLoads(pose.loads); !s) return s;
+    if (Status s = ValidateLoads(pose.loads, model->parts[i].spine_points.size()); !s) return s;
   }
   for (const ProfileLoads& loads : profile_loads) {
     if (loads.part >= model->parts.size() ||
@@ -263,6 +270,10 @@ Status EvaluateRigJob::Run() const {
       bending.displacement = std::span<Vec3>(w.bending.data(), n);
       bending.slope = std::span<Vec3>(w.slope.data(), n);
       if (Status s = bending.Run(); !s) return Status::Invalid("poses", s.reason);
+      for (std::size_t k = 0; k < pose.loads.extra_displacement.size(); ++k)
+        w.bending[k] += pose.loads.extra_displacement[k];
+      for (std::size_t k = 0; k < pose.loads.extra_slope.size(); ++k)
+        w.slope[k] += pose.loads.extra_slope[k];
       AxialJob axial;
       axial.length = part.spine_length;
       axial.axial_stiffness = part.spine_stiffness.axial;

@@ -243,6 +243,61 @@ TEST(RigEvaluation, CantileverSpineBendsByTheClosedForm) {
   EXPECT_GT(top_moved, 20u);
 }
 
+// Extra bending (what modal dynamics adds) moves the mesh exactly as a load of that shape: the
+// textbook cantilever under a tip force F, X(v) = F L^3 v^2 (3 - v) / 6EI and dX/ds =
+// F L^2 v (2 - v) / 2EI, given as extra bending, matches the tip force itself.
+TEST(RigEvaluation, ExtraBendingMovesTheMeshAsTheLoadOfThatShape) {
+  RigDescription description;
+  description.parts.push_back({"body", {Vec3(0, 0, 0), Vec3(0, 1, 0)}, 10, 24, "", {}, {}});
+  const Scene scene = Build(MakeCapsule(0.1, 1.0, 48, 20, 8), description, SpineKind::kDeformable);
+  const PartModel& part = scene.model.parts[0];
+  const double ei = part.spine_stiffness.bending, length = part.spine_length;
+  const Vec3 force = Vec3(3e-3, -1e-3, 0) * ei / std::pow(length, 3);
+  const std::size_t n = part.spine_points.size();
+  std::vector<Vec3> displacement(n), slope(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double v = double(k) / double(n - 1);
+    displacement[k] = force * std::pow(length, 3) * v * v * (3.0 - v) / (6.0 * ei);
+    slope[k] = force * length * length * v * (2.0 - v) / (2.0 * ei);
+  }
+  RigWorkspace workspace = MakeRigWorkspace(scene.model);
+  auto evaluate = [&](const PartPose& pose) {
+    std::vector<PartPose> poses = {pose};
+    std::vector<Vec3> positions(scene.model.vertices.size());
+    EvaluateRigJob job;
+    job.model = &scene.model;
+    job.poses = poses;
+    job.workspace = &workspace;
+    job.positions = positions;
+    EXPECT_TRUE(job.Run().ok());
+    return positions;
+  };
+  PartPose loaded, extra;
+  loaded.loads.tip_force = force;
+  extra.loads.extra_displacement = displacement;
+  extra.loads.extra_slope = slope;
+  const std::vector<Vec3> expected = evaluate(loaded), got = evaluate(extra);
+  double worst = 0.0, moved = 0.0;
+  for (std::size_t v = 0; v < got.size(); ++v) {
+    worst = std::max(worst, (got[v] - expected[v]).norm());
+    moved = std::max(moved, (got[v] - scene.mesh.welded_positions[v]).norm());
+  }
+  EXPECT_GT(moved, 5e-4 * length);  // the tip moves by |F| L^3 / 3EI, about 1e-3 L
+  EXPECT_LT(worst, 1e-12);
+  // The wrong count is refused by name.
+  extra.loads.extra_slope = std::span<const Vec3>(slope.data(), n - 1);
+  std::vector<PartPose> poses = {extra};
+  std::vector<Vec3> positions(scene.model.vertices.size());
+  EvaluateRigJob job;
+  job.model = &scene.model;
+  job.poses = poses;
+  job.workspace = &workspace;
+  job.positions = positions;
+  const Status status = job.Run();
+  EXPECT_FALSE(status.ok());
+  EXPECT_EQ(status.field, "poses");
+}
+
 TEST(RigEvaluation, BendingAnArmAndBulgingTheChestKeepTheMeshSound) {
   const Scene& human = Human();
   const int arm = PartIndex(human, "upper_arm_l"), torso = PartIndex(human, "chest");

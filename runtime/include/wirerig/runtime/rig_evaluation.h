@@ -41,6 +41,11 @@ struct SpineLoads {
   double axial_fixed_at = 0.0;
   std::span<const AxialPointLoad> axial_point_loads;
   std::span<const AxialLineLoad> axial_line_loads;
+  // Added to the closed-form bending at the spine's samples (v_k = k / (n - 1), local axes),
+  // each empty or of the part's spine sample count: a wire's motion beyond its static shape
+  // (modal dynamics, modal_wire.h), displacement in m and slope dX/ds dimensionless.
+  std::span<const Vec3> extra_displacement;
+  std::span<const Vec3> extra_slope;
 };
 
 // Loads bending one profile wire (paper Fig. 8: the whole or a stretch of all or some profile
