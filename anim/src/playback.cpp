@@ -89,7 +89,9 @@ Status Playback::AdvanceBodies(double t) {
   const double h = options_.rigid_step;
   const double span = h * static_cast<double>(options_.checkpoint_interval);
   const std::size_t capacity = checkpoints_.size() / parts;
-  const std::size_t wanted = std::min(static_cast<std::size_t>(std::floor(t / span)), capacity - 1);
+  std::size_t wanted = std::min(static_cast<std::size_t>(std::floor(t / span)), capacity - 1);
+  // t / span may round up to a whole number whose checkpoint lies just after t.
+  if (wanted > 0 && static_cast<double>(wanted) * span > t) --wanted;
   auto load = [&](std::size_t c) {
     for (std::size_t d = 0; d < parts; ++d)
       bodies_[dynamic_parts_[d]] = checkpoints_[c * parts + d];
@@ -110,7 +112,7 @@ Status Playback::AdvanceBodies(double t) {
     }
   }
   const double start = static_cast<double>(wanted) * span;
-  const auto whole = static_cast<std::size_t>(std::floor((t - start) / h));
+  const auto whole = static_cast<std::size_t>(std::max(0.0, std::floor((t - start) / h)));
   for (std::size_t k = 0; k < whole; ++k)
     if (Status s = StepBodies(h); !s) return s;
   const double rest = t - (start + static_cast<double>(whole) * h);

@@ -88,8 +88,8 @@ TEST(Playback, ConstantForceAtTheCentreMovesARigidPartByHalfATSquaredOverM) {
 }
 
 // A constant force against linear drag c: x(t) = (F/c) (t - tau (1 - exp(-t/tau))), tau = m/c;
-// against quadratic drag k: v(t) = v_t tanh(k v_t t / m), v_t = sqrt(F/k). The drag is sampled at each step's
-// start state (first order in the step), hence the tolerances.
+// against quadratic drag k: v(t) = v_t tanh(k v_t t / m), v_t = sqrt(F/k). The drag is sampled at
+// each step's start state (first order in the step), hence the tolerances.
 TEST(Playback, DragSlowsARigidPartToItsTerminalSpeed) {
   const RigModel& model = Block().model;
   const PartModel& block = model.parts[0];
@@ -131,6 +131,33 @@ TEST(Playback, DragSlowsARigidPartToItsTerminalSpeed) {
       EXPECT_NEAR(body.velocity.y(), push / c * (1.0 - std::exp(-t / tau)), 1e-3 * push / c);
     }
   }
+}
+
+// t = 3.4 s with the default step (1/240 s) and checkpoints (every 24 steps): t / span rounds
+// up to 34 while checkpoint 34 lies 4e-16 s after t. The playback must still land on t (it once
+// stepped (size_t)-1 times from there).
+TEST(Playback, ATimeJustBeforeACheckpointIsReachedFromTheOneBefore) {
+  const RigModel& model = Block().model;
+  const PartModel& block = model.parts[0];
+  RawClip raw;
+  raw.name = "shove";
+  raw.duration = 4.0;
+  RawPartTracks part;
+  part.part = "beam";
+  RigidForceChannels<RawTrack> force;
+  force.at = block.mass.center;
+  force.force = Constant(Vec3(0.0, 1.0, 0.0));
+  part.channels.rigid_forces.push_back(force);
+  raw.parts.push_back(part);
+  const Clip clip = BuildClip(raw, model).value();
+  const PlaybackOptions options;
+  const double t = 17.0 / 5.0, span = options.rigid_step * double(options.checkpoint_interval);
+  ASSERT_GT(std::floor(t / span) * span, t);  // the case itself
+  Playback playback = Playback::Make(model, clip, options).value();
+  std::vector<Vec3> positions(model.vertices.size());
+  ASSERT_TRUE(playback.Evaluate(t, positions, {}).ok());
+  EXPECT_NEAR(playback.bodies()[0].position.y() - block.mass.center.y(),
+              t * t / (2.0 * block.mass.mass), 1e-12);
 }
 
 TEST(Playback, ScrubbingGivesTheStatesOfAFreshPlayback) {
