@@ -261,7 +261,7 @@ json PlaybackToJson(const PlaybackOptions& p) {
 }
 
 CameraHint ReadCamera(const JsonObject& o) {
-  o.RejectUnknownKeys({"target", "yaw", "pitch", "distance", "fov", "follow"});
+  o.RejectUnknownKeys({"target", "yaw", "pitch", "distance", "fov", "follow", "ground"});
   CameraHint camera;
   camera.target = o.Vector3("target", camera.target);
   camera.yaw = o.Number("yaw", camera.yaw);
@@ -269,6 +269,11 @@ CameraHint ReadCamera(const JsonObject& o) {
   camera.distance = o.Number("distance", camera.distance);
   camera.fov = o.Number("fov", camera.fov);
   if (o.Has("follow")) camera.follow = o.String("follow");
+  if (o.Has("ground")) {
+    camera.ground = o.Number("ground");
+    if (!(std::abs(*camera.ground) < 1e6))
+      throw FieldError(o.PathOf("ground"), "must be a finite height within 1e6 m");
+  }
   if (!IsFinite(camera.target)) throw FieldError(o.PathOf("target"), "must be finite");
   if (!std::isfinite(camera.yaw)) throw FieldError(o.PathOf("yaw"), "must be finite");
   if (!(camera.pitch > -1.57 && camera.pitch < 1.57))
@@ -287,6 +292,7 @@ json CameraToJson(const CameraHint& c) {
               {"distance", c.distance},
               {"fov", c.fov}};
   if (!c.follow.empty()) out["follow"] = c.follow;
+  if (c.ground) out["ground"] = *c.ground;
   return out;
 }
 

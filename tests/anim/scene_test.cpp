@@ -132,8 +132,10 @@ TEST(Scene, ErrorsNameTheFieldByJsonPointer) {
 TEST(Scene, SaveThenLoadGivesTheSameDocument) {
   json document = CylinderScene();
   document["camera"]["follow"] = "beam";
+  document["camera"]["ground"] = -0.25;
   const SceneDescription scene = ParseScene(document, ".").value();
   EXPECT_EQ(scene.camera->follow, "beam");
+  EXPECT_EQ(scene.camera->ground, -0.25);
   const fs::path path = fs::temp_directory_path() / "wirerig_scene_test" / "beam.scene.json";
   fs::create_directories(path.parent_path());
   ASSERT_TRUE(SaveScene(scene, path).ok());
@@ -226,6 +228,8 @@ TEST(Scene, BuildNamesWhatIsWrong) {
             "scene \"beam\": /camera/follow: the rig has no part named \"arm\" (parts: beam)");
   d["camera"]["follow"] = "beam";
   EXPECT_EQ(BuildError(d), "ok");
+  d["camera"]["ground"] = 1e300;
+  EXPECT_EQ(ParseError(d), "/camera/ground: must be a finite height within 1e6 m");
   d = CylinderScene();
   d["clips"][0]["profiles"][0]["profiles"] = {2, 30};
   const std::string error = BuildError(d);

@@ -137,6 +137,11 @@ RenderFrame SceneFrame::frame() const {
   frame.polylines = polylines_;
   frame.arrows = std::span<const RenderArrow>(arrows_.data(), arrow_count_);
   frame.caption = caption_;
+  const std::optional<CameraHint>& hint = scene_->description.camera;
+  if (hint && hint->ground) {
+    frame.ground_at_lowest_point = false;
+    frame.ground_height = static_cast<float>(*hint->ground);
+  }
   return frame;
 }
 

@@ -71,6 +71,9 @@ struct CameraHint {
   double fov = 0.8;            // rad, vertical
   // A part whose spine root the target moves with (a walking character); empty: fixed.
   std::string follow;
+  // The ground plane's height (m), fixed, so a body that swims or jumps is seen to travel;
+  // empty: under the model's lowest point in every frame.
+  std::optional<double> ground;
 };
 
 struct SceneDescription {

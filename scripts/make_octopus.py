@@ -1,0 +1,130 @@
+#!/usr/bin/env python3
+"""Writes samples/octopus/octopus.scene.json: the procedural octopus swimming for 10 s.
+
+The mantle is a rigid body (it is the octopus's head and body: stiff next to its arms) pushed
+by jet pulses along its axis (+Y: an octopus jets mantle first) and slowed by the water's drag,
+so it travels instead of bobbing in place. Each stroke has two phases:
+  * the jet (JET of the PERIOD): the mantle contracts and water leaves the siphon; the arms are
+    pulled in together behind the body (towards the axis and down);
+  * the refill: the arms flare outwards (their web opening) while the body glides.
+The arms' loads are world-axes line loads on three stretches of each arm, the outer stretches
+later than the inner ones (a wave running root to tip), each arm a little later than the one
+before it around the body (phase-lagged, not in lockstep).
+
+Usage: scripts/make_octopus.py [OUT]   (default: samples/octopus/octopus.scene.json)
+"""
+import json
+import math
+import pathlib
+import re
+import sys
+
+REPO = pathlib.Path(__file__).resolve().parent.parent
+
+DURATION = 10.0      # s
+PERIOD = 1.25        # s per stroke (jet + refill)
+JET = 0.4            # fraction of the stroke the jet pushes
+JET_PEAK = 90.0      # N, the jet's peak thrust along +Y
+DRAG_LINEAR = 30.0   # N s/m
+DRAG_QUADRATIC = 60.0  # N s^2/m^2
+DRAG_ANGULAR = 5.0   # N m s
+ARMS = 8
+ARM_LAG = 0.03       # s between neighbouring arms
+WAVE_LAG = 0.12      # s between an arm's stretches, root to tip
+STRETCHES = [(0.1, 0.4), (0.4, 0.7), (0.7, 1.0)]
+PULL_IN = 0.010      # N/m, peak inward (and downward) load during the jet
+FLARE = 0.008        # N/m, peak outward load during the refill
+KEYS_PER_STROKE = 8  # cubic keys per stroke for the arms' loads
+JET_KEYS = 6         # linear keys over each jet pulse
+
+
+def jet_thrust(t):
+  """The jet's thrust at time t: a sin^2 pulse over the first JET of each stroke."""
+  phase = (t % PERIOD) / PERIOD
+  if phase >= JET:
+    return 0.0
+  return JET_PEAK * math.sin(math.pi * phase / JET) ** 2
+
+
+def arm_drive(t):
+  """-1 (pulled in) during the jet, +1 (flared) during the refill, smooth between."""
+  phase = (t % PERIOD) / PERIOD
+  return -math.cos(2.0 * math.pi * phase)
+
+
+def key_times():
+  count = int(round(DURATION / PERIOD * KEYS_PER_STROKE))
+  return [DURATION * k / count for k in range(count + 1)]
+
+
+def mantle_track():
+  # Each stroke's pulse on JET_KEYS + 1 linear keys; zero between pulses.
+  fine = []
+  strokes = int(round(DURATION / PERIOD))
+  for n in range(strokes):
+    fine += [n * PERIOD + JET * PERIOD * k / JET_KEYS for k in range(JET_KEYS + 1)]
+  fine.append(DURATION)
+  return {
+      "part": "mantle",
+      "rigid_forces": [{
+          "at": [0.0, 0.25, 0.0],
+          "force": {"keys": [[round(t, 6), [0.0, round(jet_thrust(t), 4), 0.0], "linear"]
+                             for t in fine]},
+      }],
+      "rigid_drag": {"linear": DRAG_LINEAR, "quadratic": DRAG_QUADRATIC,
+                     "angular": DRAG_ANGULAR},
+  }
+
+
+def arm_track(i):
+  angle = 2.0 * math.pi * (i + 0.5) / ARMS
+  out = (math.cos(angle), 0.0, -math.sin(angle))
+  loads = []
+  for s, (a, b) in enumerate(STRETCHES):
+    lag = i * ARM_LAG + s * WAVE_LAG
+    keys = []
+    for t in key_times():
+      d = arm_drive(t - lag)
+      radial = FLARE * d if d > 0 else PULL_IN * d
+      down = PULL_IN * min(d, 0.0)  # pulled in: also down, behind the body
+      force = [round(radial * out[0], 6), round(down, 6), round(radial * out[2], 6)]
+      keys.append([round(t, 6), force, "cubic"])
+    loads.append({"from": a, "to": b, "axes": "world", "force_per_length": {"keys": keys}})
+  return {"part": f"tentacle_{i}", "boundary": "cantilever_free", "line_loads": loads}
+
+
+def scene():
+  return {
+      "format": "wirerig.scene",
+      "version": 1,
+      "name": "octopus",
+      "mesh": {"procedural": "octopus"},
+      "rig": {"from": "procedural"},
+      "skin_thickness": 0.005,
+      "default_kind": "deformable",
+      "parts": {"mantle": {"kind": "rigid"}},
+      "playback": {"preserve_volume": True},
+      "clips": [{
+          "name": "swim",
+          "duration": DURATION,
+          "loop": "once",
+          "parts": [mantle_track()] + [arm_track(i) for i in range(ARMS)],
+      }],
+      "camera": {"target": [0.0, 1.5, 0.0], "yaw": 1.2, "pitch": 0.1, "distance": 6.4, "ground": -0.62,
+                 "fov": 0.8},
+  }
+
+
+def main():
+  out = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else REPO / "samples/octopus/octopus.scene.json"
+  text = json.dumps(scene(), indent=1)
+  # One key per line: [time, value, "interpolation"] and [x, y, z] arrays collapsed.
+  text = re.sub(r"\[\s+([^\[\]{}]*?)\s+\]", lambda m: "[" + " ".join(m.group(1).split()) + "]", text)
+  text = re.sub(r"\[\s+([^\[\]{}]*?\[[^\[\]{}]*\][^\[\]{}]*?)\s+\]",
+                lambda m: "[" + " ".join(m.group(1).split()) + "]", text)
+  out.write_text(text + "\n")
+  print(f"written: {out}")
+
+
+if __name__ == "__main__":
+  main()
