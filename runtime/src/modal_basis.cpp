@@ -172,6 +172,7 @@ Status BuildModalBasis(BoundaryCondition boundary, int modes, ModalBasis* out) {
     basis.beta[n] = beta;
     basis.coefficients[n] = c;
     basis.integral[n] = (Dot(c, BasisRow(beta, 1.0, -1)) - Dot(c, BasisRow(beta, 0.0, -1))) / beta;
+    basis.end_value[n] = Dot(c, BasisRow(beta, 1.0, 0));
   }
   *out = basis;
   return Status::Ok();

@@ -79,12 +79,16 @@ Status ValidateModalLoads(const ModalWireModel& model, const ModalWireLoads& loa
   job.samples = std::span<const double>(&sample, 1);
   job.displacement = std::span<Vec3>(&ignored, 1);
   if (Status s = job.Validate(); !s) return s;
-  if (!AllFinite(loads.support_acceleration))
+  return ValidateSupportAcceleration(model, loads.support_acceleration);
+}
+
+Status ValidateSupportAcceleration(const ModalWireModel& model, const Vec3& acceleration) {
+  if (!AllFinite(acceleration))
     return Status::Invalid("support_acceleration", "must be finite (m/s^2)");
   // The inertial load rho A |a| over the whole length, bounded like BendingJob's loads.
   const double compliance = model.length * model.length * model.length / model.bending_stiffness;
-  const double bound = compliance * model.length * model.mass_per_length *
-                       loads.support_acceleration.lpNorm<Eigen::Infinity>();
+  const double bound =
+      compliance * model.length * model.mass_per_length * acceleration.lpNorm<Eigen::Infinity>();
   if (!(bound < kMaxDeflectionBound))
     return Status::Invalid("support_acceleration",
                            "too large for the stiffness: the deflection would overflow");
@@ -105,7 +109,7 @@ Status ValidateModalState(const ModalWireModel& model, const ModalWireState* sta
 }
 
 void StaticModalCoordinates(const ModalWireModel& model, const ModalWireLoads& loads,
-                            std::span<Vec3> out) {
+                            std::span<const double> point_load_modes, std::span<Vec3> out) {
   const ModalBasis& basis = model.basis;
   const double length = model.length;
   const double compliance = length * length * length / model.bending_stiffness;  // L^3 / EI
@@ -116,9 +120,14 @@ void StaticModalCoordinates(const ModalWireModel& model, const ModalWireLoads& l
   for (int n = 0; n < basis.modes; ++n) {
     // L f_n: the projection of the loads, N.
     Vec3 force = Vec3::Zero();
-    for (const PointLoad& load : loads.point_loads)
-      force += load.force * ModeValue(basis, n, load.at);
-    if (tip) force += loads.tip_force * ModeValue(basis, n, 1.0);
+    if (point_load_modes.empty()) {
+      for (const PointLoad& load : loads.point_loads)
+        force += load.force * ModeValue(basis, n, load.at);
+    } else {
+      for (std::size_t j = 0; j < loads.point_loads.size(); ++j)
+        force += loads.point_loads[j].force * point_load_modes[j * basis.modes + n];
+    }
+    if (tip) force += loads.tip_force * basis.end_value[n];
     for (const LineLoad& load : loads.line_loads)
       force += (load.force_per_length * length) * ModeIntegral(basis, n, load.from, load.to);
     if (support) force += inertial * basis.integral[n];
@@ -189,7 +198,7 @@ Status ComputeStaticModalCoordinates(const ModalWireModel& model, const ModalWir
   if (Status s = detail::ValidateModalLoads(model, loads); !s) return s;
   if (out.size() < std::size_t(model.basis.modes))
     return Status::Invalid("out", "must hold one element per mode");
-  detail::StaticModalCoordinates(model, loads, out);
+  detail::StaticModalCoordinates(model, loads, {}, out);
   return Status::Ok();
 }
 
@@ -208,7 +217,7 @@ Status InitializeModalWireAtStatic(const ModalWireModel& model, const ModalWireL
   if (state == nullptr) return Status::Invalid("state", "must not be null");
   *state = ModalWireState();
   state->modes = model.basis.modes;
-  detail::StaticModalCoordinates(model, loads, state->q_static);
+  detail::StaticModalCoordinates(model, loads, {}, state->q_static);
   state->q = state->q_static;
   return Status::Ok();
 }
@@ -247,6 +256,9 @@ Status ModalWireStepJob::Validate() const {
   if (Status s = CheckTimeStep(dt); !s) return s;
   if (hold != ModalHold::kZeroOrder && hold != ModalHold::kFirstOrder)
     return Status::Invalid("hold", "unknown hold");
+  if (!point_load_modes.empty() &&
+      point_load_modes.size() != loads.point_loads.size() * std::size_t(model->basis.modes))
+    return Status::Invalid("point_load_modes", "must be empty or hold point_loads x modes values");
   if (step_table != nullptr && (step_table->modes != model->basis.modes || step_table->dt != dt ||
                                 step_table->damping_ratio != model->damping_ratio ||
                                 step_table->natural_frequency != detail::NaturalFrequency(*model)))
@@ -261,7 +273,7 @@ Status ModalWireStepJob::Run() const {
   const double zeta = m.damping_ratio;
   const double natural = detail::NaturalFrequency(m);
   std::array<Vec3, ModalBasis::kMaxModes> target;
-  detail::StaticModalCoordinates(m, loads, std::span<Vec3>(target.data(), modes));
+  detail::StaticModalCoordinates(m, loads, point_load_modes, std::span<Vec3>(target.data(), modes));
   ModalWireState& s = *state;
   for (int n = 0; n < modes; ++n) {
     const double beta = m.basis.beta[n];

@@ -49,6 +49,8 @@ struct ModalBasis {
   std::array<std::array<double, 4>, kMaxModes> coefficients{};
   // integral_0^1 phi_n dv, the projection of a unit uniform load.
   std::array<double, kMaxModes> integral{};
+  // phi_n(1), the projection of a unit tip force (0 for simply supported and clamped wires).
+  std::array<double, kMaxModes> end_value{};
 };
 
 // Builds the basis of `modes` modes for a boundary family. Errors name "boundary" or "modes".
@@ -56,7 +58,7 @@ struct ModalBasis {
 Status BuildModalBasis(BoundaryCondition boundary, int modes, ModalBasis* out);
 
 // phi_n(v) and d phi_n / dv for n in [0, basis.modes) and v in [0, 1] (not checked: these are
-// inner-loop helpers). O(1): one sin/cos pair and one exp.
+// inner-loop helpers). O(1): one sin/cos pair and two exp.
 double ModeValue(const ModalBasis& basis, int n, double v);
 double ModeSlope(const ModalBasis& basis, int n, double v);
 // integral_a^b phi_n(v) dv, 0 <= a <= b <= 1, in closed form.

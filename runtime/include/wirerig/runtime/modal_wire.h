@@ -139,11 +139,19 @@ struct ModalWireStepJob {
   // Optional: PrecomputeModalStep(*model, dt) (same model and dt, checked); otherwise the
   // transitions are computed in Run (a sin/cos/exp per mode).
   const ModalStepTable* step_table = nullptr;
+  // Optional: phi_n at the point loads' positions, TabulateModes(model->basis, positions, ...)
+  // (point_loads.size() x modes values), for wires whose loads stay where they are; otherwise
+  // the modes are evaluated at the loads in Run (a sin/cos pair and two exp per load and mode).
+  // Like every table here, its size is checked and its values are trusted: make it with
+  // TabulateModes for the same basis and positions (a table of other values gives other
+  // answers, and non-finite values would reach the state).
+  std::span<const double> point_load_modes;
   // In: the state at t; out: at t + dt. Its q_static becomes the static coordinates of `loads`.
   ModalWireState* state = nullptr;
 
   // Names the first invalid input: "model" (null) or the model's field, the loads' field
-  // (BendingJob's names, or "support_acceleration"), "dt", "hold", "step_table", "state"
+  // (BendingJob's names, or "support_acceleration"), "dt", "hold", "point_load_modes" (size, or
+  // not point_loads x modes), "step_table", "state"
   // (null, mode count not the model's, or values not finite / beyond 1e150).
   Status Validate() const;
   // Validates, then advances the state. Never allocates; never writes NaN.
@@ -160,7 +168,9 @@ struct ModalWireEvaluateJob {
   // Sample parameters v_i in [0, 1], any order; at least one.
   std::span<const double> samples;
   // Optional tables from TabulateModes(model->basis, samples, ...): phi_n(v_i) and phi_n'(v_i).
-  // Empty: the modes are evaluated here (slower). mode_slopes is needed for tabulated slopes.
+  // Empty: the modes are evaluated here (10x slower). mode_slopes is needed for tabulated
+  // slopes. Their sizes are checked, their values trusted (checking them would cost as much as
+  // using them): "never writes NaN" holds for tables made by TabulateModes.
   std::span<const double> mode_values;
   std::span<const double> mode_slopes;
 
