@@ -173,6 +173,7 @@ Status BuildModalBasis(BoundaryCondition boundary, int modes, ModalBasis* out) {
     basis.coefficients[n] = c;
     basis.integral[n] = (Dot(c, BasisRow(beta, 1.0, -1)) - Dot(c, BasisRow(beta, 0.0, -1))) / beta;
     basis.end_value[n] = Dot(c, BasisRow(beta, 1.0, 0));
+    basis.decay[n] = std::exp(-beta);
   }
   *out = basis;
   return Status::Ok();
@@ -182,7 +183,8 @@ double ModeValue(const ModalBasis& basis, int n, double v) {
   const double beta = basis.beta[n];
   const std::array<double, 4>& c = basis.coefficients[n];
   const double x = beta * v;
-  return c[0] * std::cos(x) + c[1] * std::sin(x) + c[2] * std::exp(-x) + c[3] * std::exp(x - beta);
+  const double e1 = std::exp(-x);
+  return c[0] * std::cos(x) + c[1] * std::sin(x) + c[2] * e1 + c[3] * (basis.decay[n] / e1);
 }
 
 double ModeSlope(const ModalBasis& basis, int n, double v) {
@@ -191,6 +193,17 @@ double ModeSlope(const ModalBasis& basis, int n, double v) {
   const double x = beta * v;
   return beta * (-c[0] * std::sin(x) + c[1] * std::cos(x) - c[2] * std::exp(-x) +
                  c[3] * std::exp(x - beta));
+}
+
+void EvaluateMode(const ModalBasis& basis, int n, double v, double* value, double* slope) {
+  const double beta = basis.beta[n];
+  const std::array<double, 4>& c = basis.coefficients[n];
+  const double x = beta * v;
+  const double cos_x = std::cos(x), sin_x = std::sin(x);
+  // exp(-x) and exp(x - beta) = exp(-beta) / exp(-x): beta <= 106, so neither underflows.
+  const double e1 = std::exp(-x), e2 = basis.decay[n] / e1;
+  *value = c[0] * cos_x + c[1] * sin_x + c[2] * e1 + c[3] * e2;
+  *slope = beta * (-c[0] * sin_x + c[1] * cos_x - c[2] * e1 + c[3] * e2);
 }
 
 double ModeIntegral(const ModalBasis& basis, int n, double a, double b) {
@@ -218,8 +231,10 @@ Status TabulateModes(const ModalBasis& basis, std::span<const double> samples,
     return Status::Invalid("slopes", "must be empty or hold samples x modes values");
   for (std::size_t i = 0; i < samples.size(); ++i)
     for (int n = 0; n < basis.modes; ++n) {
-      values[i * basis.modes + n] = ModeValue(basis, n, samples[i]);
-      if (!slopes.empty()) slopes[i * basis.modes + n] = ModeSlope(basis, n, samples[i]);
+      double value = 0.0, slope = 0.0;
+      EvaluateMode(basis, n, samples[i], &value, &slope);
+      values[i * basis.modes + n] = value;
+      if (!slopes.empty()) slopes[i * basis.modes + n] = slope;
     }
   return Status::Ok();
 }

@@ -72,8 +72,14 @@ void AddResidual(const ModalWireEvaluateJob& job,
     } else {
       const double v = job.samples[i];
       for (int n = 0; n < modes; ++n) {
-        x += r[n] * ModeValue(basis, n, v);
-        if constexpr (kSlope) dx += r[n] * ModeSlope(basis, n, v);
+        if constexpr (kSlope) {
+          double phi = 0.0, dphi = 0.0;
+          EvaluateMode(basis, n, v, &phi, &dphi);
+          x += r[n] * phi;
+          dx += r[n] * dphi;
+        } else {
+          x += r[n] * ModeValue(basis, n, v);
+        }
       }
     }
     job.displacement[i] += x;

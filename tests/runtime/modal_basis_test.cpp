@@ -278,8 +278,22 @@ TEST(ModalBasis, InvalidInputsAreNamed) {
   EXPECT_EQ(TabulateModes(basis, v, short_table, {}).field, "values");
   EXPECT_EQ(TabulateModes(basis, v, values, short_table).field, "slopes");
   EXPECT_TRUE(TabulateModes(basis, v, values, slopes).ok());
-  EXPECT_EQ(values[1 * 32 + 3], ModeValue(basis, 3, 0.5));
-  EXPECT_EQ(slopes[2 * 32 + 5], ModeSlope(basis, 5, 1.0));
+  EXPECT_NEAR(values[1 * 32 + 3], ModeValue(basis, 3, 0.5), 1e-14);
+  EXPECT_NEAR(slopes[2 * 32 + 5], ModeSlope(basis, 5, 1.0), 1e-14 * basis.beta[5]);
+}
+
+TEST(ModalBasis, EvaluateModeGivesValueAndSlopeTogether) {
+  for (BoundaryCondition bc : kFamilies) {
+    const ModalBasis basis = Build(bc, 32);
+    for (int n = 0; n < 32; ++n)
+      for (int i = 0; i <= 20; ++i) {
+        const double v = i / 20.0;
+        double value = 0.0, slope = 0.0;
+        EvaluateMode(basis, n, v, &value, &slope);
+        EXPECT_NEAR(value, ModeValue(basis, n, v), 1e-14);
+        EXPECT_NEAR(slope, ModeSlope(basis, n, v), 1e-14 * basis.beta[n]);
+      }
+  }
 }
 
 }  // namespace

@@ -268,6 +268,36 @@ TEST(ModalWireStatics, AWireAtRestUnderItsLoadsIsBendingJobsExactSolution) {
   }
 }
 
+TEST(ModalWireStep, ModeValuesAtTheLoadsGiveTheSameStep) {
+  const ModalWireModel model = MakeModel(BoundaryCondition::kClamped, 0.2, 12);
+  const std::vector<PointLoad> point = {{0.15, Vec3(1, 0, 0)}, {0.6, Vec3(0, -2, 1)}};
+  const std::vector<double> at = {0.15, 0.6};
+  std::vector<double> table(2 * 12);
+  ASSERT_TRUE(TabulateModes(model.basis, at, table, {}).ok());
+  Simulation a;
+  a.model = model;
+  ASSERT_TRUE(InitializeModalWireAtRest(model, &a.state).ok());
+  a.loads.point_loads = point;
+  a.dt = 0.01;
+  Simulation b = a;
+  ModalWireStepJob job;
+  job.model = &model;
+  job.loads = b.loads;
+  job.dt = b.dt;
+  job.state = &b.state;
+  job.point_load_modes = table;
+  for (int i = 0; i < 20; ++i) {
+    a.Step();
+    ASSERT_TRUE(job.Run().ok());
+  }
+  for (int n = 0; n < 12; ++n) {
+    EXPECT_LT((a.state.q[n] - b.state.q[n]).norm(), 1e-15 * a.state.q[0].norm()) << n;
+    EXPECT_LT((a.state.q_static[n] - b.state.q_static[n]).norm(), 1e-15 * a.state.q[0].norm());
+  }
+  job.point_load_modes = std::span<const double>(table).first(23);
+  EXPECT_EQ(job.Validate().field, "point_load_modes");
+}
+
 TEST(ModalWireEvaluate, TablesGiveTheSameAnswerAsEvaluatingTheModes) {
   const ModalWireModel model = MakeModel(BoundaryCondition::kCantileverGuided, 0.0, 12);
   std::vector<double> v = {0.0, 0.1, 0.33, 0.5, 0.77, 1.0};

@@ -51,6 +51,8 @@ struct ModalBasis {
   std::array<double, kMaxModes> integral{};
   // phi_n(1), the projection of a unit tip force (0 for simply supported and clamped wires).
   std::array<double, kMaxModes> end_value{};
+  // exp(-beta_n), for EvaluateMode.
+  std::array<double, kMaxModes> decay{};
 };
 
 // Builds the basis of `modes` modes for a boundary family. Errors name "boundary" or "modes".
@@ -61,6 +63,8 @@ Status BuildModalBasis(BoundaryCondition boundary, int modes, ModalBasis* out);
 // inner-loop helpers). O(1): one sin/cos pair and two exp.
 double ModeValue(const ModalBasis& basis, int n, double v);
 double ModeSlope(const ModalBasis& basis, int n, double v);
+// Both at once, for the price of one (a sin/cos pair and one exp).
+void EvaluateMode(const ModalBasis& basis, int n, double v, double* value, double* slope);
 // integral_a^b phi_n(v) dv, 0 <= a <= b <= 1, in closed form.
 double ModeIntegral(const ModalBasis& basis, int n, double a, double b);
 
