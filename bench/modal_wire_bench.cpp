@@ -1,6 +1,6 @@
 // Cost of modal wire dynamics (modal_wire.h) against the static closed form alone (BendingJob)
 // at the same samples: 100 cantilever wires (tip force and 3 point loads each, different per
-// wire), 32 samples each, displacement and slope. Per wire and frame:
+// wire), 32 samples each, displacement and slope (or displacement only). Per wire and frame:
 //   static          BendingJob::Run
 //   modal           ModalWireStepJob::Run (8 modes, precomputed step table and mode values at
 //                   the loads) and ModalWireEvaluateJob::Run (precomputed mode tables)
@@ -85,7 +85,7 @@ void Report(benchmark::State& state) {
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
-void BM_Static(benchmark::State& state) {
+void BM_Static(benchmark::State& state, bool slope) {
   Wires wires;
   BendingJob job;
   job.boundary = BoundaryCondition::kCantileverFree;
@@ -97,7 +97,7 @@ void BM_Static(benchmark::State& state) {
       job.point_loads = wires.Loads(w);
       job.tip_force = wires.tips[w];
       job.displacement = wires.Out(wires.displacement, w);
-      job.slope = wires.Out(wires.slope, w);
+      if (slope) job.slope = wires.Out(wires.slope, w);
       if (!job.Run()) state.SkipWithError("job refused");
     }
     benchmark::DoNotOptimize(wires.displacement.data());
@@ -105,11 +105,13 @@ void BM_Static(benchmark::State& state) {
   }
   Report(state);
 }
-BENCHMARK(BM_Static);
+BENCHMARK_CAPTURE(BM_Static, slope, true);
+BENCHMARK_CAPTURE(BM_Static, displacement_only, false);
 
 enum Part { kStepAndEvaluate, kStepOnly, kEvaluateOnly };
 
-void BM_Modal(benchmark::State& state, bool tables, bool support, Part part = kStepAndEvaluate) {
+void BM_Modal(benchmark::State& state, bool tables, bool support, Part part = kStepAndEvaluate,
+              bool slope = true) {
   Wires wires;
   ModalWireStepJob step;
   step.model = &wires.model;
@@ -120,7 +122,7 @@ void BM_Modal(benchmark::State& state, bool tables, bool support, Part part = kS
   eval.samples = wires.samples;
   if (tables) {
     eval.mode_values = wires.values;
-    eval.mode_slopes = wires.slopes;
+    if (slope) eval.mode_slopes = wires.slopes;
   }
   for (auto _ : state) {
     for (int w = 0; w < kWires; ++w) {
@@ -135,7 +137,7 @@ void BM_Modal(benchmark::State& state, bool tables, bool support, Part part = kS
       eval.loads = loads;
       eval.state = &wires.states[w];
       eval.displacement = wires.Out(wires.displacement, w);
-      eval.slope = wires.Out(wires.slope, w);
+      if (slope) eval.slope = wires.Out(wires.slope, w);
       if (part != kStepOnly && !eval.Run()) state.SkipWithError("evaluation refused");
     }
     benchmark::DoNotOptimize(wires.displacement.data());
@@ -144,6 +146,7 @@ void BM_Modal(benchmark::State& state, bool tables, bool support, Part part = kS
   Report(state);
 }
 BENCHMARK_CAPTURE(BM_Modal, modal, true, false);
+BENCHMARK_CAPTURE(BM_Modal, modal_displacement_only, true, false, kStepAndEvaluate, false);
 BENCHMARK_CAPTURE(BM_Modal, modal_untabled, false, false);
 BENCHMARK_CAPTURE(BM_Modal, modal_support, true, true);
 BENCHMARK_CAPTURE(BM_Modal, modal_step_only, true, false, kStepOnly);
