@@ -298,6 +298,76 @@ TEST(ModalWireStep, ModeValuesAtTheLoadsGiveTheSameStep) {
   EXPECT_EQ(job.Validate().field, "point_load_modes");
 }
 
+TEST(ModalWireStatics, StaticCoordinatesAreTheProjectionOfTheStaticSolution) {
+  // The modes are orthonormal eigenfunctions, so the static solution X (homogeneous ends) has
+  // the modal coordinates integral_0^1 X phi_n dv: BendingJob's X (line load for the support)
+  // integrated by composite Simpson against the modes, independent of the projection code.
+  const std::vector<PointLoad> point = {{0.2, Vec3(0, -1, 0.5)}, {0.75, Vec3(0.3, 2, 0)}};
+  const std::vector<LineLoad> line = {{0.1, 0.6, Vec3(1, 0, -2)}, {0.5, 1.0, Vec3(0, 3, 0)}};
+  const int intervals = 20000;
+  std::vector<double> v(intervals + 1);
+  for (int i = 0; i <= intervals; ++i) v[i] = double(i) / intervals;
+  for (BoundaryCondition bc : kFamilies) {
+    SCOPED_TRACE(ToString(bc));
+    const ModalWireModel model = MakeModel(bc, 0.1, 12);
+    ModalWireLoads loads;
+    loads.point_loads = point;
+    loads.line_loads = line;
+    if (IsCantilever(bc)) loads.tip_force = Vec3(0, 0.7, -0.2);
+    loads.support_acceleration = Vec3(0.0, -9.81, 3.0);
+    std::vector<Vec3> slope;
+    const std::vector<Vec3> x = StaticReference(model, loads, v, &slope);
+    std::vector<Vec3> q(12);
+    ASSERT_TRUE(ComputeStaticModalCoordinates(model, loads, q).ok());
+    double scale = 0.0;
+    for (int n = 0; n < 12; ++n) scale = std::max(scale, q[n].norm());
+    for (int n = 0; n < 12; ++n) {
+      Vec3 projection = Vec3::Zero();
+      for (int i = 0; i <= intervals; ++i) {
+        const double w =
+            (i == 0 || i == intervals ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0)) / (3.0 * intervals);
+        projection += x[i] * (w * ModeValue(model.basis, n, v[i]));
+      }
+      EXPECT_LT((q[n] - projection).norm(), 1e-10 * scale) << "mode " << n + 1;
+    }
+  }
+}
+
+// Closed-form response of q'' + 2 zeta w q' + w^2 q = w^2 t (a unit ramp) from rest, zeta < 1.
+double RampResponse(double w, double zeta, double t) {
+  const double wd = w * std::sqrt(1.0 - zeta * zeta);
+  return t - 2.0 * zeta / w +
+         std::exp(-zeta * w * t) * (2.0 * zeta / w * std::cos(wd * t) +
+                                    (2.0 * zeta * zeta - 1.0) / wd * std::sin(wd * t));
+}
+
+TEST(ModalWireStep, FirstOrderHoldFollowsARampingLoadExactly) {
+  for (double zeta : {0.0, 0.3}) {
+    SCOPED_TRACE(zeta);
+    Simulation sim;
+    sim.model = MakeModel(BoundaryCondition::kCantileverGuided, zeta, 4);
+    sim.hold = ModalHold::kFirstOrder;
+    ASSERT_TRUE(InitializeModalWireAtRest(sim.model, &sim.state).ok());
+    const Vec3 rate(0.0, 2.0, 0.0);  // N/s: the tip force grows from 0 at t = 0
+    sim.loads.tip_force = rate;      // the coordinates per unit force, for the reference
+    std::vector<Vec3> per_newton(4);
+    ASSERT_TRUE(ComputeStaticModalCoordinates(sim.model, sim.loads, per_newton).ok());
+    sim.dt = 0.0123;
+    for (int step = 1; step <= 400; ++step) {
+      sim.loads.tip_force = rate * (step * sim.dt);
+      sim.Step();
+      if (step % 80 != 0) continue;
+      for (int n = 0; n < 4; ++n) {
+        const double beta = sim.model.basis.beta[n];
+        const double w = beta * beta * std::sqrt(kEI / (kRhoA * std::pow(kL, 4)));
+        const double expected = per_newton[n].y() * RampResponse(w, zeta, step * sim.dt);
+        EXPECT_NEAR(sim.state.q[n].y(), expected, 1e-11 * std::abs(per_newton[n].y()))
+            << "mode " << n << " step " << step;
+      }
+    }
+  }
+}
+
 TEST(ModalWireEvaluate, TablesGiveTheSameAnswerAsEvaluatingTheModes) {
   const ModalWireModel model = MakeModel(BoundaryCondition::kCantileverGuided, 0.0, 12);
   std::vector<double> v = {0.0, 0.1, 0.33, 0.5, 0.77, 1.0};
