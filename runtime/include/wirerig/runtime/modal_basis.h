@@ -5,9 +5,10 @@
 //   kClamped          X(0)=0, X'(0)=0,  X(1)=0,  X'(1)=0    cos(beta) cosh(beta) = 1
 //   kCantileverFree   X(0)=0, X'(0)=0,  X''(1)=0, X'''(1)=0  cos(beta) cosh(beta) = -1
 //   kCantileverGuided X(0)=0, X'(0)=0,  X'(1)=0,  X'''(1)=0  tan(beta) + tanh(beta) = 0
-// Mode n (n = 0 .. modes-1 here; the n-th mode of the literature is index n-1) satisfies
-// phi_n'''' = beta_n^4 phi_n in the parameter v. A wire of length L, bending stiffness EI and
-// mass per length rho A vibrates in mode n at omega_n = beta_n^2 sqrt(EI / (rho A L^4)) rad/s.
+// Modes are indexed n = 0 .. modes-1 here (index 0 is the fundamental, the literature's first
+// mode); mode n satisfies phi_n'''' = beta_n^4 phi_n in the parameter v. A wire of length L,
+// bending stiffness EI and mass per length rho A vibrates in mode n at omega_n = beta_n^2 sqrt(EI /
+// (rho A L^4)) rad/s.
 //
 // The eigenvalues are roots of the characteristic equations above, found by bisection in
 // brackets of width pi/2 or pi around the asymptotic roots (every bracket holds exactly one
@@ -19,8 +20,9 @@
 //
 // Numerical form: each eigenfunction is stored as
 //   phi(v) = A cos(beta v) + B sin(beta v) + C exp(-beta v) + D exp(-beta (1 - v)),
-// a basis bounded by 1 on [0, 1]: the textbook cosh/sinh form loses every digit to cancellation
-// from beta ~ 26 on, this one keeps full precision up to the largest mode (beta ~ 102). The
+// a basis bounded by 1 on [0, 1]: the textbook cosh/sinh form loses digits to cancellation as
+// exp(beta) grows (half of them by beta ~ 18, all by beta ~ 37), this one keeps full precision
+// up to the largest mode (beta ~ 102). The
 // coefficients are the null vector of the 4x4 boundary-condition matrix. Normalisation:
 // integral_0^1 phi_n^2 dv = 1 (computed exactly from the boundary values, no quadrature), so
 // the simply supported modes are sqrt(2) sin(n pi v). Sign: the first derivative of phi_n

@@ -8,9 +8,10 @@
 // components solved independently, as BendingJob does), is a damped oscillator
 //   q_n'' + 2 zeta omega_n q_n' + omega_n^2 q_n = f_n(t) / (rho A),
 //   omega_n = beta_n^2 sqrt(EI / (rho A L^4)),
-//   f_n = [ sum_j F_j phi_n(a_j) + F_tip phi_n(1) ] / L + sum_k q_k integral_{a_k}^{b_k} phi_n dv
+//   f_n = [ sum_j F_j phi_n(a_j) + F_tip phi_n(1) ] / L + sum_k w_k integral_{a_k}^{b_k} phi_n dv
 //         - rho A a_support integral_0^1 phi_n dv                                       (N/m),
-// with the same modal damping ratio zeta for every mode.
+// for point loads F_j at v = a_j, line loads w_k (N/m) over [a_k, b_k], the tip force and the
+// support acceleration, with the same modal damping ratio zeta for every mode.
 //
 // Mode-acceleration form. The wire is evaluated as
 //   X(v, t) = X_static(v; loads(t)) + sum_n (q_n(t) - q_n_static(t)) phi_n(v),
@@ -28,15 +29,18 @@
 // inertial loads unless they are passed as support acceleration.
 //
 // Time stepping. Each oscillator is advanced by its exact solution over the step with the load
-// held constant over the step (zero-order hold of the step's loads) or ramped linearly from the
-// previous step's loads to this step's (first-order hold): no stability limit, no energy drift,
+// held constant over the step (zero-order hold of the step's loads, which act from the step's
+// start) or ramped linearly from the previous step's loads to this step's (first-order hold,
+// exact for loads linear in time between frames): no stability limit, no energy drift,
 // any zeta >= 0 (under-, critically and over-damped each in a cancellation-free form). When dt
 // is fixed, PrecomputeModalStep makes the 2x2 transition matrices once.
 //
 // Workflow: BuildModalBasis once, fill a ModalWireModel, initialise a ModalWireState (at rest or
 // at the static solution of given loads), then per frame Run a ModalWireStepJob with the
 // frame's loads and a ModalWireEvaluateJob with the same loads. Neither Run() allocates; both
-// validate first and name the bad field; neither writes NaN.
+// validate first and name the bad field; neither writes NaN (given tables, if any, made by
+// TabulateModes). A loaded wire reacts at once only through the modes above N (statically),
+// so a sudden load first shows as a small jump, then the N modes swing towards it.
 #pragma once
 
 #include <array>
