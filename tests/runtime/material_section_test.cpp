@@ -68,6 +68,21 @@ TEST(Material, InvalidFieldsAreNamed) {
   EXPECT_EQ(ValidateMaterial({1e9, 0.5, 1.0}).field, "nu");
   EXPECT_EQ(ValidateMaterial({1e9, -1.0, 1.0}).field, "nu");
   EXPECT_EQ(ValidateMaterial({1e9, 0.3, -1.0}).field, "density");
+  EXPECT_EQ(ValidateMaterial({1e9, 0.3, 1.0, -0.01}).field, "damping_ratio");
+  EXPECT_EQ(ValidateMaterial({1e9, 0.3, 1.0, std::nan("")}).field, "damping_ratio");
+  EXPECT_EQ(ValidateMaterial({1e9, 0.3, 1.0, 101.0}).field, "damping_ratio");
+}
+
+TEST(Material, DampingRatiosAreLightForMetalsAndHeavierForTissues) {
+  EXPECT_DOUBLE_EQ((Material{1e9, 0.3, 1.0}.damping_ratio), 0.05);  // the default
+  for (const MaterialPreset& preset : MaterialPresets()) {
+    SCOPED_TRACE(std::string(preset.name));
+    EXPECT_GT(preset.material.damping_ratio, 0.0);
+    EXPECT_LT(preset.material.damping_ratio, 1.0);  // every preset is under-damped
+  }
+  EXPECT_LT(FindMaterialPreset("steel")->damping_ratio, FindMaterialPreset("wood")->damping_ratio);
+  EXPECT_LT(FindMaterialPreset("wood")->damping_ratio,
+            FindMaterialPreset("soft_tissue")->damping_ratio);
 }
 
 }  // namespace
