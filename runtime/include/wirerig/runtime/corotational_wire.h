@@ -1,0 +1,104 @@
+// CorotationalWireJob: large planar curls of a cantilever wire, as a chain of K segments each
+// solved by the small-deflection closed form (BendingJob) in its own, rotated frame.
+//
+// Frame: the wire's own frame. The root (v = 0) is clamped at the origin with its tangent along
+// +X; bending happens in the X-Y plane (planar elastica). Every load is a DEAD load: it keeps
+// its direction in this frame however the wire turns (the classic elastica load). Loads must lie
+// in the plane (z = 0); out-of-plane loads are refused.
+//
+// Method (co-rotational chain). Segment k covers v in [k/K, (k+1)/K] (length h = L/K). Its frame
+// starts at node p_k with the tangent angle theta_k reached by the segment before it (theta_0 =
+// 0). In that frame it is a cantilever solved by BendingJob (kCantileverFree) with
+//   - the lateral components of its own point and line loads,
+//   - at its tip, the lateral component of the force carried from beyond (every load further
+//     out: dead loads, so their sum does not depend on the shape), and the bending moment
+//     M_{k+1} of everything beyond about node p_{k+1} (added as the exact tip-moment solution
+//     M x^2 / 2EI).
+// The moment balance of each segment uses its deformed geometry (the axial components of the
+// loads times the segment's own deflection), which makes M_{k+1} a linear function of M_k. The
+// chain is then a one-unknown shooting problem on the root moment M_0 (bracketed, solved by
+// Brent's method to machine precision): the free tip needs M_K = tip_moment. The guided tip
+// (kCantileverGuided) needs its tangent back at theta_K = 0 instead, its support taking the
+// moment. The segment joins the next at p_{k+1} = p_k + h t_k + w(h) n_k with theta_{k+1} =
+// theta_k + atan(w'(h)). The error falls as K^-2 (measured against the exact elastica in
+// tests/runtime/corotational_wire_test.cpp); for loads small enough the chain reduces to
+// BendingJob.
+//
+// Families: kCantileverFree and kCantileverGuided only. The simply supported and clamped
+// families are refused (their large-deflection form needs the end reactions and an axial
+// constraint, not done).
+//
+// Cost: each shooting step is K BendingJob runs; typically 10-40 steps. No allocation: state
+// lives on the stack, bounded by kMaxSegments, kMaxPointLoads and kMaxLineLoads.
+#pragma once
+
+#include <span>
+
+#include "wirerig/runtime/bending_job.h"
+#include "wirerig/runtime/conventions.h"
+#include "wirerig/runtime/loads.h"
+#include "wirerig/runtime/status.h"
+
+namespace wirerig {
+
+// What a solved chain reports besides its samples.
+struct CorotationalWireResult {
+  Vec3 tip_position = Vec3::Zero();  // p(v = 1), m, wire frame (z = 0)
+  Vec3 tip_tangent = Vec3::UnitX();  // unit tangent at v = 1
+  double tip_rotation = 0.0;         // theta(1), rad, counter-clockwise about +Z
+  double root_moment = 0.0;          // M_0 = EI * curvature at the root, N m
+  int segments = 0;                  // K used
+  int iterations = 0;                // shooting evaluations (chain sweeps)
+};
+
+struct CorotationalWireJob {
+  static constexpr int kMaxSegments = 256;
+  static constexpr int kMaxPointLoads = 16;
+  static constexpr int kMaxLineLoads = 8;
+  // Automatic K (segments == 0) lets each segment turn at most about this much, bounded by the
+  // largest curvature the loads could produce (|M| <= |tip_moment| + L * sum |F|).
+  static constexpr double kAutoSegmentTurn = 0.1;  // rad
+  // Validate() refuses a K whose segments could turn more than this (the linear theory inside a
+  // segment would be meaningless).
+  static constexpr double kMaxSegmentTurn = 1.0;  // rad
+
+  BoundaryCondition boundary = BoundaryCondition::kCantileverFree;  // or kCantileverGuided
+
+  double length = 0.0;             // L > 0, m
+  double bending_stiffness = 0.0;  // EI > 0, N m^2
+
+  // K, in [1, kMaxSegments]; 0 chooses K from the loads (see kAutoSegmentTurn), at least 8.
+  int segments = 0;
+
+  // Dead loads in the wire frame, z = 0. The tip force acts at v = 1.
+  Vec3 tip_force = Vec3::Zero();           // N
+  double tip_moment = 0.0;                 // N m about +Z at v = 1 (kCantileverFree only)
+  std::span<const PointLoad> point_loads;  // at most kMaxPointLoads; a load at v = 0 does nothing
+  std::span<const LineLoad> line_loads;    // at most kMaxLineLoads; N per metre of wire
+
+  // Warm start: the root moment of a nearby solution (the last frame's, or an IK's previous
+  // step). The solve then takes the equilibrium nearest to it instead of applying the loads in
+  // steps from the straight wire (load continuation, which follows the natural branch).
+  bool warm_start = false;
+  double root_moment_guess = 0.0;  // N m, finite
+
+  // Sample parameters v_i in [0, 1], any order; may be empty (the result still has the tip).
+  std::span<const double> samples;
+  // Outputs, each empty or of samples.size().
+  std::span<Vec3> position;  // p(v_i), m, wire frame (z = 0)
+  std::span<Vec3> tangent;   // unit tangent at v_i (z = 0)
+
+  // Optional: filled by Run() on success.
+  CorotationalWireResult* result = nullptr;
+
+  // Checks every input; names the first invalid one.
+  Status Validate() const;
+  // Validates, then solves the chain and fills the outputs. Never allocates; never writes NaN.
+  // Fails with "loads" if the shooting does not converge (not seen for valid inputs in tests).
+  Status Run() const;
+};
+
+// The K that segments == 0 selects for these loads.
+int AutomaticSegmentCount(const CorotationalWireJob& job);
+
+}  // namespace wirerig
