@@ -366,24 +366,39 @@ bool Brent(F&& f, double a, double b, double fa, double fb, double abs_tol, doub
 
 // The root of g(m0) nearest `guess` on the side its sign points to: the tip residual grows
 // with the root moment (more moment, more turn), so a positive residual searches downwards.
-// Steps double from `step` until the sign changes (at most `reach` away), then Brent.
+// Each probe steps by the secant's prediction from the last two points, overshooting by 10% to
+// bracket the root in one step where g is close to linear (doubling steps from `step` where the
+// secant is unusable), never farther than `reach`; then Brent on the bracket.
 template <typename F>
 bool NearestRoot(F&& g, double guess, double step, double reach, double abs_tol, double* root) {
-  double g0 = 0.0;
-  if (!g(guess, &g0)) return false;
+  double x0 = guess, g0 = 0.0;
+  if (!g(x0, &g0)) return false;
   if (g0 == 0.0) {
-    *root = guess;
+    *root = x0;
     return true;
   }
   const double direction = g0 > 0.0 ? -1.0 : 1.0;
-  double x0 = guess;
-  for (double d = step; d <= 2.0 * reach; d *= 2.0) {
-    const double x1 = guess + direction * d;
+  double xp = 0.0, gp = 0.0;
+  bool have_previous = false;
+  double doubling = step;
+  for (int probe = 0; probe < 100; ++probe) {
+    double dx = doubling;
+    const double slope = have_previous ? (g0 - gp) / (x0 - xp) : 0.0;
+    if (have_previous && slope > 0.0)
+      dx = std::max(1.1 * std::abs(g0 / slope), 1e-3 * step);
+    else
+      doubling *= 2.0;
+    dx = std::min(dx, reach);
+    const double x1 = x0 + direction * dx;
     double g1 = 0.0;
     if (!g(x1, &g1)) return false;
     if ((g1 > 0.0) != (g0 > 0.0) || g1 == 0.0) return Brent(g, x0, x1, g0, g1, abs_tol, root);
+    if (std::abs(x1 - guess) >= reach) return false;
+    xp = x0;
+    gp = g0;
     x0 = x1;
     g0 = g1;
+    have_previous = true;
   }
   return false;
 }
