@@ -95,7 +95,7 @@ Status CorotationalWireIkJob::Validate() const {
   if (!(std::isfinite(target.x()) && std::isfinite(target.y()) && target.z() == 0.0) ||
       !(target.norm() < 1e10 * wire.length))
     return Status::Invalid("target", "must be finite with z = 0 (m, planar)");
-  if (!(tolerance > 0.0 && tolerance <= 1e-3))
+  if (!(std::isfinite(tolerance) && tolerance > 0.0 && tolerance <= 1e-3))
     return Status::Invalid("tolerance", "must lie in (0, 1e-3]");
   if (max_iterations < 1 || max_iterations > 1000)
     return Status::Invalid("max_iterations", "must lie in [1, 1000]");

@@ -209,6 +209,7 @@ TEST(CorotationalWireIkJob, ValidateNamesTheFirstBadField) {
       {"target", [&](auto& j) { j.target.x() = nan; }},
       {"tolerance", [](auto& j) { j.tolerance = 0.0; }},
       {"tolerance", [](auto& j) { j.tolerance = 0.1; }},
+      {"tolerance", [&](auto& j) { j.tolerance = nan; }},
       {"max_iterations", [](auto& j) { j.max_iterations = 0; }},
       {"result", [](auto& j) { j.result = nullptr; }},
   };
