@@ -26,6 +26,13 @@ struct Vec2 {
 Vec2 Planar(const Vec3& v) { return {v.x(), v.y()}; }
 double Dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 
+// The smallest EI along the wire (EI varies monotonically between its ends).
+double MinStiffness(const CorotationalWireJob& job) {
+  return job.tip_bending_stiffness > 0.0
+             ? std::min(job.bending_stiffness, job.tip_bending_stiffness)
+             : job.bending_stiffness;
+}
+
 // Largest root moment any shape could need: every load point lies within L of the root
 // (the 1.1 covers the slight stretch of the chain's segments).
 double MomentBound(const CorotationalWireJob& job) {
@@ -40,8 +47,12 @@ double MomentBound(const CorotationalWireJob& job) {
 struct ChainSetup {
   const CorotationalWireJob* job = nullptr;
   int segments = 0;
-  double h = 0.0;  // segment length, m
-  double ei = 0.0;
+  double h = 0.0;       // segment length, m
+  double ei = 0.0;      // EI at the root, N m^2 (scales the tip residual)
+  double min_ei = 0.0;  // the smallest EI along the wire, N m^2
+  // EI of each segment: the inverse of its mean compliance 1/EI(v) (exact for the turn under a
+  // constant moment), N m^2.
+  std::array<double, CorotationalWireJob::kMaxSegments> segment_ei;
   // Fraction of the loads applied (load continuation); 1 for the final solve.
   double load_factor = 1.0;
   // force_beyond[k]: total force applied at s > s_k (node k), N; k in [0, K].
@@ -61,7 +72,21 @@ void BuildSetup(const CorotationalWireJob& job, int segments, ChainSetup* setup)
   setup->segments = segments;
   setup->h = job.length / segments;
   setup->ei = job.bending_stiffness;
+  setup->min_ei = MinStiffness(job);
   const double k_count = segments;
+  // EI(v) = EI0 r^v, r = EI1 / EI0: the mean of 1/EI over [v0, v1] is
+  // (r^-v0 - r^-v1) / ((v1 - v0) ln r) / EI0.
+  const double ratio =
+      job.tip_bending_stiffness > 0.0 ? job.tip_bending_stiffness / job.bending_stiffness : 1.0;
+  const double log_ratio = std::log(ratio);
+  for (int k = 0; k < segments; ++k) {
+    const double v0 = k / k_count, v1 = (k + 1) / k_count;
+    double mean_compliance = 1.0;  // times 1/EI0
+    if (std::abs(log_ratio) > 1e-12)
+      mean_compliance =
+          (std::exp(-v0 * log_ratio) - std::exp(-v1 * log_ratio)) / ((v1 - v0) * log_ratio);
+    setup->segment_ei[static_cast<std::size_t>(k)] = job.bending_stiffness / mean_compliance;
+  }
   for (int k = 0; k <= segments; ++k) {
     const double v_node = k / k_count;
     Vec2 f = Planar(job.tip_force);
@@ -100,6 +125,7 @@ struct SegmentProblem {
   std::array<double, CorotationalWireJob::kMaxLineLoads> line_tangential{};    // q . t, N/m
   std::array<double, CorotationalWireJob::kMaxLineLoads> line_normal{};        // q . n, N/m
   int point_count = 0, line_count = 0;
+  double ei = 0.0;     // the segment's EI, N m^2
   double shear = 0.0;  // V = F_beyond . n at the tip, N
   double axial = 0.0;  // A = F_beyond . t, N (tension positive)
 };
@@ -122,6 +148,7 @@ void BuildSegment(const ChainSetup& setup, int k, double theta, SegmentProblem* 
   const double factor = setup.load_factor;
   const Vec2 beyond_full = setup.force_beyond[static_cast<std::size_t>(k + 1)];
   const Vec2 beyond{factor * beyond_full.x, factor * beyond_full.y};
+  seg->ei = setup.segment_ei[static_cast<std::size_t>(k)];
   seg->shear = Dot(beyond, n);
   seg->axial = Dot(beyond, t);
   seg->point_count = 0;
@@ -154,7 +181,7 @@ void SolveSegment(const ChainSetup& setup, const SegmentProblem& seg,
   BendingJob bending;
   bending.boundary = BoundaryCondition::kCantileverFree;
   bending.length = setup.h;
-  bending.bending_stiffness = setup.ei;
+  bending.bending_stiffness = seg.ei;
   bending.tip_force = Vec3(0.0, seg.shear, 0.0);
   bending.point_loads =
       std::span<const PointLoad>(seg.points.data(), static_cast<std::size_t>(seg.point_count));
@@ -200,10 +227,10 @@ LocalPoint SegmentPoint(const ChainSetup& setup, const SegmentProblem& seg, doub
   SolveSegment(setup, seg, samples, w, slope);
   std::array<double, 3> gauss_slope{};
   for (std::size_t i = 0; i < 3; ++i)
-    gauss_slope[i] = slope[i + 1].y() + m_next * samples[i + 1] * setup.h / setup.ei;
+    gauss_slope[i] = slope[i + 1].y() + m_next * samples[i + 1] * setup.h / seg.ei;
   const double x = local * setup.h;
-  return Kinematics(x, w[0].y() + m_next * x * x / (2.0 * setup.ei),
-                    slope[0].y() + m_next * x / setup.ei, gauss_slope.data());
+  return Kinematics(x, w[0].y() + m_next * x * x / (2.0 * seg.ei),
+                    slope[0].y() + m_next * x / seg.ei, gauss_slope.data());
 }
 
 // Advances the chain over segment k: from `node` (with its moment) to the next node.
@@ -234,7 +261,7 @@ bool StepSegment(const ChainSetup& setup, int k, const Node& node, Node* next) {
   // M_k = c0 + c1 M_{k+1}: the moment about node k of the loads beyond node k+1 (moved by the
   // deflected chord) and of the segment's own loads at their deflected positions; w(x) =
   // w0(x) + M_{k+1} x^2 / 2EI.
-  const double h = setup.h, ei = setup.ei;
+  const double h = setup.h, ei = seg.ei;
   double c0 = h * seg.shear - seg.axial * w[0].y();
   double c1 = 1.0 - seg.axial * h * h / (2.0 * ei);
   int s = 1;
@@ -330,7 +357,7 @@ bool SolveChain(ChainSetup* setup, const double* warm_start, Nodes* nodes, doubl
     if (!detail::NearestRoot(eval, *warm_start, 1e-3 * bound, 64.0 * bound, abs_tol, &m0))
       return false;
   } else {
-    const double turn = bound * job.length / setup->ei;
+    const double turn = bound * job.length / setup->min_ei;
     const int steps = static_cast<int>(
         std::clamp(std::ceil(turn / kContinuationTurn), 1.0, double{kMaxContinuationSteps}));
     const double straight = StraightRootMoment(job);
@@ -355,7 +382,7 @@ bool SolveChain(ChainSetup* setup, const double* warm_start, Nodes* nodes, doubl
 }  // namespace
 
 int AutomaticSegmentCount(const CorotationalWireJob& job) {
-  const double turn = MomentBound(job) * job.length / job.bending_stiffness;
+  const double turn = MomentBound(job) * job.length / MinStiffness(job);
   if (!std::isfinite(turn)) return CorotationalWireJob::kMaxSegments;
   const double k = std::ceil(turn / CorotationalWireJob::kAutoSegmentTurn);
   return static_cast<int>(std::clamp(k, 8.0, double{CorotationalWireJob::kMaxSegments}));
@@ -374,6 +401,11 @@ Status CorotationalWireJob::Validate() const {
     return s;
   if (bending_stiffness < kMinStiffnessOverLengthSquared * length * length)
     return Status::Invalid("bending_stiffness", "too small for the length: below 1e-100 L^2");
+  if (!(std::isfinite(tip_bending_stiffness) && tip_bending_stiffness >= 0.0))
+    return Status::Invalid("tip_bending_stiffness", "must be zero (uniform) or positive (N m^2)");
+  if (tip_bending_stiffness > 0.0 && !(tip_bending_stiffness >= 1e-12 * bending_stiffness &&
+                                       tip_bending_stiffness <= 1e12 * bending_stiffness))
+    return Status::Invalid("tip_bending_stiffness", "must lie within 1e12 of bending_stiffness");
   if (segments < 0 || segments > kMaxSegments)
     return Status::Invalid("segments", "must lie in [0, 256] (0: automatic)");
   if (!Bounded(tip_force) || tip_force.z() != 0.0)
@@ -403,7 +435,7 @@ Status CorotationalWireJob::Validate() const {
                                     "must have |components| <= 1e100 and z = 0 (N/m, planar)");
   }
   // Every segment's possible turn: the largest moment times h / EI.
-  const double turn = MomentBound(*this) * length / bending_stiffness;
+  const double turn = MomentBound(*this) * length / MinStiffness(*this);
   if (!(std::isfinite(turn) && turn < detail::kMaxDeflectionBound))
     return Status::Invalid("loads", "too large for the stiffness: the deflection would overflow");
   const int k = segments == 0 ? AutomaticSegmentCount(*this) : segments;

@@ -183,6 +183,55 @@ TEST(CorotationalWireJob, TipMomentCurlsIntoACircle) {
   }
 }
 
+TEST(CorotationalWireJob, TaperedWireCurlsIntoASpiral) {
+  // EI(s) = EI0 r^(s/L) under a tip couple M: curvature M/EI0 e^(c s), c = -ln(r)/L, so the
+  // tangent turns by theta(s) = M (e^(c s) - 1) / (EI0 c), a spiral (here 1.5 turns); positions
+  // by Simpson's rule on (cos theta, sin theta) with 20000 intervals.
+  const double r = 0.1, c = -std::log(r) / kL;
+  const double m = 3.0 * kPi * kEI * c / (std::exp(c * kL) - 1.0);
+  auto theta = [&](double s) { return m * (std::exp(c * s) - 1.0) / (kEI * c); };
+  auto exact = [&](double s_end) {
+    const int n = 20000;
+    const double h = s_end / n;
+    Vec3 p = Vec3::Zero();
+    for (int i = 0; i <= n; ++i) {
+      const double w = (i == 0 || i == n) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+      p += w * h / 3.0 * Vec3(std::cos(theta(i * h)), std::sin(theta(i * h)), 0.0);
+    }
+    return p;
+  };
+  std::vector<double> v = {0.25, 0.5, 0.75, 1.0};
+  double previous = 1.0;
+  for (int k : {32, 64, 128, 256}) {
+    std::vector<Vec3> p(v.size()), t(v.size());
+    CorotationalWireJob job;
+    job.length = kL;
+    job.bending_stiffness = kEI;
+    job.tip_bending_stiffness = r * kEI;
+    job.segments = k;
+    job.tip_moment = m;
+    job.samples = v;
+    job.position = p;
+    job.tangent = t;
+    CorotationalWireResult result;
+    job.result = &result;
+    ASSERT_TRUE(job.Run().ok());
+    double error = 0.0;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      error = std::max(error, (p[i] - exact(v[i] * kL)).norm() / kL);
+      // A constant moment: each segment's mean compliance makes the turn exact.
+      EXPECT_NEAR(std::remainder(std::atan2(t[i].y(), t[i].x()) - theta(v[i] * kL), 2 * kPi), 0.0,
+                  1e-9);
+    }
+    EXPECT_NEAR(result.tip_rotation, 3.0 * kPi, 1e-9);
+    std::printf("tapered spiral (EI tip / root 0.1, 1.5 turns): K=%d position error / L %.2e\n", k,
+                error);
+    EXPECT_LT(error, 0.35 * previous);
+    previous = error;
+  }
+  EXPECT_LT(previous, 1e-4);
+}
+
 TEST(CorotationalWireJob, GuidedTipIsTwoHalfElasticas) {
   // A guided cantilever under a perpendicular tip force is antisymmetric about its midpoint,
   // where the moment vanishes: each half is a free cantilever of length L/2 under the same force,
@@ -375,6 +424,8 @@ TEST(CorotationalWireJob, ValidateNamesTheFirstBadField) {
       {"length", [](auto& j) { j.length = std::numeric_limits<double>::infinity(); }},
       {"bending_stiffness", [](auto& j) { j.bending_stiffness = -1.0; }},
       {"bending_stiffness", [](auto& j) { j.bending_stiffness = 1e-320; }},
+      {"tip_bending_stiffness", [](auto& j) { j.tip_bending_stiffness = -1.0; }},
+      {"tip_bending_stiffness", [](auto& j) { j.tip_bending_stiffness = 1e-20; }},
       {"segments", [](auto& j) { j.segments = -1; }},
       {"segments", [](auto& j) { j.segments = CorotationalWireJob::kMaxSegments + 1; }},
       {"segments", [](auto& j) { j.segments = 2, j.tip_force = Vec3(0.0, 100.0, 0.0); }},

@@ -74,6 +74,9 @@ struct CorotationalWireJob {
 
   double length = 0.0;             // L in [1e-9, 1e10], m
   double bending_stiffness = 0.0;  // EI > 0 and at least 1e-100 L^2, N m^2
+  // Tapered wires: EI at the tip, EI(v) = EI (EI_tip / EI)^v (a cone's EI falls as r^4); each
+  // segment takes the inverse of its mean 1/EI. 0: uniform. N m^2, 0 or within 1e12 of EI.
+  double tip_bending_stiffness = 0.0;
 
   // K, in [1, kMaxSegments]; 0 chooses K from the loads (see kAutoSegmentTurn), at least 8.
   int segments = 0;
