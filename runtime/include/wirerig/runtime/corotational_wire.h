@@ -35,9 +35,10 @@
 // families are refused (their large-deflection form needs the end reactions and an axial
 // constraint, not done). Follower loads (turning with the wire) are not supported.
 //
-// Cost: one chain sweep is K BendingJob runs; a solve takes about 10-20 sweeps warm-started,
-// and 10 per continuation step otherwise. No allocation: state lives on the stack, bounded by
-// kMaxSegments, kMaxPointLoads and kMaxLineLoads.
+// Cost: one chain sweep is K BendingJob runs (about 0.5 us per segment); a solve takes about 8
+// sweeps warm-started (per frame: pass the last frame's root moment), and about 7 per
+// continuation step otherwise (15-80 sweeps for F L^2/EI from 1 to 9). No allocation: state
+// lives on the stack, bounded by kMaxSegments, kMaxPointLoads and kMaxLineLoads.
 #pragma once
 
 #include <span>
