@@ -332,9 +332,9 @@ double StraightRootMoment(const CorotationalWireJob& job) {
 }
 
 // Solves the shooting problem; on success leaves the converged chain in *nodes. Without a warm
-// start the load is applied in steps (continuation from the straight wire), each step taking the
-// root next to the previous one: this follows the natural branch, not the looped equilibria
-// that large loads also admit.
+// start (or if it finds no root) the load is applied in steps (continuation from the straight
+// wire), each step taking the root next to the previous one: this follows the natural branch,
+// not the looped equilibria that large loads also admit.
 bool SolveChain(ChainSetup* setup, const double* warm_start, Nodes* nodes, double* m0_out,
                 int* evaluations) {
   const CorotationalWireJob& job = *setup->job;
@@ -352,11 +352,11 @@ bool SolveChain(ChainSetup* setup, const double* warm_start, Nodes* nodes, doubl
     return eval(0.0, &g);
   }
   const double abs_tol = 1e-16 * bound;
-  if (warm_start != nullptr) {
-    setup->load_factor = 1.0;
-    if (!detail::NearestRoot(eval, *warm_start, 1e-3 * bound, 64.0 * bound, abs_tol, &m0))
-      return false;
-  } else {
+  setup->load_factor = 1.0;
+  const bool warm_solved =
+      warm_start != nullptr &&
+      detail::NearestRoot(eval, *warm_start, 1e-3 * bound, 64.0 * bound, abs_tol, &m0);
+  if (!warm_solved) {  // no warm start, or it found no root: continuation
     const double turn = bound * job.length / setup->min_ei;
     const int steps = static_cast<int>(
         std::clamp(std::ceil(turn / kContinuationTurn), 1.0, double{kMaxContinuationSteps}));
