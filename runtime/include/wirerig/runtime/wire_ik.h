@@ -73,7 +73,8 @@ struct WireIkJob {
   std::span<Vec3> forces;
   WireIkResult* result = nullptr;
 
-  // Checks every input; names the first invalid one.
+  // Checks every input; names the first invalid one ("loads": the fixed loads together would
+  // make the deflection overflow).
   Status Validate() const;
   // Validates, then solves. Never allocates; never writes NaN.
   Status Run() const;
