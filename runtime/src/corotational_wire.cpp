@@ -379,6 +379,107 @@ bool SolveChain(ChainSetup* setup, const double* warm_start, Nodes* nodes, doubl
   return true;
 }
 
+// A follower tip force is the dead force rotated by the tip's own turn theta_K. The chain then
+// has two unknowns, the root moment m0 and the tip's turn theta, and two conditions, the free
+// tip's moment and theta_K(m0, theta) = theta, solved by damped Newton (Jacobian by differences,
+// one sweep per evaluation) with load continuation from the straight wire. (Nesting a dead solve
+// inside a root search on theta fails at large loads: the follower's equilibria sit near folds
+// of the dead problem.)
+// `dead` starts as a copy of the job; on success it holds the equivalent dead force, *setup is
+// built from it and *nodes holds the converged chain.
+bool SolveFollower(CorotationalWireJob* dead_job, int k_count, ChainSetup* setup_out,
+                   Nodes* nodes_out, double* m0_out, int* evaluations_out) {
+  const CorotationalWireJob job = *dead_job;  // the follower's own loads
+  CorotationalWireJob& dead = *dead_job;
+  dead.tip_force_follows = false;
+  ChainSetup& setup = *setup_out;
+  Nodes& nodes = *nodes_out;
+  int evaluations = 0;
+  // Residuals at (m0, theta) for the loads scaled by `factor`.
+  auto residuals = [&](double m0, double theta, double factor, double* r_moment, double* r_turn) {
+    const double c = std::cos(theta), s = std::sin(theta);
+    dead.tip_force = Vec3(c * job.tip_force.x() - s * job.tip_force.y(),
+                          s * job.tip_force.x() + c * job.tip_force.y(), 0.0);
+    BuildSetup(dead, k_count, &setup);
+    setup.load_factor = factor;
+    ++evaluations;
+    if (!Sweep(setup, m0, &nodes, r_moment)) return false;
+    *r_turn = theta - nodes[static_cast<std::size_t>(k_count)].theta;
+    return std::isfinite(*r_turn);
+  };
+  const double bound = MomentBound(job);
+  const double turn = bound * job.length / MinStiffness(job);
+  const int steps = static_cast<int>(
+      std::clamp(std::ceil(turn / kContinuationTurn), 1.0, double{kMaxContinuationSteps}));
+  // Newton at load `factor` from (m0, theta); false if it does not converge.
+  auto newton = [&](double factor, double* m0_io, double* theta_io) {
+    double m0 = *m0_io, theta = *theta_io, f1 = 0.0, f2 = 0.0;
+    if (!residuals(m0, theta, factor, &f1, &f2)) return false;
+    for (int iter = 0; iter < 30; ++iter) {
+      if (std::hypot(f1, f2) <= 1e-13) break;
+      const double dm = 1e-7 * bound, dt = 1e-7;
+      double a1 = 0.0, a2 = 0.0, b1 = 0.0, b2 = 0.0;
+      if (!residuals(m0 + dm, theta, factor, &a1, &a2) ||
+          !residuals(m0, theta + dt, factor, &b1, &b2))
+        return false;
+      const double j11 = (a1 - f1) / dm, j21 = (a2 - f2) / dm;
+      const double j12 = (b1 - f1) / dt, j22 = (b2 - f2) / dt;
+      const double det = j11 * j22 - j12 * j21;
+      if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return false;
+      double step_m = -(j22 * f1 - j12 * f2) / det;
+      double step_t = -(j11 * f2 - j21 * f1) / det;
+      // At most half a radian of turn per step; halve until the residual falls.
+      const double limit = std::max(std::abs(step_t), std::abs(step_m) * job.length / setup.ei);
+      if (limit > 0.5) {
+        step_m *= 0.5 / limit;
+        step_t *= 0.5 / limit;
+      }
+      bool improved = false;
+      for (int halving = 0; halving < 30 && !improved; ++halving) {
+        double g1 = 0.0, g2 = 0.0;
+        if (residuals(m0 + step_m, theta + step_t, factor, &g1, &g2) &&
+            std::hypot(g1, g2) < std::hypot(f1, f2)) {
+          m0 += step_m;
+          theta += step_t;
+          f1 = g1;
+          f2 = g2;
+          improved = true;
+        } else {
+          step_m *= 0.5;
+          step_t *= 0.5;
+        }
+      }
+      if (!improved) break;  // at the noise floor, or stuck
+    }
+    if (!(std::hypot(f1, f2) <= 1e-9)) return false;
+    *m0_io = m0;
+    *theta_io = theta;
+    return true;
+  };
+  // Adaptive continuation: a step that fails is halved (down to 1/4096 of the load).
+  double m0 = 0.0, theta = 0.0, factor = 0.0, df = 1.0 / steps;
+  while (factor < 1.0) {
+    const double next = std::min(1.0, factor + df);
+    double m_try = factor > 0.0 ? m0 * next / factor : 0.0;
+    double t_try = factor > 0.0 ? theta * next / factor : 0.0;
+    if (newton(next, &m_try, &t_try)) {
+      m0 = m_try;
+      theta = t_try;
+      factor = next;
+      df = std::min(1.5 * df, 1.0 / steps);
+    } else {
+      df *= 0.5;
+      if (df < 1.0 / 4096.0) return false;
+    }
+  }
+  // Leave the converged chain (and its setup) for the outputs.
+  double f1 = 0.0, f2 = 0.0;
+  if (!residuals(m0, theta, 1.0, &f1, &f2)) return false;
+  *m0_out = m0;
+  *evaluations_out = evaluations;
+  return true;
+}
+
 }  // namespace
 
 int AutomaticSegmentCount(const CorotationalWireJob& job) {
@@ -455,12 +556,21 @@ Status CorotationalWireJob::Run() const {
   if (Status s = Validate(); !s) return s;
   const int k_count = segments == 0 ? AutomaticSegmentCount(*this) : segments;
   ChainSetup setup;
-  BuildSetup(*this, k_count, &setup);
   Nodes nodes;
   double m0 = 0.0;
   int evaluations = 0;
-  if (!SolveChain(&setup, warm_start ? &root_moment_guess : nullptr, &nodes, &m0, &evaluations))
-    return Status::Invalid("loads", "the chain did not converge: raise segments");
+  // A guided tip does not turn: its follower force is the dead force.
+  CorotationalWireJob rotated = *this;  // the follower's equivalent dead job (outlives setup)
+  if (tip_force_follows && !tip_force.isZero(0.0) &&
+      boundary == BoundaryCondition::kCantileverFree) {
+    if (!SolveFollower(&rotated, k_count, &setup, &nodes, &m0, &evaluations))
+      return Status::Invalid("tip_force",
+                             "the follower force found no equilibrium: raise segments");
+  } else {
+    BuildSetup(*this, k_count, &setup);
+    if (!SolveChain(&setup, warm_start ? &root_moment_guess : nullptr, &nodes, &m0, &evaluations))
+      return Status::Invalid("loads", "the chain did not converge: raise segments");
+  }
 
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const double v = samples[i];

@@ -60,8 +60,19 @@ double TipError(double beta, double tip_rotation, int segments) {
 TEST(ElasticaReference, ClosedFormMatchesRk4Shooting) {
   // The reference itself, checked by a different method: the elliptic-integral closed form
   // against an RK4 shooting solve of EI theta'' = -F sin(beta - theta).
-  for (double beta : {kPi / 2, 3 * kPi / 4}) {
-    for (double degrees : {10.0, 30.0, 60.0, 80.0, 89.0}) {
+  // Forces perpendicular to the root and pointing back at 135 degrees (dead), and the follower
+  // force's equivalent beta = theta_L + 90 degrees.
+  struct Case {
+    double beta, degrees;
+  };
+  std::vector<Case> cases;
+  for (double degrees : {10.0, 30.0, 60.0, 80.0, 89.0}) cases.push_back({kPi / 2, degrees});
+  for (double degrees : {30.0, 60.0, 90.0, 120.0}) cases.push_back({3 * kPi / 4, degrees});
+  for (double degrees : {30.0, 60.0, 120.0, 170.0})
+    cases.push_back({Deg(degrees) + kPi / 2, degrees});
+  for (const Case& c : cases) {
+    {
+      const double beta = c.beta, degrees = c.degrees;
       SCOPED_TRACE(::testing::Message() << "beta " << beta << " tip rotation " << degrees);
       const testing::ElasticaTip exact = ExactElasticaTip(beta, Deg(degrees));
       const double f = exact.alpha * kEI / (kL * kL);
@@ -70,7 +81,8 @@ TEST(ElasticaReference, ClosedFormMatchesRk4Shooting) {
       // found by the shooting alone.
       const double kappa0 = f * kL * (exact.x * std::sin(beta) - exact.y * std::cos(beta)) / kEI;
       const testing::ElasticaState shot =
-          ShootTipForceElastica(kL, kEI, f, beta, 0.9 * kappa0, 1.1 * kappa0);
+          ShootTipForceElastica(kL, kEI, f, beta, std::min(0.9 * kappa0, 1.1 * kappa0),
+                                std::max(0.9 * kappa0, 1.1 * kappa0));
       EXPECT_NEAR(shot.theta, Deg(degrees), 1e-8);
       EXPECT_NEAR(shot.x / kL, exact.x, 1e-8);
       EXPECT_NEAR(shot.y / kL, exact.y, 1e-8);
@@ -147,6 +159,53 @@ TEST(CorotationalWireJob, DefaultSegmentsStayWithinATenthOfAPercentOfL) {
     EXPECT_LT(error, 1e-3);
     EXPECT_GE(error, 0.0);
   }
+}
+
+TEST(CorotationalWireJob, FollowerForceMatchesTheElastica) {
+  // A tip force that stays perpendicular to the tip's tangent is, in equilibrium, the dead force
+  // at beta = theta_L + 90 degrees: the exact elastica with phi_L = 90 degrees.
+  for (double degrees : {30.0, 60.0, 120.0, 170.0}) {
+    SCOPED_TRACE(::testing::Message() << "tip rotation " << degrees);
+    const double theta_l = Deg(degrees);
+    const testing::ElasticaTip exact = ExactElasticaTip(theta_l + kPi / 2, theta_l);
+    std::printf("follower force, tip rotation %3.0f deg (F L^2/EI %.3f): tip error / L", degrees,
+                exact.alpha);
+    double previous = 1.0;
+    for (int k : {32, 64, 128}) {
+      CorotationalWireJob job;
+      job.length = kL;
+      job.bending_stiffness = kEI;
+      job.segments = k;
+      job.tip_force = Vec3(0.0, exact.alpha * kEI / (kL * kL), 0.0);  // in the tip's frame
+      job.tip_force_follows = true;
+      CorotationalWireResult r;
+      job.result = &r;
+      const Status status = job.Run();
+      ASSERT_TRUE(status.ok()) << ToString(status);
+      const double e =
+          std::hypot(r.tip_position.x() / kL - exact.x, r.tip_position.y() / kL - exact.y);
+      std::printf("  K=%d %.2e", k, e);
+      EXPECT_NEAR(r.tip_rotation, theta_l, 2e-3);
+      EXPECT_LT(e, 0.35 * previous);
+      previous = e;
+    }
+    std::printf("\n");
+    EXPECT_LT(previous, 1e-4);
+  }
+  // A guided tip does not turn: its follower force is the dead force.
+  const Vec3 f(0.0, 3.0 * kEI / (kL * kL), 0.0);
+  const CorotationalWireResult dead = RunTipForce(f, 32, BoundaryCondition::kCantileverGuided);
+  CorotationalWireJob job;
+  job.boundary = BoundaryCondition::kCantileverGuided;
+  job.length = kL;
+  job.bending_stiffness = kEI;
+  job.segments = 32;
+  job.tip_force = f;
+  job.tip_force_follows = true;
+  CorotationalWireResult follower;
+  job.result = &follower;
+  ASSERT_TRUE(job.Run().ok());
+  EXPECT_EQ(follower.tip_position, dead.tip_position);
 }
 
 TEST(CorotationalWireJob, TipRotationMatchesTheElastica) {

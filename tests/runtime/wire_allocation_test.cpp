@@ -48,6 +48,10 @@ TEST(WireNoAllocation, CorotationalWireWithEveryLoadAndBothTips) {
     job.warm_start = true;
     job.root_moment_guess = result.root_moment;
     ASSERT_TRUE(job.Run().ok());
+    job.warm_start = false;
+    job.tip_force_follows = true;  // the follower force's Newton solve
+    ASSERT_TRUE(job.Run().ok());
+    job.tip_force_follows = false;
     job.segments = 1;  // refused: Validate fails without allocating either
     EXPECT_FALSE(job.Run().ok());
     EXPECT_EQ(g_allocations - before, 0) << ToString(bc);

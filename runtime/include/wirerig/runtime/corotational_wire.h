@@ -33,7 +33,8 @@
 //
 // Families: kCantileverFree and kCantileverGuided only. The simply supported and clamped
 // families are refused (their large-deflection form needs the end reactions and an axial
-// constraint, not done). Follower loads (turning with the wire) are not supported.
+// constraint, not done). Of the follower loads (turning with the wire) only the tip force is
+// supported (tip_force_follows).
 //
 // Cost: one chain sweep is K BendingJob runs (about 0.5 us per segment); a solve takes about 8
 // sweeps warm-started (per frame: pass the last frame's root moment), and about 7 per
@@ -84,7 +85,13 @@ struct CorotationalWireJob {
 
   // Dead loads in the wire frame, z = 0, each component at most 1e100 in magnitude. The tip
   // force acts at v = 1.
-  Vec3 tip_force = Vec3::Zero();           // N
+  Vec3 tip_force = Vec3::Zero();  // N
+  // A follower tip force instead (free tip; a guided tip does not turn, so there it is the dead
+  // force): tip_force is then given in the tip's frame (X along the tip's tangent, Y across it)
+  // and turns with the tip. The chain then has two unknowns, the root moment and the tip's
+  // turn, solved by damped Newton with load continuation from the straight wire (warm_start is
+  // not used). The other loads stay dead.
+  bool tip_force_follows = false;
   double tip_moment = 0.0;                 // N m about +Z at v = 1 (kCantileverFree only)
   std::span<const PointLoad> point_loads;  // at most kMaxPointLoads; a load at v = 0 does nothing
   std::span<const LineLoad> line_loads;    // at most kMaxLineLoads; N per metre of wire
@@ -107,6 +114,7 @@ struct CorotationalWireJob {
   // Checks every input; names the first invalid one.
   Status Validate() const;
   // Validates, then solves the chain and fills the outputs. Never allocates; never writes NaN.
+  // result->iterations counts every chain sweep, including the follower force's dead solves.
   // Fails with "loads" if the shooting does not converge (not seen for valid inputs in tests).
   Status Run() const;
 };
