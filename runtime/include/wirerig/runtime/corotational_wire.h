@@ -114,8 +114,9 @@ struct CorotationalWireJob {
   // Checks every input; names the first invalid one.
   Status Validate() const;
   // Validates, then solves the chain and fills the outputs. Never allocates; never writes NaN.
-  // result->iterations counts every chain sweep, including the follower force's dead solves.
-  // Fails with "loads" if the shooting does not converge (not seen for valid inputs in tests).
+  // result->iterations counts every chain sweep (for a follower force, its Newton evaluations).
+  // Fails with "loads" if the shooting does not converge (not seen for valid inputs in tests),
+  // "tip_force" if a follower force's continuation stalls (2 of ~430 random large follower cases).
   Status Run() const;
 };
 
