@@ -44,6 +44,10 @@ int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::
       Result<SampledClip> sampled = SampleClipForRuntime(
           built.value().model, clip, built.value().description.playback, options.fps);
       if (!sampled) return fail(options.scene + ": " + sampled.error());
+      if (built.value().description.playback.wires.modes > 0)
+        out << "note: clip \"" << clip.name
+            << "\": its wires' inertia (playback.wires) is not in .wclip yet; the engine plays "
+               "them static\n";
       std::filesystem::path path = output;
       std::string name = clip.name;  // as a file name: letters, digits, '-' and '_' kept
       for (char& c : name)

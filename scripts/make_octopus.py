@@ -32,8 +32,11 @@ ARMS = 8
 ARM_LAG = 0.03       # s between neighbouring arms
 WAVE_LAG = 0.12      # s between an arm's stretches, root to tip
 STRETCHES = [(0.1, 0.4), (0.4, 0.7), (0.7, 1.0)]
-PULL_IN = 0.010      # N/m, peak inward (and downward) load during the jet
-FLARE = 0.008        # N/m, peak outward load during the refill
+PULL_IN = 20.0       # N/m, peak inward (and downward) load during the jet
+FLARE = 16.0         # N/m, peak outward load during the refill
+ARM_MATERIAL = "cartilage"  # the arms' spines: muscular hydrostats, stiffer than soft tissue
+WIRE_MODES = 8       # the arms have inertia: they trail, lag and swing (playback.wires)
+WIRE_DAMPING = 0.15
 KEYS_PER_STROKE = 8  # cubic keys per stroke for the arms' loads
 JET_KEYS = 6         # linear keys over each jet pulse
 
@@ -102,8 +105,10 @@ def scene():
       "rig": {"from": "procedural"},
       "skin_thickness": 0.005,
       "default_kind": "deformable",
-      "parts": {"mantle": {"kind": "rigid"}},
-      "playback": {"preserve_volume": True},
+      "parts": dict([("mantle", {"kind": "rigid"})] +
+                    [(f"tentacle_{i}", {"spine": {"material": ARM_MATERIAL}}) for i in range(ARMS)]),
+      "playback": {"preserve_volume": True,
+                   "wires": {"modes": WIRE_MODES, "damping_ratio": WIRE_DAMPING}},
       "clips": [{
           "name": "swim",
           "duration": DURATION,

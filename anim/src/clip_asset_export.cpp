@@ -31,7 +31,9 @@ Result<SampledClip> SampleClipForRuntime(const RigModel& model, const Clip& clip
   if (!(std::isfinite(fps) && fps > 0.0 && fps <= 1000.0))
     return Error{"fps: must lie in (0, 1000]"};
   if (!(clip.duration > 0.0)) return Error{"clip \"" + clip.name + "\": has no duration to sample"};
-  Result<Playback> made = Playback::Make(model, clip, playback);
+  PlaybackOptions options = playback;
+  options.wires.modes = 0;  // the asset carries loads, not the wires' modal states
+  Result<Playback> made = Playback::Make(model, clip, options);
   if (!made) return Error{made.error()};
   Playback& player = made.value();
   SampledClip out;

@@ -41,6 +41,20 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
       playback.dynamic_bodies_.push_back(body);
     }
   }
+  playback.dynamic_index_.assign(model.parts.size(), -1);
+  for (std::size_t d = 0; d < playback.dynamic_parts_.size(); ++d)
+    playback.dynamic_index_[playback.dynamic_parts_[d]] = int(d);
+  Result<WireDynamics> wires = WireDynamics::Make(model, clip, options.wires, options.rigid_step);
+  if (!wires) return Error{"wires: " + wires.error()};
+  playback.wires_ = std::move(wires).value();
+  if (!playback.wires_.empty()) {
+    playback.step_sample_ = MakeClipSample(clip, model);
+    SampleClip(clip, 0.0, &playback.step_sample_);
+    if (Status s = playback.wires_.Reset(playback.step_sample_); !s)
+      return Error{"wires: " + ToString(s)};
+    playback.support_acceleration_.assign(model.parts.size(), Vec3::Zero());
+    playback.support_rotation_.assign(model.parts.size(), Mat3::Identity());
+  }
   if (options.tracking.frequency > 0.0) {
     Result<ArticulatedTracking> tracking = ArticulatedTracking::Make(model, clip, options.tracking);
     if (!tracking) return Error{"tracking: " + tracking.error()};
@@ -50,18 +64,39 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
   for (const PartChannels<Track>& c : clip.parts) widest = std::max(widest, c.point_loads.size());
   playback.interactive_points_.resize(widest + 1);
   playback.interactive_profiles_.resize(playback.sample_.profile_loads.size() + 1);
-  if (!playback.dynamic_parts_.empty()) {
+  if (playback.HasDynamics()) {
     const auto count =
         static_cast<std::size_t>(steps / static_cast<double>(options.checkpoint_interval)) + 2;
+    playback.checkpoint_count_ = count;
     playback.checkpoints_.resize(count * playback.dynamic_parts_.size());
     for (std::size_t d = 0; d < playback.dynamic_parts_.size(); ++d)
       playback.checkpoints_[d] = playback.bodies_[playback.dynamic_parts_[d]];
+    const std::span<const ModalWireState> wire_states = playback.wires_.states();
+    playback.wire_checkpoints_.resize(count * wire_states.size());
+    std::copy(wire_states.begin(), wire_states.end(), playback.wire_checkpoints_.begin());
     playback.checkpoints_done_ = 1;
   }
   return playback;
 }
 
+Vec3 Playback::BodyPointVelocity(std::size_t d, const Vec3& rest) const {
+  const RigidPartBody& body = dynamic_bodies_[d];
+  const RigidBodyState& state = bodies_[dynamic_parts_[d]];
+  const Vec3 point = state.orientation * (body.axes.transpose() * (rest - body.reference));
+  return state.velocity + (state.orientation * state.angular_velocity).cross(point);
+}
+
 Status Playback::StepBodies(double dt) {
+  // The wires' supports: their parents' attachment points, before and after the step.
+  if (!wires_.empty())
+    for (std::size_t p = 0; p < model_->parts.size(); ++p) {
+      const int parent = model_->parts[p].parent;
+      support_acceleration_[p] =
+          parent >= 0 && dynamic_index_[std::size_t(parent)] >= 0
+              ? BodyPointVelocity(std::size_t(dynamic_index_[std::size_t(parent)]),
+                                  model_->parts[p].spine_points.front())
+              : Vec3::Zero();
+    }
   for (std::size_t d = 0; d < dynamic_parts_.size(); ++d) {
     const std::size_t p = dynamic_parts_[d];
     const RigidPartBody& body = dynamic_bodies_[d];
@@ -79,22 +114,37 @@ Status Playback::StepBodies(double dt) {
     step.state = &state;
     if (Status s = step.Run(); !s) return s;
   }
-  return Status::Ok();
+  clock_ += dt;
+  if (wires_.empty()) return Status::Ok();
+  for (std::size_t p = 0; p < model_->parts.size(); ++p) {
+    const int parent = model_->parts[p].parent;
+    if (parent < 0 || dynamic_index_[std::size_t(parent)] < 0) continue;
+    const auto d = std::size_t(dynamic_index_[std::size_t(parent)]);
+    const Vec3 after = BodyPointVelocity(d, model_->parts[p].spine_points.front());
+    support_acceleration_[p] = (after - support_acceleration_[p]) / dt;
+    support_rotation_[p] = PoseOfRigidPart(dynamic_bodies_[d], model_->parts[std::size_t(parent)],
+                                           bodies_[std::size_t(parent)])
+                               .rotation.toRotationMatrix();
+  }
+  SampleClip(*clip_, clock_, &step_sample_);
+  return wires_.Step(step_sample_, support_acceleration_, support_rotation_, dt);
 }
 
 // Brings the dynamic bodies to clip time t: from the latest checkpoint at or before t (making
 // the missing checkpoints on the way), then whole steps, then one partial step to land on t.
 Status Playback::AdvanceBodies(double t) {
-  const std::size_t parts = dynamic_parts_.size();
+  const std::size_t parts = dynamic_parts_.size(), wires = wires_.size();
   const double h = options_.rigid_step;
   const double span = h * static_cast<double>(options_.checkpoint_interval);
-  const std::size_t capacity = checkpoints_.size() / parts;
+  const std::size_t capacity = checkpoint_count_;
   std::size_t wanted = std::min(static_cast<std::size_t>(std::floor(t / span)), capacity - 1);
   // t / span may round up to a whole number whose checkpoint lies just after t.
   if (wanted > 0 && static_cast<double>(wanted) * span > t) --wanted;
   auto load = [&](std::size_t c) {
     for (std::size_t d = 0; d < parts; ++d)
       bodies_[dynamic_parts_[d]] = checkpoints_[c * parts + d];
+    wires_.Restore(std::span<const ModalWireState>(wire_checkpoints_).subspan(c * wires, wires));
+    clock_ = static_cast<double>(c) * span;
   };
   if (wanted < checkpoints_done_) {
     load(wanted);
@@ -108,6 +158,10 @@ Status Playback::AdvanceBodies(double t) {
         bodies_[dynamic_parts_[d]].time = static_cast<double>(c) * span;
         checkpoints_[c * parts + d] = bodies_[dynamic_parts_[d]];
       }
+      clock_ = static_cast<double>(c) * span;
+      const std::span<const ModalWireState> states = wires_.states();
+      std::copy(states.begin(), states.end(),
+                wire_checkpoints_.begin() + std::ptrdiff_t(c * wires));
       checkpoints_done_ = c + 1;
     }
   }
@@ -239,7 +293,7 @@ Status Playback::Run(double t, EvaluateRigJob& job) {
   SampleClip(*clip_, local, &sample_);
   if (tracking_)
     if (Status s = tracking_->Apply(local, sample_.poses); !s) return s;
-  if (!dynamic_parts_.empty()) {
+  if (HasDynamics()) {
     if (Status s = AdvanceBodies(local); !s) return s;
     for (std::size_t d = 0; d < dynamic_parts_.size(); ++d) {
       const std::size_t p = dynamic_parts_[d];
@@ -247,6 +301,7 @@ Status Playback::Run(double t, EvaluateRigJob& job) {
       sample_.poses[p] = PoseOfRigidPart(dynamic_bodies_[d], model_->parts[p], bodies_[p]);
       sample_.poses[p].loads = loads;
     }
+    if (Status s = wires_.Apply(sample_.poses); !s) return s;
   }
   for (std::size_t p = 0; p < interactive_joints_.size(); ++p)
     if (!interactive_joints_[p].isZero())

@@ -216,7 +216,7 @@ TrackingOptions ReadTracking(const JsonObject& o) {
 
 PlaybackOptions ReadPlayback(const JsonObject& o) {
   o.RejectUnknownKeys({"rigid_step", "integrator", "checkpoint_interval", "gravity",
-                       "preserve_volume", "tracking"});
+                       "preserve_volume", "tracking", "wires"});
   PlaybackOptions playback;
   playback.rigid_step = o.Number("rigid_step", playback.rigid_step);
   if (!(std::isfinite(playback.rigid_step) && playback.rigid_step > 0.0 &&
@@ -243,6 +243,17 @@ PlaybackOptions ReadPlayback(const JsonObject& o) {
     playback.preserve_volume = value.get<bool>();
   }
   if (o.Has("tracking")) playback.tracking = ReadTracking(o.Object("tracking"));
+  if (o.Has("wires")) {
+    const JsonObject wires = o.Object("wires");
+    wires.RejectUnknownKeys({"modes", "damping_ratio"});
+    playback.wires.modes = wires.Integer("modes", ModalBasis::kDefaultModes);
+    if (!(playback.wires.modes >= 0 && playback.wires.modes <= ModalBasis::kMaxModes))
+      throw FieldError(wires.PathOf("modes"), "must be in [0, 32] (0: static wires)");
+    playback.wires.damping_ratio = wires.Number("damping_ratio", playback.wires.damping_ratio);
+    if (!(std::isfinite(playback.wires.damping_ratio) && playback.wires.damping_ratio >= 0.0 &&
+          playback.wires.damping_ratio <= 100.0))
+      throw FieldError(wires.PathOf("damping_ratio"), "must be in [0, 100]");
+  }
   return playback;
 }
 
@@ -257,6 +268,8 @@ json PlaybackToJson(const PlaybackOptions& p) {
     out["tracking"] = {{"frequency", t.frequency},
                        {"damping_ratio", t.damping_ratio},
                        {"gravity", {t.gravity.x(), t.gravity.y(), t.gravity.z()}}};
+  if (p.wires.modes > 0)
+    out["wires"] = {{"modes", p.wires.modes}, {"damping_ratio", p.wires.damping_ratio}};
   return out;
 }
 

@@ -19,6 +19,7 @@
 #include "wirerig/anim/clip.h"
 #include "wirerig/anim/clip_sampling.h"
 #include "wirerig/anim/rigid_part.h"
+#include "wirerig/anim/wire_dynamics.h"
 #include "wirerig/rig/result.h"
 #include "wirerig/runtime/rig_evaluation.h"
 
@@ -43,6 +44,9 @@ struct PlaybackOptions {
   // Keyed poses played through the chain's articulated dynamics (articulated_tracking.h) when
   // tracking.frequency > 0.
   TrackingOptions tracking;
+  // Inertia for the deformable spines (wire_dynamics.h) when wires.modes > 0, integrated with
+  // the rigid bodies at rigid_step.
+  WireDynamicsOptions wires;
 };
 
 class Playback {
@@ -97,6 +101,9 @@ class Playback {
   Status Run(double t, EvaluateRigJob& job);
   Status AdvanceBodies(double local_time);
   Status StepBodies(double dt);
+  bool HasDynamics() const { return !dynamic_parts_.empty() || !wires_.empty(); }
+  // The velocity (world) of the rest point `rest` of dynamic part d's body, now.
+  Vec3 BodyPointVelocity(std::size_t d, const Vec3& rest) const;
   void ApplyInteractiveLoad();
 
   const RigModel* model_ = nullptr;
@@ -104,11 +111,19 @@ class Playback {
   PlaybackOptions options_;
   RigWorkspace workspace_;
   ClipSample sample_;
-  std::vector<std::size_t> dynamic_parts_;     // rigid parts the clip drives by forces
-  std::vector<RigidPartBody> dynamic_bodies_;  // their bodies, same order
-  std::vector<RigidBodyState> bodies_;         // per part, at the current time
-  std::vector<RigidBodyState> checkpoints_;    // #checkpoints x #dynamic parts
+  std::vector<std::size_t> dynamic_parts_;        // rigid parts the clip drives by forces
+  std::vector<RigidPartBody> dynamic_bodies_;     // their bodies, same order
+  std::vector<RigidBodyState> bodies_;            // per part, at the current time
+  std::vector<RigidBodyState> checkpoints_;       // #checkpoints x #dynamic parts
+  WireDynamics wires_;                            // the deformable spines with inertia
+  std::vector<ModalWireState> wire_checkpoints_;  // #checkpoints x #wires
+  std::size_t checkpoint_count_ = 0;
   std::size_t checkpoints_done_ = 0;
+  double clock_ = 0.0;                      // clip time of the dynamic state, s
+  ClipSample step_sample_;                  // the clip at a step's end (wires' loads)
+  std::vector<int> dynamic_index_;          // per part: its index in dynamic_parts_, or -1
+  std::vector<Vec3> support_acceleration_;  // per part, world axes, of the last step
+  std::vector<Mat3> support_rotation_;      // per part: its parent's rotation
   std::optional<ArticulatedTracking> tracking_;
   std::optional<InteractiveLoad> interactive_;
   std::vector<Vec3> interactive_joints_;            // per part, degrees

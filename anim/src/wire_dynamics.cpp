@@ -1,0 +1,138 @@
+#include "wirerig/anim/wire_dynamics.h"
+
+#include <cmath>
+#include <string>
+
+#include "wirerig/runtime/bending_job.h"
+
+namespace wirerig {
+
+Result<WireDynamics> WireDynamics::Make(const RigModel& model, const Clip& clip,
+                                        const WireDynamicsOptions& options, double step) {
+  if (!(options.modes >= 0 && options.modes <= ModalBasis::kMaxModes))
+    return Error{"modes: must be in [0, " + std::to_string(ModalBasis::kMaxModes) + "]"};
+  if (!(std::isfinite(options.damping_ratio) && options.damping_ratio >= 0.0 &&
+        options.damping_ratio <= ModalWireModel::kMaxDampingRatio))
+    return Error{"damping_ratio: must be in [0, 100]"};
+  WireDynamics out;
+  out.model_ = &model;
+  if (options.modes == 0) return out;
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const PartModel& part = model.parts[p];
+    if (part.kind != SpineKind::kDeformable || !(part.mass.mass > 0.0)) continue;
+    Wire wire;
+    wire.part = p;
+    const std::vector<BoundaryKey>& keys = clip.parts[p].boundary;
+    const BoundaryCondition boundary =
+        keys.empty() ? BoundaryCondition::kCantileverFree : keys.front().boundary;
+    const std::string where = "part \"" + part.name + "\": ";
+    if (Status s = BuildModalBasis(boundary, options.modes, &wire.model.basis); !s)
+      return Error{where + ToString(s)};
+    wire.model.length = part.spine_length;
+    wire.model.bending_stiffness = part.spine_stiffness.bending;
+    wire.model.mass_per_length = part.mass.mass / part.spine_length;
+    wire.model.damping_ratio = options.damping_ratio;
+    if (Status s = PrecomputeModalStep(wire.model, step, &wire.table); !s)
+      return Error{where + ToString(s)};
+    const std::size_t n = part.spine_points.size();
+    wire.samples.resize(n);
+    for (std::size_t k = 0; k < n; ++k) wire.samples[k] = double(k) / double(n - 1);
+    wire.mode_values.resize(n * std::size_t(options.modes));
+    wire.mode_slopes.resize(n * std::size_t(options.modes));
+    if (Status s =
+            TabulateModes(wire.model.basis, wire.samples, wire.mode_values, wire.mode_slopes);
+        !s)
+      return Error{where + ToString(s)};
+    wire.extra_displacement.resize(n);
+    wire.extra_slope.resize(n);
+    out.wires_.push_back(std::move(wire));
+  }
+  out.states_.resize(out.wires_.size());
+  out.scratch_.resize(std::size_t(options.modes));
+  return out;
+}
+
+ModalWireLoads WireDynamics::LoadsOf(const Wire& wire, const SpineLoads& loads) const {
+  ModalWireLoads out;
+  out.start_displacement = loads.start_displacement;
+  out.end_displacement = loads.end_displacement;
+  out.tip_force = IsCantilever(wire.model.basis.boundary) ? loads.tip_force : Vec3::Zero();
+  out.point_loads = loads.bending_point_loads;
+  out.line_loads = loads.bending_line_loads;
+  out.support_acceleration = wire.support_acceleration;
+  return out;
+}
+
+Status WireDynamics::Reset(const ClipSample& sample) {
+  for (std::size_t w = 0; w < wires_.size(); ++w) {
+    wires_[w].support_acceleration = Vec3::Zero();
+    const ModalWireLoads loads = LoadsOf(wires_[w], sample.poses[wires_[w].part].loads);
+    if (Status s = InitializeModalWireAtStatic(wires_[w].model, loads, &states_[w]); !s) return s;
+  }
+  return Status::Ok();
+}
+
+Status WireDynamics::Step(const ClipSample& sample, std::span<const Vec3> support_acceleration,
+                          std::span<const Mat3> support_rotation, double dt) {
+  // A sliver of a step (landing on a frame time within 1 ns) leaves the wires as they are.
+  if (dt < ModalWireStepJob::kMinTimeStep) return Status::Ok();
+  for (std::size_t w = 0; w < wires_.size(); ++w) {
+    Wire& wire = wires_[w];
+    const PartModel& part = model_->parts[wire.part];
+    // The support's acceleration in the wire's local axes (those of its middle sample, as
+    // world-axes line loads are turned).
+    const Frame& f = part.spine_frames[part.spine_frames.size() / 2];
+    const Vec3 a = support_rotation[wire.part].transpose() * support_acceleration[wire.part];
+    wire.support_acceleration = Vec3(a.dot(f.normal), a.dot(f.binormal), 0.0);
+    ModalWireStepJob step;
+    step.model = &wire.model;
+    step.loads = LoadsOf(wire, sample.poses[wire.part].loads);
+    step.dt = dt;
+    step.step_table = dt == wire.table.dt ? &wire.table : nullptr;  // whole steps
+    step.state = &states_[w];
+    if (Status s = step.Run(); !s) return s;
+  }
+  return Status::Ok();
+}
+
+Status WireDynamics::Apply(std::span<PartPose> poses) {
+  for (std::size_t w = 0; w < wires_.size(); ++w) {
+    Wire& wire = wires_[w];
+    const ModalWireState& state = states_[w];
+    const int modes = wire.model.basis.modes;
+    for (int m = 0; m < modes; ++m) scratch_[std::size_t(m)] = state.q[m] - state.q_static[m];
+    SpineLoads& loads = poses[wire.part].loads;
+    // The support's inertial load, statically (the rig's own closed form has the clip's loads).
+    const LineLoad inertial{0.0, 1.0, -wire.model.mass_per_length * wire.support_acceleration};
+    BendingJob bending;
+    bending.boundary = loads.boundary;
+    bending.length = wire.model.length;
+    bending.bending_stiffness = wire.model.bending_stiffness;
+    bending.line_loads = std::span<const LineLoad>(&inertial, 1);
+    bending.samples = wire.samples;
+    bending.displacement = wire.extra_displacement;
+    bending.slope = wire.extra_slope;
+    if (Status s = bending.Run(); !s) return s;
+    const double per_length = 1.0 / wire.model.length;
+    for (std::size_t k = 0; k < wire.samples.size(); ++k) {
+      const double* value = &wire.mode_values[k * std::size_t(modes)];
+      const double* slope = &wire.mode_slopes[k * std::size_t(modes)];
+      Vec3 d = Vec3::Zero(), s = Vec3::Zero();
+      for (int m = 0; m < modes; ++m) {
+        d += value[m] * scratch_[std::size_t(m)];
+        s += slope[m] * scratch_[std::size_t(m)];
+      }
+      wire.extra_displacement[k] += d;
+      wire.extra_slope[k] += per_length * s;
+    }
+    loads.extra_displacement = wire.extra_displacement;
+    loads.extra_slope = wire.extra_slope;
+  }
+  return Status::Ok();
+}
+
+void WireDynamics::Restore(std::span<const ModalWireState> states) {
+  std::copy(states.begin(), states.end(), states_.begin());
+}
+
+}  // namespace wirerig
