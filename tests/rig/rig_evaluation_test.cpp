@@ -261,15 +261,18 @@ TEST(RigEvaluation, ExtraBendingMovesTheMeshAsTheLoadOfThatShape) {
     slope[k] = force * length * length * v * (2.0 - v) / (2.0 * ei);
   }
   RigWorkspace workspace = MakeRigWorkspace(scene.model);
-  auto evaluate = [&](const PartPose& pose) {
+  std::vector<Vec3> positions(scene.model.vertices.size());
+  auto run = [&](const PartPose& pose) {
     std::vector<PartPose> poses = {pose};
-    std::vector<Vec3> positions(scene.model.vertices.size());
     EvaluateRigJob job;
     job.model = &scene.model;
     job.poses = poses;
     job.workspace = &workspace;
     job.positions = positions;
-    EXPECT_TRUE(job.Run().ok());
+    return job.Run();
+  };
+  auto evaluate = [&](const PartPose& pose) {
+    EXPECT_TRUE(run(pose).ok());
     return positions;
   };
   PartPose loaded, extra;
@@ -286,14 +289,7 @@ TEST(RigEvaluation, ExtraBendingMovesTheMeshAsTheLoadOfThatShape) {
   EXPECT_LT(worst, 1e-12);
   // The wrong count is refused by name.
   extra.loads.extra_slope = std::span<const Vec3>(slope.data(), n - 1);
-  std::vector<PartPose> poses = {extra};
-  std::vector<Vec3> positions(scene.model.vertices.size());
-  EvaluateRigJob job;
-  job.model = &scene.model;
-  job.poses = poses;
-  job.workspace = &workspace;
-  job.positions = positions;
-  const Status status = job.Run();
+  const Status status = run(extra);
   EXPECT_FALSE(status.ok());
   EXPECT_EQ(status.field, "poses");
 }
