@@ -13,6 +13,15 @@ function(wirerig_target_options target)
   endif()
 endfunction()
 
+# wirerig_fuzzing_instrumentation(<target>): with WIRERIG_BUILD_FUZZERS, the coverage
+# instrumentation libFuzzer steers by (-fsanitize=fuzzer-no-link), for the libraries the fuzz
+# targets exercise; the fuzzers themselves link libFuzzer (fuzz/CMakeLists.txt).
+function(wirerig_fuzzing_instrumentation target)
+  if(WIRERIG_BUILD_FUZZERS)
+    target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
+  endif()
+endfunction()
+
 # wirerig_add_library(<name> <sources>...): the library wirerig_<name> with its alias
 # wirerig::<name>, its public include/ folder, per-target options, and install rules into the
 # exported package: the runtime and the C API into wirerigRuntimeTargets (what an engine needs:
@@ -31,6 +40,7 @@ function(wirerig_add_library name)
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_compile_features(${target} PUBLIC cxx_std_20)
   wirerig_target_options(${target})
+  wirerig_fuzzing_instrumentation(${target})
   install(TARGETS ${target} EXPORT ${export_set}
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
