@@ -1,6 +1,7 @@
 // Tests for importing in a child process (ImportOptions::isolation): the same mesh as an
 // import in this process, and corrupted files that crash or hang Assimp 5.2.5 coming back as
 // errors naming the file while this process goes on. Files are written by the tests.
+#include <signal.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -237,6 +238,26 @@ TEST(IsolatedImport, CorruptedBinaryXFileCrashesOnlyTheChild) {
   const fs::path path = WriteFile("corrupted.x", bytes);
   const Result<ImportedMesh> imported = ImportMesh(path, Tight());
   ExpectError(imported, path, "the importer crashed on this file (");
+}
+
+// The caller's crash handler (a crash reporter, a sanitizer's, libFuzzer's) is not the child's:
+// the child dies by the signal itself, and the parent names it.
+TEST(IsolatedImport, CallersCrashHandlerDoesNotRunInTheChild) {
+  const fs::path source = fs::path(WIRERIG_ASSET_DIR) / "assimp/X/test_cube_binary.x";
+  if (!fs::exists(source)) FAIL() << "asset missing: " << source << " (run scripts/setup.sh)";
+  std::ifstream in(source, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(bytes.size(), 2816u);
+  bytes[2609] = static_cast<char>(0xb2);
+  const fs::path path = WriteFile("corrupted_handled.x", bytes);
+
+  struct sigaction handler = {};
+  handler.sa_handler = [](int) { ::_exit(42); };
+  struct sigaction previous = {};
+  ASSERT_EQ(::sigaction(SIGSEGV, &handler, &previous), 0);
+  const Result<ImportedMesh> imported = ImportMesh(path, Tight());
+  ::sigaction(SIGSEGV, &previous, nullptr);
+  ExpectError(imported, path, "the importer crashed on this file (Segmentation fault, signal 11)");
 }
 
 }  // namespace
