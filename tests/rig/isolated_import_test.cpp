@@ -20,6 +20,16 @@
 #error "the tests need WIRERIG_ASSET_DIR (set by CMake)"
 #endif
 
+// AddressSanitizer: GCC defines __SANITIZE_ADDRESS__, clang (before 16) only answers
+// __has_feature(address_sanitizer).
+#if defined(__SANITIZE_ADDRESS__)
+#define WIRERIG_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define WIRERIG_TEST_ASAN 1
+#endif
+#endif
+
 namespace wirerig {
 namespace {
 
@@ -201,7 +211,7 @@ TEST(IsolatedImport, MemoryLimitStopsARunawayImport) {
   ImportOptions options = Isolated(60.0);
   options.isolation->memory_limit_bytes = std::uint64_t{64} << 20;
   const Result<ImportedMesh> imported = ImportMesh(path, options);
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(WIRERIG_TEST_ASAN)
   // AddressSanitizer's allocator ends the child itself when memory runs out.
   ExpectStoppedCleanly(imported, path);
 #else
