@@ -6,6 +6,13 @@ function(wirerig_target_options target)
   if(WIRERIG_WARNINGS_AS_ERRORS)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
+  # No floating-point exception the source does not raise: the tests trap them (test_main.cpp)
+  # and an engine may too. GCC keeps to that by default (-ftrapping-math); clang's default lets
+  # it evaluate a division or square root in lanes the code masks out (0/0 in the vertex stage's
+  # padding), which then traps.
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    target_compile_options(${target} PRIVATE -ffp-exception-behavior=maytrap)
+  endif()
   if(WIRERIG_SANITIZE)
     target_compile_options(${target} PRIVATE -fsanitize=address,undefined
                                              -fno-sanitize-recover=all -fno-omit-frame-pointer)
