@@ -6,10 +6,26 @@ function(wirerig_target_options target)
   if(WIRERIG_WARNINGS_AS_ERRORS)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
+  # No floating-point exception the source does not raise: the tests trap them (test_main.cpp)
+  # and an engine may too. GCC keeps to that by default (-ftrapping-math); clang's default lets
+  # it evaluate a division or square root in lanes the code masks out (0/0 in the vertex stage's
+  # padding), which then traps.
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    target_compile_options(${target} PRIVATE -ffp-exception-behavior=maytrap)
+  endif()
   if(WIRERIG_SANITIZE)
     target_compile_options(${target} PRIVATE -fsanitize=address,undefined
                                              -fno-sanitize-recover=all -fno-omit-frame-pointer)
     target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
+endfunction()
+
+# wirerig_fuzzing_instrumentation(<target>): with WIRERIG_BUILD_FUZZERS, the coverage
+# instrumentation libFuzzer steers by (-fsanitize=fuzzer-no-link), for the libraries the fuzz
+# targets exercise; the fuzzers themselves link libFuzzer (fuzz/CMakeLists.txt).
+function(wirerig_fuzzing_instrumentation target)
+  if(WIRERIG_BUILD_FUZZERS)
+    target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
   endif()
 endfunction()
 
@@ -31,6 +47,7 @@ function(wirerig_add_library name)
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_compile_features(${target} PUBLIC cxx_std_20)
   wirerig_target_options(${target})
+  wirerig_fuzzing_instrumentation(${target})
   install(TARGETS ${target} EXPORT ${export_set}
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})

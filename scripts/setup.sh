@@ -11,6 +11,9 @@ asset_dir=${WIRERIG_ASSET_DIR:-$repo_root/.cache/assets}
 # Build toolchain, libraries the targets link, test and benchmark frameworks.
 packages=(
   cmake ninja-build g++ pkg-config git ca-certificates
+  # The sanitizer build and the fuzzers: clang 14, its runtimes (ASan, UBSan and libFuzzer are in
+  # libclang-rt-14-dev, only recommended by clang) and llvm-symbolizer (llvm) for the reports.
+  clang libclang-rt-14-dev llvm
   libeigen3-dev libglm-dev nlohmann-json3-dev libcli11-dev libassimp-dev libcgal-dev
   libtinygltf-dev libstb-dev
   libglfw3-dev libimgui-dev libegl-dev libgl-dev xvfb xauth

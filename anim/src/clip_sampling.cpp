@@ -61,8 +61,10 @@ BoundaryCondition BoundaryAt(const std::vector<BoundaryKey>& keys, double t) {
   return boundary;
 }
 
+// Every finite vector gives a unit quaternion: stableNorm scales before squaring, where norm()
+// overflows to infinity past components of 1.3e154 (and the quaternion became NaN).
 Quat FromAxisAngle(const Vec3& v) {
-  const double angle = v.norm();
+  const double angle = v.stableNorm();
   if (!(angle > 1e-15)) return Quat::Identity();
   return Quat(Eigen::AngleAxisd(angle, v / angle));
 }

@@ -211,8 +211,10 @@ std::vector<std::string> PartNames(const Rig& rig) {
 // Applies the scene's per-part wire settings over the rig's own.
 std::string ApplyWireSettings(const SceneDescription& scene, Rig& rig) {
   for (const auto& [name, settings] : scene.parts) {
+    // A reference of its own: lambdas capture no structured bindings before clang 16.
+    const std::string& wanted = name;
     const auto part = std::find_if(rig.parts.begin(), rig.parts.end(),
-                                   [&](const RigPart& p) { return p.name == name; });
+                                   [&](const RigPart& p) { return p.name == wanted; });
     if (part == rig.parts.end()) {
       return "/parts/" + name + ": the rig has no part of this name" +
              NameHint(name, PartNames(rig), "parts");

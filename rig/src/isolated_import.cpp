@@ -73,6 +73,9 @@ std::uint64_t AddressSpaceInUse() {
   if (::getppid() != parent) ::_exit(3);
   ::signal(SIGINT, SIG_DFL);
   ::signal(SIGTERM, SIG_DFL);
+  // A crash ends the child by its own signal, which the parent names: the caller's crash
+  // handlers (a crash reporter, a sanitizer's, a fuzzer's) belong to the caller, not the child.
+  for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) ::signal(sig, SIG_DFL);
   const rlimit no_core{0, 0};
   ::setrlimit(RLIMIT_CORE, &no_core);
   const std::uint64_t limit = options.isolation->memory_limit_bytes;

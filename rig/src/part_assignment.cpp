@@ -95,8 +95,10 @@ Result<PartAssignment> AssignParts(const Mesh& mesh, const RigDescription& descr
         result.vertex_part[w] = it->second;
   }
   for (const auto& [name, part] : claimed_by) {
+    // A reference of its own: lambdas capture no structured bindings before clang 16.
+    const std::string& wanted = name;
     const bool found = std::any_of(mesh.parts.begin(), mesh.parts.end(),
-                                   [&](const MeshPart& m) { return m.name == name; });
+                                   [&](const MeshPart& m) { return m.name == wanted; });
     if (!found)
       return Error{"part '" + description.parts[part].name + "' names mesh part '" + name +
                    "', which the mesh does not have"};

@@ -234,13 +234,16 @@ std::uint32_t MedianSplit(std::vector<Prim>& prims, std::uint32_t begin, std::ui
   return middle;
 }
 
+#if !defined(__SSE2__)
 // 2D cross product p x q, exactly antisymmetric in its arguments whatever the compiler's
 // contraction of a*b - c*d into an FMA: the pair is always evaluated in lexicographic order.
+// (The scalar path's; with SSE2, EdgePair below.)
 inline double Edge(const double* p, const double* q) {
   if (p[0] < q[0] || (p[0] == q[0] && p[1] < q[1])) return p[0] * q[1] - p[1] * q[0];
   if (p[0] == q[0] && p[1] == q[1]) return 0.0;
   return -(q[0] * p[1] - q[1] * p[0]);
 }
+#endif
 
 #if defined(__SSE2__)
 // A product rounded on its own: the empty asm makes it opaque, so the compiler cannot contract

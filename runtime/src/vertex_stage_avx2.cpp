@@ -25,8 +25,14 @@ bool CpuHasAvx2() {
 
 }  // namespace wirerig
 
+// GCC's target region; clang has no "#pragma GCC target" and takes the attribute on every
+// function declared in the region instead.
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
+#else
 #pragma GCC push_options
 #pragma GCC target("avx2")
+#endif
 
 namespace wirerig::simd {
 namespace {
@@ -38,7 +44,6 @@ inline F8 operator+(F8 a, F8 b) { return {_mm256_add_ps(a.v, b.v)}; }
 inline F8 operator-(F8 a, F8 b) { return {_mm256_sub_ps(a.v, b.v)}; }
 inline F8 operator*(F8 a, F8 b) { return {_mm256_mul_ps(a.v, b.v)}; }
 inline F8 operator/(F8 a, F8 b) { return {_mm256_div_ps(a.v, b.v)}; }
-inline F8& operator+=(F8& a, F8 b) { return a = a + b; }
 
 // simd_pack.h's pack interface, eight floats at a time.
 struct Float8 {
@@ -108,4 +113,8 @@ void RunVertexStageAvx2(const RigModel& model, RigWorkspace& w, VertexStage<floa
 
 }  // namespace wirerig
 
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
 #pragma GCC pop_options
+#endif

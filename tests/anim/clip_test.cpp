@@ -230,6 +230,24 @@ TEST(ClipSampling, PoseIsTheAxisAngleRotationAndTranslation) {
   EXPECT_EQ(sample.poses[0].translation, Vec3(1, 2, 3));
 }
 
+// Found with the clip fuzzer's check (fuzz/corpus/clip/finding-huge-rotation.json): a rotation
+// vector whose squared length overflows (a component past 1.3e154) sampled to a NaN quaternion,
+// refused only by the evaluation, far from the clip ("poses: rotations must be finite unit
+// quaternions").
+TEST(ClipSampling, EveryFiniteRotationVectorGivesAUnitQuaternion) {
+  for (const Vec3& v : {Vec3(1e200, 0, 0), Vec3(1e155, 1e155, 0), Vec3(-1e308, 1e308, 1e308)}) {
+    SCOPED_TRACE(::testing::Message() << v.transpose());
+    RawClip raw = PointLoadClip();
+    raw.parts[0].channels.rotation = Constant(v);
+    const Clip clip = BuildClip(raw, Beam().model).value();
+    ClipSample sample = MakeClipSample(clip, Beam().model);
+    SampleClip(clip, 1.0, &sample);
+    const Quat& q = sample.poses[0].rotation;
+    EXPECT_TRUE(q.coeffs().allFinite()) << q.coeffs().transpose();
+    EXPECT_NEAR(q.norm(), 1.0, 1e-12);
+  }
+}
+
 }  // namespace
 }  // namespace wirerig
 

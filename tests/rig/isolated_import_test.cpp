@@ -1,6 +1,7 @@
 // Tests for importing in a child process (ImportOptions::isolation): the same mesh as an
 // import in this process, and corrupted files that crash or hang Assimp 5.2.5 coming back as
 // errors naming the file while this process goes on. Files are written by the tests.
+#include <signal.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -17,6 +18,16 @@
 
 #ifndef WIRERIG_ASSET_DIR
 #error "the tests need WIRERIG_ASSET_DIR (set by CMake)"
+#endif
+
+// AddressSanitizer: GCC defines __SANITIZE_ADDRESS__, clang (before 16) only answers
+// __has_feature(address_sanitizer).
+#if defined(__SANITIZE_ADDRESS__)
+#define WIRERIG_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define WIRERIG_TEST_ASAN 1
+#endif
 #endif
 
 namespace wirerig {
@@ -200,7 +211,7 @@ TEST(IsolatedImport, MemoryLimitStopsARunawayImport) {
   ImportOptions options = Isolated(60.0);
   options.isolation->memory_limit_bytes = std::uint64_t{64} << 20;
   const Result<ImportedMesh> imported = ImportMesh(path, options);
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(WIRERIG_TEST_ASAN)
   // AddressSanitizer's allocator ends the child itself when memory runs out.
   ExpectStoppedCleanly(imported, path);
 #else
@@ -237,6 +248,26 @@ TEST(IsolatedImport, CorruptedBinaryXFileCrashesOnlyTheChild) {
   const fs::path path = WriteFile("corrupted.x", bytes);
   const Result<ImportedMesh> imported = ImportMesh(path, Tight());
   ExpectError(imported, path, "the importer crashed on this file (");
+}
+
+// The caller's crash handler (a crash reporter, a sanitizer's, libFuzzer's) is not the child's:
+// the child dies by the signal itself, and the parent names it.
+TEST(IsolatedImport, CallersCrashHandlerDoesNotRunInTheChild) {
+  const fs::path source = fs::path(WIRERIG_ASSET_DIR) / "assimp/X/test_cube_binary.x";
+  if (!fs::exists(source)) FAIL() << "asset missing: " << source << " (run scripts/setup.sh)";
+  std::ifstream in(source, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(bytes.size(), 2816u);
+  bytes[2609] = static_cast<char>(0xb2);
+  const fs::path path = WriteFile("corrupted_handled.x", bytes);
+
+  struct sigaction handler = {};
+  handler.sa_handler = [](int) { ::_exit(42); };
+  struct sigaction previous = {};
+  ASSERT_EQ(::sigaction(SIGSEGV, &handler, &previous), 0);
+  const Result<ImportedMesh> imported = ImportMesh(path, Tight());
+  ::sigaction(SIGSEGV, &previous, nullptr);
+  ExpectError(imported, path, "the importer crashed on this file (Segmentation fault, signal 11)");
 }
 
 }  // namespace
