@@ -2,7 +2,7 @@
 # Installs what is missing, builds, and runs every test twice: optimised, then under
 # AddressSanitizer + UndefinedBehaviorSanitizer (clang); runs each libFuzzer target of that same
 # build for a short time on its seed corpus; then checks the build without CGAL.
-# Env: WIRERIG_JOBS (parallel jobs), WIRERIG_FUZZ_SECONDS (per fuzz target, default 20; 0 skips).
+# Env: WIRERIG_JOBS (parallel jobs), WIRERIG_FUZZ_SECONDS (per fuzz target, default 10; 0 skips).
 set -euo pipefail
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$repo_root/scripts/setup.sh"
@@ -18,7 +18,7 @@ export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 ctest --test-dir "$repo_root/build-asan" --output-on-failure --parallel "$jobs"
 
-fuzz_seconds=${WIRERIG_FUZZ_SECONDS:-20}
+fuzz_seconds=${WIRERIG_FUZZ_SECONDS:-10}
 fuzz_failed=()
 if [ "$fuzz_seconds" -gt 0 ]; then
   echo "== fuzzers, $fuzz_seconds s each on their seed corpora (docs/fuzzing.md)"
