@@ -24,4 +24,15 @@ inline std::vector<std::uint8_t> WithConsistentEnvelope(std::span<const std::uin
   return out;
 }
 
+// The asset fuzzers' entry: `parse_one` on the input as it is, then with its envelope made
+// consistent.
+template <class ParseOne>
+int ParseAsItIsAndConsistent(const std::uint8_t* data, std::size_t size, ParseOne parse_one) {
+  const std::span<const std::uint8_t> bytes(data, size);
+  parse_one(bytes);
+  const std::vector<std::uint8_t> consistent = WithConsistentEnvelope(bytes);
+  if (!consistent.empty()) parse_one(std::span<const std::uint8_t>(consistent));
+  return 0;
+}
+
 }  // namespace wirerig::fuzz

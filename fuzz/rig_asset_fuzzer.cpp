@@ -58,9 +58,5 @@ void ParseOne(std::span<const std::uint8_t> bytes) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::span<const std::uint8_t> bytes(data, size);
-  ParseOne(bytes);
-  const std::vector<std::uint8_t> consistent = wirerig::fuzz::WithConsistentEnvelope(bytes);
-  if (!consistent.empty()) ParseOne(consistent);
-  return 0;
+  return wirerig::fuzz::ParseAsItIsAndConsistent(data, size, ParseOne);
 }

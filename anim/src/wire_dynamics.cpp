@@ -1,5 +1,6 @@
 #include "wirerig/anim/wire_dynamics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -102,7 +103,10 @@ Status WireDynamics::Apply(std::span<PartPose> poses) {
     const int modes = wire.model.basis.modes;
     for (int m = 0; m < modes; ++m) scratch_[std::size_t(m)] = state.q[m] - state.q_static[m];
     SpineLoads& loads = poses[wire.part].loads;
-    // The support's inertial load, statically (the rig's own closed form has the clip's loads).
+    // The support's inertial load, statically (the rig's own closed form has the clip's loads);
+    // none while the support does not accelerate.
+    std::fill(wire.extra_displacement.begin(), wire.extra_displacement.end(), Vec3::Zero());
+    std::fill(wire.extra_slope.begin(), wire.extra_slope.end(), Vec3::Zero());
     const LineLoad inertial{0.0, 1.0, -wire.model.mass_per_length * wire.support_acceleration};
     BendingJob bending;
     bending.boundary = loads.boundary;
@@ -112,7 +116,8 @@ Status WireDynamics::Apply(std::span<PartPose> poses) {
     bending.samples = wire.samples;
     bending.displacement = wire.extra_displacement;
     bending.slope = wire.extra_slope;
-    if (Status s = bending.Run(); !s) return s;
+    if (!wire.support_acceleration.isZero())
+      if (Status s = bending.Run(); !s) return s;
     const double per_length = 1.0 / wire.model.length;
     for (std::size_t k = 0; k < wire.samples.size(); ++k) {
       const double* value = &wire.mode_values[k * std::size_t(modes)];
