@@ -52,11 +52,7 @@ Result<std::vector<CatalogEntry>> LoadCatalog(const std::string& path) {
       e.time = o.Number("time", -1.0);
       e.sheet = o.Integer("sheet", 4);
       if (e.sheet < 1 || e.sheet > 16) throw FieldError(o.PathOf("sheet"), "must be in [1, 16]");
-      if (o.Has("skin")) {
-        if (!o.Required("skin").is_boolean())
-          throw FieldError(o.PathOf("skin"), "must be true or false");
-        e.skin = o.Required("skin").get<bool>();
-      }
+      e.skin = o.Bool("skin", e.skin);
       entries.push_back(std::move(e));
     }
   } catch (const FieldError& e) {

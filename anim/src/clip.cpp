@@ -74,6 +74,9 @@ void VisitTracks(const PartChannels<RawTrack>& c, const std::string& where, Visi
   VisitList(c.point_loads, where, "point_loads", visit);
   VisitList(c.line_loads, where, "line_loads", visit);
   visit(c.tip_force, At(where, "tip_force"));
+  visit(c.tip_couple, At(where, "tip_couple"));
+  visit(c.reach.target, At(where, "reach/target"));
+  visit(c.reach.weight, At(where, "reach/weight"));
   visit(c.start_displacement, At(where, "start_displacement"));
   visit(c.end_displacement, At(where, "end_displacement"));
   VisitList(c.axial_point_loads, where, "axial_point_loads", visit);
@@ -123,6 +126,9 @@ PartChannels<Track> Built(const PartChannels<RawTrack>& c) {
   out.point_loads = BuiltList(c.point_loads);
   out.line_loads = BuiltList(c.line_loads);
   out.tip_force = Built(c.tip_force);
+  out.tip_couple = Built(c.tip_couple);
+  out.large_deflection = c.large_deflection;
+  out.reach = {Built(c.reach.target), Built(c.reach.weight), c.reach.max_force};
   out.start_displacement = Built(c.start_displacement);
   out.end_displacement = Built(c.end_displacement);
   out.axial_fixed_at = c.axial_fixed_at;
@@ -215,6 +221,13 @@ std::string ValidateRawClip(const RawClip& raw) {
           std::pair{"angular", drag.angular}})
       if (!(std::isfinite(value) && value >= 0.0 && value <= 1e9))
         return At(where, std::string("rigid_drag/") + name + ": must be finite, in [0, 1e9]");
+    if (!(std::isfinite(channels.reach.max_force) && channels.reach.max_force >= 0.0 &&
+          channels.reach.max_force <= 1e12))
+      return At(where, "reach/max_force: must be finite, in [0, 1e12] (N)");
+    if (channels.large_deflection || !channels.reach.target.keys.empty())
+      for (const BoundaryKey& key : channels.boundary)
+        if (!IsCantilever(key.boundary))
+          return At(where, "boundary: large_deflection and reach need cantilever keys only");
     if (std::string boundary = CheckBoundaryKeys(channels.boundary, raw.duration, where);
         !boundary.empty())
       return boundary;
@@ -276,6 +289,9 @@ Result<Clip> BuildClip(const RawClip& raw, const RigModel& model) {
     if (p < 0) return unknown_part(where, tracks.part);
     if (HasRigidInput(tracks.channels) && model.parts[p].kind != SpineKind::kRigid)
       return Error{At(where, "rigid_forces: rigid-body forces and torques need a rigid part")};
+    if ((tracks.channels.large_deflection || !tracks.channels.reach.target.keys.empty()) &&
+        model.parts[p].kind != SpineKind::kDeformable)
+      return Error{At(where, "large_deflection: large curls and reach need a deformable part")};
     if (!tracks.channels.joint_angles.keys.empty() && model.parts[p].parent < 0)
       return Error{At(where, "joint_angles: part \"" + tracks.part +
                                  "\" is the root: it has no joint to turn")};

@@ -222,10 +222,11 @@ std::vector<BoundaryKey> ReadBoundaryKeys(const JsonObject& o) {
 }
 
 RawPartTracks ReadPartTracks(const JsonObject& o) {
-  o.RejectUnknownKeys({"part", "boundary", "point_loads", "line_loads", "tip_force",
-                       "start_displacement", "end_displacement", "axial_fixed_at",
-                       "axial_point_loads", "axial_line_loads", "rotation", "translation",
-                       "joint_angles", "rigid_forces", "rigid_torque", "rigid_drag"});
+  o.RejectUnknownKeys({"part", "boundary", "point_loads", "line_loads", "tip_force", "tip_couple",
+                       "large_deflection", "reach", "start_displacement", "end_displacement",
+                       "axial_fixed_at", "axial_point_loads", "axial_line_loads", "rotation",
+                       "translation", "joint_angles", "rigid_forces", "rigid_torque",
+                       "rigid_drag"});
   RawPartTracks tracks;
   tracks.part = o.String("part");
   PartChannels<RawTrack>& c = tracks.channels;
@@ -233,6 +234,15 @@ RawPartTracks ReadPartTracks(const JsonObject& o) {
   c.point_loads = ReadList(o, "point_loads", ReadPointLoad);
   c.line_loads = ReadList(o, "line_loads", ReadLineLoad);
   ReadOptionalTrack(o, "tip_force", &c.tip_force);
+  ReadOptionalTrack(o, "tip_couple", &c.tip_couple);
+  c.large_deflection = o.Bool("large_deflection", false);
+  if (o.Has("reach")) {
+    const JsonObject reach = o.Object("reach");
+    reach.RejectUnknownKeys({"target", "weight", "max_force"});
+    ReadOptionalTrack(reach, "target", &c.reach.target);
+    ReadOptionalTrack(reach, "weight", &c.reach.weight);
+    c.reach.max_force = reach.Number("max_force", c.reach.max_force);
+  }
   ReadOptionalTrack(o, "start_displacement", &c.start_displacement);
   ReadOptionalTrack(o, "end_displacement", &c.end_displacement);
   c.axial_fixed_at = o.Number("axial_fixed_at", 0.0);
@@ -264,6 +274,15 @@ json ToJson(const RawPartTracks& tracks) {
   WriteList(out, "point_loads", c.point_loads);
   WriteList(out, "line_loads", c.line_loads);
   WriteOptionalTrack(out, "tip_force", c.tip_force);
+  WriteOptionalTrack(out, "tip_couple", c.tip_couple);
+  if (c.large_deflection) out["large_deflection"] = true;
+  if (!c.reach.target.keys.empty()) {
+    json reach = json::object();
+    WriteOptionalTrack(reach, "target", c.reach.target);
+    WriteOptionalTrack(reach, "weight", c.reach.weight);
+    reach["max_force"] = c.reach.max_force;
+    out["reach"] = reach;
+  }
   WriteOptionalTrack(out, "start_displacement", c.start_displacement);
   WriteOptionalTrack(out, "end_displacement", c.end_displacement);
   if (c.axial_fixed_at != 0.0) out["axial_fixed_at"] = c.axial_fixed_at;

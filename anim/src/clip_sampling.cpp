@@ -120,6 +120,10 @@ void SampleClip(const Clip& clip, double t, ClipSample* sample) {
     loads.bending_line_loads = std::span<const LineLoad>(
         s.line_loads[p].data(), SampleLineLoads(c.line_loads, t, frames, s.line_loads[p]));
     loads.tip_force = IsCantilever(loads.boundary) ? c.tip_force.Sample(t) : Vec3::Zero();
+    loads.tip_couple = loads.boundary == BoundaryCondition::kCantileverFree ? c.tip_couple.Sample(t)
+                                                                            : Vec3::Zero();
+    loads.large_deflection = c.large_deflection;
+    loads.curl_segments = 0;
     loads.start_displacement = c.start_displacement.Sample(t);
     loads.end_displacement = c.end_displacement.Sample(t);
     loads.axial_fixed_at = c.axial_fixed_at;

@@ -47,9 +47,12 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
   Result<WireDynamics> wires = WireDynamics::Make(model, clip, options.wires, options.rigid_step);
   if (!wires) return Error{"wires: " + wires.error()};
   playback.wires_ = std::move(wires).value();
+  playback.reach_ = ClipReach::Make(model, clip);
   if (!playback.wires_.empty()) {
     playback.step_sample_ = MakeClipSample(clip, model);
     SampleClip(clip, 0.0, &playback.step_sample_);
+    if (Status s = playback.reach_.Apply(0.0, true, &playback.step_sample_); !s)
+      return Error{"reach: " + ToString(s)};
     if (Status s = playback.wires_.Reset(playback.step_sample_); !s)
       return Error{"wires: " + ToString(s)};
     playback.support_acceleration_.assign(model.parts.size(), Vec3::Zero());
@@ -74,6 +77,9 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
     const std::span<const ModalWireState> wire_states = playback.wires_.states();
     playback.wire_checkpoints_.resize(count * wire_states.size());
     std::copy(wire_states.begin(), wire_states.end(), playback.wire_checkpoints_.begin());
+    const std::span<const Vec3> forces = playback.reach_.kept_forces();
+    playback.reach_checkpoints_.resize(count * forces.size());
+    std::copy(forces.begin(), forces.end(), playback.reach_checkpoints_.begin());
     playback.checkpoints_done_ = 1;
   }
   return playback;
@@ -127,13 +133,27 @@ Status Playback::StepBodies(double dt) {
                                .rotation.toRotationMatrix();
   }
   SampleClip(*clip_, clock_, &step_sample_);
+  if (!reach_.empty()) {
+    PoseDynamicParts(&step_sample_);
+    if (Status s = reach_.Apply(clock_, true, &step_sample_); !s) return s;
+  }
   return wires_.Step(step_sample_, support_acceleration_, support_rotation_, dt);
+}
+
+void Playback::PoseDynamicParts(ClipSample* sample) const {
+  for (std::size_t d = 0; d < dynamic_parts_.size(); ++d) {
+    const std::size_t p = dynamic_parts_[d];
+    const SpineLoads loads = sample->poses[p].loads;
+    sample->poses[p] = PoseOfRigidPart(dynamic_bodies_[d], model_->parts[p], bodies_[p]);
+    sample->poses[p].loads = loads;
+  }
 }
 
 // Brings the dynamic bodies to clip time t: from the latest checkpoint at or before t (making
 // the missing checkpoints on the way), then whole steps, then one partial step to land on t.
 Status Playback::AdvanceBodies(double t) {
   const std::size_t parts = dynamic_parts_.size(), wires = wires_.size();
+  const std::size_t reaches = reach_.kept_forces().size();
   const double h = options_.rigid_step;
   const double span = h * static_cast<double>(options_.checkpoint_interval);
   const std::size_t capacity = checkpoint_count_;
@@ -144,6 +164,7 @@ Status Playback::AdvanceBodies(double t) {
     for (std::size_t d = 0; d < parts; ++d)
       bodies_[dynamic_parts_[d]] = checkpoints_[c * parts + d];
     wires_.Restore(std::span<const ModalWireState>(wire_checkpoints_).subspan(c * wires, wires));
+    reach_.Restore(std::span<const Vec3>(reach_checkpoints_).subspan(c * reaches, reaches));
     clock_ = static_cast<double>(c) * span;
   };
   if (wanted < checkpoints_done_) {
@@ -162,6 +183,9 @@ Status Playback::AdvanceBodies(double t) {
       const std::span<const ModalWireState> states = wires_.states();
       std::copy(states.begin(), states.end(),
                 wire_checkpoints_.begin() + std::ptrdiff_t(c * wires));
+      const std::span<const Vec3> forces = reach_.kept_forces();
+      std::copy(forces.begin(), forces.end(),
+                reach_checkpoints_.begin() + std::ptrdiff_t(c * reaches));
       checkpoints_done_ = c + 1;
     }
   }
@@ -295,14 +319,11 @@ Status Playback::Run(double t, EvaluateRigJob& job) {
     if (Status s = tracking_->Apply(local, sample_.poses); !s) return s;
   if (HasDynamics()) {
     if (Status s = AdvanceBodies(local); !s) return s;
-    for (std::size_t d = 0; d < dynamic_parts_.size(); ++d) {
-      const std::size_t p = dynamic_parts_[d];
-      const SpineLoads loads = sample_.poses[p].loads;
-      sample_.poses[p] = PoseOfRigidPart(dynamic_bodies_[d], model_->parts[p], bodies_[p]);
-      sample_.poses[p].loads = loads;
-    }
-    if (Status s = wires_.Apply(sample_.poses); !s) return s;
+    PoseDynamicParts(&sample_);
   }
+  if (Status s = reach_.Apply(local, false, &sample_); !s) return s;
+  if (HasDynamics())
+    if (Status s = wires_.Apply(sample_.poses); !s) return s;
   for (std::size_t p = 0; p < interactive_joints_.size(); ++p)
     if (!interactive_joints_[p].isZero())
       sample_.poses[p].rotation = (sample_.poses[p].rotation *

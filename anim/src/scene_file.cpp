@@ -237,11 +237,7 @@ PlaybackOptions ReadPlayback(const JsonObject& o) {
   playback.checkpoint_interval = static_cast<std::size_t>(interval);
   playback.gravity = o.Vector3("gravity", Vec3::Zero());
   if (!IsFinite(playback.gravity)) throw FieldError(o.PathOf("gravity"), "must be finite");
-  if (o.Has("preserve_volume")) {
-    const json& value = o.Required("preserve_volume");
-    if (!value.is_boolean()) throw FieldError(o.PathOf("preserve_volume"), "must be true or false");
-    playback.preserve_volume = value.get<bool>();
-  }
+  playback.preserve_volume = o.Bool("preserve_volume", playback.preserve_volume);
   if (o.Has("tracking")) playback.tracking = ReadTracking(o.Object("tracking"));
   if (o.Has("wires")) {
     const JsonObject wires = o.Object("wires");

@@ -58,6 +58,9 @@ ModalWireLoads WireDynamics::LoadsOf(const Wire& wire, const SpineLoads& loads) 
   out.start_displacement = loads.start_displacement;
   out.end_displacement = loads.end_displacement;
   out.tip_force = IsCantilever(wire.model.basis.boundary) ? loads.tip_force : Vec3::Zero();
+  out.tip_couple = wire.model.basis.boundary == BoundaryCondition::kCantileverFree
+                       ? loads.tip_couple
+                       : Vec3::Zero();
   out.point_loads = loads.bending_point_loads;
   out.line_loads = loads.bending_line_loads;
   out.support_acceleration = wire.support_acceleration;

@@ -61,6 +61,16 @@ int JsonObject::Integer(std::string_view key, int fallback) const {
   return static_cast<int>(wide);
 }
 
+bool JsonObject::Bool(std::string_view key) const {
+  const nlohmann::json& value = Required(key);
+  if (!value.is_boolean()) throw FieldError(PathOf(key), "must be true or false");
+  return value.get<bool>();
+}
+
+bool JsonObject::Bool(std::string_view key, bool fallback) const {
+  return Has(key) ? Bool(key) : fallback;
+}
+
 std::string JsonObject::String(std::string_view key) const {
   const nlohmann::json& value = Required(key);
   if (!value.is_string()) throw FieldError(PathOf(key), "must be a string");

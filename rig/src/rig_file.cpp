@@ -61,9 +61,7 @@ ProfileCurve ReadProfile(const JsonObject& p) {
   RequireUnit(profile.frame.tangent, p.PathOf("tangent"));
   RequireUnit(profile.frame.normal, p.PathOf("normal"));
   RequireUnit(profile.frame.binormal, p.PathOf("binormal"));
-  const nlohmann::json& closed = p.Required("closed");
-  if (!closed.is_boolean()) throw FieldError(p.PathOf("closed"), "must be true or false");
-  profile.closed = closed.get<bool>();
+  profile.closed = p.Bool("closed");
   profile.points = ReadVector3Array(p.Required("points"), p.PathOf("points"));
   if (profile.points.size() < 2) throw FieldError(p.PathOf("points"), "needs at least 2 points");
   for (std::size_t i = 0; i < profile.points.size(); ++i)

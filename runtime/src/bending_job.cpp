@@ -101,7 +101,11 @@ Status BendingJob::Validate() const {
   if (!IsCantilever(boundary) && !tip_force.isZero(0.0))
     return Status::Invalid("tip_force", "applies to cantilevers only");
 
-  double load_sum = tip_force.lpNorm<1>();
+  if (!AllFinite(tip_couple)) return Status::Invalid("tip_couple", "must be finite (N m)");
+  if (boundary != BoundaryCondition::kCantileverFree && !tip_couple.isZero(0.0))
+    return Status::Invalid("tip_couple", "applies to free cantilevers only");
+
+  double load_sum = tip_force.lpNorm<1>() + tip_couple.lpNorm<1>() / length;
   for (std::size_t i = 0; i < point_loads.size(); ++i) {
     const int index = static_cast<int>(i);
     if (Status s = detail::CheckLoadPosition("point_loads", index, point_loads[i].at); !s) return s;
@@ -172,6 +176,7 @@ ExactPolynomial SolveExactPolynomial(const BendingJob& job, double compliance) {
   m2 *= compliance;
   m3 *= compliance;
   const Vec3 q_tip = -job.tip_force * compliance;
+  const Vec3 couple = job.tip_couple * (compliance / job.length);  // tip couple L^2 / EI
   const Vec3 d = job.end_displacement - job.start_displacement;
   switch (job.boundary) {
     case BoundaryCondition::kSimplySupported:
@@ -179,7 +184,7 @@ ExactPolynomial SolveExactPolynomial(const BendingJob& job, double compliance) {
     case BoundaryCondition::kClamped:
       return {Vec3::Zero(), 3.0 * d + m1 - 3.0 * m0, -2.0 * d + 2.0 * m0 - m1};
     case BoundaryCondition::kCantileverFree:
-      return {Vec3::Zero(), (m3 - m2 - q_tip) / 2.0, (q_tip - m3) / 6.0};
+      return {Vec3::Zero(), (m3 - m2 - q_tip + couple) / 2.0, (q_tip - m3) / 6.0};
     case BoundaryCondition::kCantileverGuided:
       return {Vec3::Zero(), -(q_tip - m3) / 4.0 - m1 / 2.0, (q_tip - m3) / 6.0};
   }

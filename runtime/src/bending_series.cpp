@@ -55,7 +55,8 @@ SeriesPolynomial SolveSeriesPolynomial(const BendingJob& job, double compliance)
       return {-sb, -2.0 * k2, 2.0 * k3};
     }
     case BoundaryCondition::kCantileverFree:  // Eq. (16)
-      return {-sb, -0.5 * (q + s2), (q + s2) / 6.0};
+      return {-sb, -0.5 * (q + s2) + job.tip_couple * (compliance / job.length) / 2.0,
+              (q + s2) / 6.0};
     case BoundaryCondition::kCantileverGuided:  // Eq. (17)
       return {-sb, -0.5 * (0.5 * q - sb + s1 + 0.5 * s2), (q + s2) / 6.0};
   }

@@ -74,6 +74,7 @@ Status ValidateModalLoads(const ModalWireModel& model, const ModalWireLoads& loa
   job.start_displacement = loads.start_displacement;
   job.end_displacement = loads.end_displacement;
   job.tip_force = loads.tip_force;
+  job.tip_couple = loads.tip_couple;
   job.point_loads = loads.point_loads;
   job.line_loads = loads.line_loads;
   job.samples = std::span<const double>(&sample, 1);
@@ -116,6 +117,7 @@ void StaticModalCoordinates(const ModalWireModel& model, const ModalWireLoads& l
   // The inertial support load per unit v: -rho A a L.
   const Vec3 inertial = -model.mass_per_length * length * loads.support_acceleration;
   const bool tip = !loads.tip_force.isZero(0.0);
+  const bool couple = !loads.tip_couple.isZero(0.0);
   const bool support = !inertial.isZero(0.0);
   for (int n = 0; n < basis.modes; ++n) {
     // L f_n: the projection of the loads, N.
@@ -128,6 +130,8 @@ void StaticModalCoordinates(const ModalWireModel& model, const ModalWireLoads& l
         force += loads.point_loads[j].force * point_load_modes[j * basis.modes + n];
     }
     if (tip) force += loads.tip_force * basis.end_value[n];
+    // A couple's work is C dphi/ds at the tip: C phi_n'(1) / L.
+    if (couple) force += loads.tip_couple * (ModeSlope(basis, n, 1.0) / length);
     for (const LineLoad& load : loads.line_loads)
       force += (load.force_per_length * length) * ModeIntegral(basis, n, load.from, load.to);
     if (support) force += inertial * basis.integral[n];

@@ -45,6 +45,7 @@ BendingJob StaticJob(const ModalWireEvaluateJob& job) {
   b.start_displacement = job.loads.start_displacement;
   b.end_displacement = job.loads.end_displacement;
   b.tip_force = job.loads.tip_force;
+  b.tip_couple = job.loads.tip_couple;
   b.point_loads = job.loads.point_loads;
   b.line_loads = job.loads.line_loads;
   b.samples = job.samples;

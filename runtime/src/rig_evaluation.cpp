@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "spine_curl.h"
 #include "vertex_stage.h"
 #include "wirerig/runtime/spine_interpolation.h"
 
@@ -133,6 +134,9 @@ RigWorkspace MakeRigWorkspace(const RigModel& model,
   w.bending.resize(longest);
   w.slope.resize(longest);
   w.axial.resize(longest);
+  w.curl_points.resize(longest);
+  w.curl_tangents.resize(longest);
+  w.spine_turns.resize(longest);
   std::size_t widest = 1;
   for (const PartModel& part : model.parts)
     for (const ProfileModel& profile : part.profiles)
@@ -262,6 +266,7 @@ Status EvaluateRigJob::Run() const {
       bending.length = part.spine_length;
       bending.bending_stiffness = part.spine_stiffness.bending;
       bending.tip_force = pose.loads.tip_force;
+      bending.tip_couple = pose.loads.tip_couple;
       bending.start_displacement = pose.loads.start_displacement;
       bending.end_displacement = pose.loads.end_displacement;
       bending.point_loads = pose.loads.bending_point_loads;
@@ -285,24 +290,40 @@ Status EvaluateRigJob::Run() const {
       axial.normal_force = w.strain[i];
       if (Status s = axial.Run(); !s) return Status::Invalid("poses", s.reason);
       for (double& strain : w.strain[i]) strain /= part.spine_stiffness.axial;
+      const std::span<Vec3> displacement(w.bending.data(), n);
+      const std::span<Mat3> turns(w.spine_turns.data(), n);
+      if (pose.loads.large_deflection) {
+        const detail::SpineCurlScratch scratch{w.curl_points, w.curl_tangents};
+        if (Status s =
+                detail::CurlSpine(part.spine_length, part.spine_stiffness.bending, pose.loads,
+                                  samples, w.slope, displacement, turns, scratch);
+            !s)
+          return s;
+      } else {
+        // Each frame turns minimally onto the exact deformed tangent (closed-form slope).
+        for (std::size_t k = 0; k < n; ++k)
+          turns[k] = Quat::FromTwoVectors(Vec3::UnitZ(),
+                                          Vec3(w.slope[k].x(), w.slope[k].y(), 1.0).normalized())
+                         .toRotationMatrix();
+      }
       if (!warnings.empty()) {
         PartWarnings& warn = warnings[i];
         warn = PartWarnings{};
         for (std::size_t k = 0; k < n; ++k) {
-          warn.max_slope = std::max(warn.max_slope, std::atan(w.slope[k].head<2>().norm()));
-          warn.max_deflection_ratio = std::max(warn.max_deflection_ratio,
-                                               w.bending[k].head<2>().norm() / part.spine_length);
+          const Vec3 tangent = turns[k].col(2);
+          warn.max_slope =
+              std::max(warn.max_slope, std::atan2(tangent.head<2>().norm(), tangent.z()));
+          warn.max_deflection_ratio = std::max(
+              warn.max_deflection_ratio, displacement[k].head<2>().norm() / part.spine_length);
         }
-        warn.beyond_small_deflection = warn.max_slope > 0.3 || warn.max_deflection_ratio > 0.1;
+        warn.beyond_small_deflection = !pose.loads.large_deflection &&
+                                       (warn.max_slope > 0.3 || warn.max_deflection_ratio > 0.1);
       }
-      // Each frame turns minimally onto the exact deformed tangent (closed-form slope).
       for (std::size_t k = 0; k < n; ++k) {
         const Frame& f = part.spine_frames[k];
-        points[k] +=
-            w.bending[k].x() * f.normal + w.bending[k].y() * f.binormal + w.axial[k] * f.tangent;
-        const Vec3 tangent =
-            (f.tangent + w.slope[k].x() * f.normal + w.slope[k].y() * f.binormal).normalized();
-        frames[k] = RotateFrame(Quat::FromTwoVectors(f.tangent, tangent).toRotationMatrix(), f);
+        const Mat3 axes = FrameAxes(f);
+        points[k] += axes * (displacement[k] + w.axial[k] * Vec3::UnitZ());
+        frames[k] = RotateFrame(axes * turns[k] * axes.transpose(), f);
       }
     } else {
       std::copy(part.spine_frames.begin(), part.spine_frames.end(), frames.begin());

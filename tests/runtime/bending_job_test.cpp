@@ -65,6 +65,33 @@ TEST(BendingJobTextbook, CantileverTipLoadIsFL3Over3EI) {
               expected, 1e-12 * expected);
 }
 
+TEST(BendingJobTextbook, CantileverTipCoupleIsML2Over2EIInBothModes) {
+  // A couple M at the free tip bends the cantilever into w = M s^2 / 2EI, w' = M s / EI.
+  const double m = 3.0;  // N m
+  for (BendingMode mode : {BendingMode::kExact, BendingMode::kSeries}) {
+    const std::vector<double> v = {0.0, 0.3, 0.5, 1.0};
+    std::vector<Vec3> x(v.size()), slope(v.size());
+    BendingJob job;
+    job.boundary = BoundaryCondition::kCantileverFree;
+    job.mode = mode;
+    job.length = kL;
+    job.bending_stiffness = kEI;
+    job.tip_couple = m * kDown;
+    job.samples = v;
+    job.displacement = x;
+    job.slope = slope;
+    ASSERT_TRUE(job.Run().ok());
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const double s = v[i] * kL;
+      EXPECT_NEAR(-x[i].y(), m * s * s / (2.0 * kEI), 1e-12) << ToString(mode) << " v " << v[i];
+      EXPECT_NEAR(-slope[i].y(), m * s / kEI, 1e-12) << ToString(mode) << " v " << v[i];
+    }
+    // A guided tip's support takes the couple: refused, named.
+    job.boundary = BoundaryCondition::kCantileverGuided;
+    EXPECT_EQ(job.Validate().field, "tip_couple");
+  }
+}
+
 TEST(BendingJobTextbook, SimplySupportedCentreLoadIsFL3Over48EI) {
   const double expected = kF * kL * kL * kL / (48.0 * kEI);
   EXPECT_NEAR(Deflection(BoundaryCondition::kSimplySupported, 0.5, {{0.5, kF * kDown}}, {}),

@@ -215,6 +215,7 @@ std::vector<Vec3> StaticReference(const ModalWireModel& model, const ModalWireLo
   job.start_displacement = loads.start_displacement;
   job.end_displacement = loads.end_displacement;
   job.tip_force = loads.tip_force;
+  job.tip_couple = loads.tip_couple;
   job.point_loads = loads.point_loads;
   job.line_loads = line;
   job.samples = v;
@@ -314,6 +315,7 @@ TEST(ModalWireStatics, StaticCoordinatesAreTheProjectionOfTheStaticSolution) {
     loads.point_loads = point;
     loads.line_loads = line;
     if (IsCantilever(bc)) loads.tip_force = Vec3(0, 0.7, -0.2);
+    if (bc == BoundaryCondition::kCantileverFree) loads.tip_couple = Vec3(0.4, -0.3, 0.0);
     loads.support_acceleration = Vec3(0.0, -9.81, 3.0);
     std::vector<Vec3> slope;
     const std::vector<Vec3> x = StaticReference(model, loads, v, &slope);

@@ -9,6 +9,8 @@
 //   spine axial: point and line loads along the spine, and where it is held (axial_fixed_at);
 //   rigid pose: rotation (axis-angle vector, rad, world axes, about the spine's root point) and
 //     translation (m);
+//   a tip couple (free cantilevers), large curls (large_deflection), and a reach target (wire
+//     IK, ReachChannels);
 //   joint angles: degrees about the part's joint axes X, Y, Z (joint.h), clamped to the joint's
 //     type and limits when sampled; they turn the part about its root point (after `rotation`);
 //   rigid-body dynamics (rigid parts only): forces applied at points of the body and a torque,
@@ -97,6 +99,20 @@ struct RigidDrag {
   bool IsZero() const { return linear == 0.0 && quadratic == 0.0 && angular == 0.0; }
 };
 
+// Wire IK in a clip ("reach this point", wire_ik.h): the tip force that puts the tip of the
+// part's spine on a target, solved every step of playback (corotational_wire_ik.h for parts
+// with large_deflection), blended in by weight: at weight w the part's own bending loads are
+// scaled by 1 - w and the solved tip force by w. The part's support is placed by its pose and
+// its parents' poses (a parent's own bending is not followed: exact under rigid parents).
+template <template <typename> class TrackT>
+struct ReachChannels {
+  TrackT<Vec3> target;    // m, world axes; no keys: no reach
+  TrackT<double> weight;  // clamped to [0, 1] when sampled; no keys: 1
+  // Bound on the solved force, N, in [0, 1e12]; 0: 16 EI / L^2 (a tip force that turns a
+  // cantilever's tip by about 80 degrees).
+  double max_force = 0.0;
+};
+
 struct BoundaryKey {
   double time = 0.0;  // s; the family holds from this key to the next
   BoundaryCondition boundary = BoundaryCondition::kCantileverFree;
@@ -107,7 +123,8 @@ struct PartChannels {
   std::vector<BoundaryKey> boundary;  // empty: cantilever with a free end
   std::vector<PointLoadChannels<TrackT>> point_loads;
   std::vector<LineLoadChannels<TrackT>> line_loads;
-  TrackT<Vec3> tip_force;           // N, local axes, cantilevers only
+  TrackT<Vec3> tip_force;   // N, local axes, cantilevers only
+  TrackT<Vec3> tip_couple;  // N m, local axes: the direction the tip turns towards; free tips
   TrackT<Vec3> start_displacement;  // X0, m, local axes
   TrackT<Vec3> end_displacement;    // X1, m, local axes (simply supported and clamped)
   double axial_fixed_at = 0.0;      // v where the spine is held axially
@@ -119,6 +136,10 @@ struct PartChannels {
   std::vector<RigidForceChannels<TrackT>> rigid_forces;
   TrackT<Vec3> rigid_torque;  // N m, world axes
   RigidDrag rigid_drag;       // rigid parts only
+  // Deformable cantilevers: the spine curls past small-deflection theory (SpineLoads::
+  // large_deflection); every boundary key must then be a cantilever.
+  bool large_deflection = false;
+  ReachChannels<TrackT> reach;  // deformable cantilevers only
 };
 
 template <template <typename> class TrackT>

@@ -17,6 +17,7 @@
 
 #include "wirerig/anim/articulated_tracking.h"
 #include "wirerig/anim/clip.h"
+#include "wirerig/anim/clip_reach.h"
 #include "wirerig/anim/clip_sampling.h"
 #include "wirerig/anim/rigid_part.h"
 #include "wirerig/anim/wire_dynamics.h"
@@ -92,6 +93,8 @@ class Playback {
   // After Evaluate: the rigid body of every part at that time (rest state for parts without
   // dynamics). Pinned bodies (child parts) keep their joint as position.
   std::span<const RigidBodyState> bodies() const { return bodies_; }
+  // After Evaluate: what each reach target of the clip found (clip_reach.h).
+  const ClipReach& reach() const { return reach_; }
   const Clip& clip() const { return *clip_; }
   const RigModel& model() const { return *model_; }
 
@@ -105,6 +108,8 @@ class Playback {
   // The velocity (world) of the rest point `rest` of dynamic part d's body, now.
   Vec3 BodyPointVelocity(std::size_t d, const Vec3& rest) const;
   void ApplyInteractiveLoad();
+  // Poses the dynamic rigid parts of `sample` from their bodies (keeping the sampled loads).
+  void PoseDynamicParts(ClipSample* sample) const;
 
   const RigModel* model_ = nullptr;
   const Clip* clip_ = nullptr;
@@ -117,6 +122,8 @@ class Playback {
   std::vector<RigidBodyState> checkpoints_;       // #checkpoints x #dynamic parts
   WireDynamics wires_;                            // the deformable spines with inertia
   std::vector<ModalWireState> wire_checkpoints_;  // #checkpoints x #wires
+  ClipReach reach_;                               // the clip's reach targets (wire IK)
+  std::vector<Vec3> reach_checkpoints_;           // #checkpoints x #reaches
   std::size_t checkpoint_count_ = 0;
   std::size_t checkpoints_done_ = 0;
   double clock_ = 0.0;                      // clip time of the dynamic state, s

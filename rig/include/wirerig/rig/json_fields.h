@@ -42,6 +42,8 @@ class JsonObject {
   double Number(std::string_view key) const;
   double Number(std::string_view key, double fallback) const;
   int Integer(std::string_view key, int fallback) const;
+  bool Bool(std::string_view key) const;
+  bool Bool(std::string_view key, bool fallback) const;
   std::string String(std::string_view key) const;
   Vec3 Vector3(std::string_view key, const Vec3& fallback) const;
 

@@ -60,6 +60,11 @@ struct BendingJob {
   Vec3 start_displacement = Vec3::Zero();  // X0, m
   Vec3 end_displacement = Vec3::Zero();    // X1, m (ignored by cantilevers)
   Vec3 tip_force = Vec3::Zero();           // N at v = 1; must be zero unless a cantilever
+  // A bending couple at the free tip (v = 1), N m, as the lateral direction the tip turns
+  // towards times the couple's magnitude (the couple vector is tangent x tip_couple); adds
+  // tip_couple L^2 v^2 / 2EI. Must be zero unless kCantileverFree (a guided tip's support takes
+  // it).
+  Vec3 tip_couple = Vec3::Zero();
 
   std::span<const PointLoad> point_loads;  // any order, any count
   std::span<const LineLoad> line_loads;    // any order, any count

@@ -79,6 +79,7 @@ struct ModalWireLoads {
   Vec3 start_displacement = Vec3::Zero();  // X0, m
   Vec3 end_displacement = Vec3::Zero();    // X1, m (ignored by cantilevers)
   Vec3 tip_force = Vec3::Zero();           // N at v = 1, cantilevers only
+  Vec3 tip_couple = Vec3::Zero();          // N m at v = 1, free cantilevers only
   std::span<const PointLoad> point_loads;
   std::span<const LineLoad> line_loads;
   // Lateral acceleration of the wire's supports, m/s^2, local axes: the inertial line load

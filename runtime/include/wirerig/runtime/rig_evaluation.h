@@ -34,6 +34,9 @@ struct SpineLoads {
   std::span<const PointLoad> bending_point_loads;
   std::span<const LineLoad> bending_line_loads;
   Vec3 tip_force = Vec3::Zero();  // local axes, cantilevers only
+  // A couple at the free tip, N m, as the local direction the tip turns towards times its
+  // magnitude (BendingJob::tip_couple); free cantilevers only.
+  Vec3 tip_couple = Vec3::Zero();
   // Prescribed end displacements X0 (v = 0) and X1 (v = 1), m, local axes like the forces;
   // X1 is ignored by cantilevers (their free end is an output).
   Vec3 start_displacement = Vec3::Zero();
@@ -46,6 +49,15 @@ struct SpineLoads {
   // (modal dynamics, modal_wire.h), displacement in m and slope dX/ds dimensionless.
   std::span<const Vec3> extra_displacement;
   std::span<const Vec3> extra_slope;
+  // Large curls (cantilevers only): the bending in the plane of the spine's largest
+  // small-deflection displacement is solved as a co-rotational chain (corotational_wire.h,
+  // inextensible, dead loads; the bending loads' tangential components act too, along the rest
+  // tangent), so the spine may curl past half a turn; loads across that plane
+  // and extra_slope add small turns to the chain's tangents (extra_displacement only chooses
+  // the plane). At most 16 point and 8 line loads. The chain is solved from the straight wire
+  // every frame (deterministic, about 20-70 us per curled spine).
+  bool large_deflection = false;
+  int curl_segments = 0;  // the chain's K (CorotationalWireJob::segments); 0: automatic
 };
 
 // Loads bending one profile wire (paper Fig. 8: the whole or a stretch of all or some profile
@@ -139,6 +151,8 @@ struct RigWorkspace {
   std::vector<Vec3> slope;                         // scratch for the bending job's slope
   std::vector<Vec3> bending;                       // scratch for the bending job
   std::vector<double> axial;                       // scratch for the axial job
+  std::vector<Vec3> curl_points, curl_tangents;    // scratch for large curls
+  std::vector<Mat3> spine_turns;                   // per spine sample: its frame's local turn
   std::vector<std::vector<double>> strain;         // per part, per spine sample: N / EA
   std::vector<std::vector<double>> profile_scale;  // per part, per profile: in-plane scale
   std::vector<double> profile_samples;             // per point of the longest profile
