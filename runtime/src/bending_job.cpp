@@ -65,15 +65,7 @@ bool ParseBendingMode(std::string_view name, BendingMode* out) {
 }
 
 Status BendingJob::Validate() const {
-  switch (boundary) {
-    case BoundaryCondition::kSimplySupported:
-    case BoundaryCondition::kClamped:
-    case BoundaryCondition::kCantileverFree:
-    case BoundaryCondition::kCantileverGuided:
-      break;
-    default:
-      return Status::Invalid("boundary", "unknown boundary condition");
-  }
+  if (Status s = detail::CheckBoundary("boundary", boundary); !s) return s;
   switch (mode) {
     case BendingMode::kExact:
       break;

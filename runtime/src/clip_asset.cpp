@@ -5,6 +5,7 @@
 
 #include "asset_envelope.h"
 #include "byte_codec.h"
+#include "validation.h"
 
 namespace wirerig {
 namespace {
@@ -44,10 +45,6 @@ PartKey ReadPartKey(bytes::Reader& r) {
 bool Finite(double x) { return std::isfinite(x) && std::abs(x) <= 1e12; }
 bool Finite(const Vec3& v) { return Finite(v.x()) && Finite(v.y()) && Finite(v.z()); }
 bool OnWire(double v) { return v >= 0.0 && v <= 1.0; }
-bool Boundary(BoundaryCondition b) {
-  return int(b) >= int(BoundaryCondition::kSimplySupported) &&
-         int(b) <= int(BoundaryCondition::kCantileverGuided);
-}
 bool Inside(const LoadRange& r, std::size_t size) {
   return r.first <= size && r.count <= size - r.first;
 }
@@ -145,7 +142,8 @@ Status ValidateSampledClip(const SampledClip& c, const RigModel* model) {
         std::abs(k.rotation.squaredNorm() - 1.0) > 1e-6)
       return Status::InvalidElement("parts", index, "rotation", "must be a unit quaternion");
     if (!Finite(k.translation) || !Finite(k.tip_force) || !Finite(k.start_displacement) ||
-        !Finite(k.end_displacement) || !OnWire(k.axial_fixed_at) || !Boundary(k.boundary))
+        !Finite(k.end_displacement) || !OnWire(k.axial_fixed_at) ||
+        !detail::IsKnownBoundary(k.boundary))
       return Status::InvalidElement("parts", index, "", "must be finite, v in [0, 1]");
     if (!Inside(k.point_loads, c.point_loads.size()) ||
         !Inside(k.line_loads, c.line_loads.size()) ||
@@ -160,7 +158,7 @@ Status ValidateSampledClip(const SampledClip& c, const RigModel* model) {
     const ProfileKey& k = c.profile_keys[i];
     const int index = int(i);
     if (k.part >= c.part_count || !OnWire(k.from) || !OnWire(k.to) || !(k.from < k.to) ||
-        !Boundary(k.boundary))
+        !detail::IsKnownBoundary(k.boundary))
       return Status::InvalidElement("profile_keys", index, "",
                                     "need a part and 0 <= from < to <= 1");
     if (model != nullptr && k.profile >= model->parts[k.part].profiles.size())

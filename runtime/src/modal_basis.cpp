@@ -5,6 +5,8 @@
 
 #include <Eigen/SVD>
 
+#include "validation.h"
+
 namespace wirerig {
 namespace {
 
@@ -115,15 +117,7 @@ double Dot(const std::array<double, 4>& c, const Row& r) {
 }  // namespace
 
 Status BuildModalBasis(BoundaryCondition boundary, int modes, ModalBasis* out) {
-  switch (boundary) {
-    case BoundaryCondition::kSimplySupported:
-    case BoundaryCondition::kClamped:
-    case BoundaryCondition::kCantileverFree:
-    case BoundaryCondition::kCantileverGuided:
-      break;
-    default:
-      return Status::Invalid("boundary", "unknown boundary condition");
-  }
+  if (Status s = detail::CheckBoundary("boundary", boundary); !s) return s;
   if (modes < 1 || modes > ModalBasis::kMaxModes)
     return Status::Invalid("modes", "must lie in [1, 32]");
   if (out == nullptr) return Status::Invalid("out", "must not be null");

@@ -153,15 +153,7 @@ Status ValidateModalWireModel(const ModalWireModel& model) {
   const ModalBasis& basis = model.basis;
   if (basis.modes < 1 || basis.modes > ModalBasis::kMaxModes || !(basis.beta[0] > 0.0))
     return Status::Invalid("basis", "is not built (BuildModalBasis; modes in [1, 32])");
-  switch (basis.boundary) {
-    case BoundaryCondition::kSimplySupported:
-    case BoundaryCondition::kClamped:
-    case BoundaryCondition::kCantileverFree:
-    case BoundaryCondition::kCantileverGuided:
-      break;
-    default:
-      return Status::Invalid("basis", "unknown boundary condition");
-  }
+  if (Status s = detail::CheckBoundary("basis", basis.boundary); !s) return s;
   if (Status s = detail::CheckPositive("length", model.length, "must be positive and finite (m)");
       !s)
     return s;

@@ -7,6 +7,7 @@
 #include <span>
 #include <string_view>
 
+#include "wirerig/runtime/bending_job.h"
 #include "wirerig/runtime/status.h"
 
 namespace wirerig::detail {
@@ -17,6 +18,22 @@ inline bool InUnitInterval(double v) { return std::isfinite(v) && v >= 0.0 && v 
 // Deflections are bounded by (compliance x total load); keeping that bound far from the
 // largest double guarantees no output becomes Inf or NaN.
 inline constexpr double kMaxDeflectionBound = 1e150;
+
+// One of BendingJob's four boundary families (a value cast from an integer may be none).
+inline bool IsKnownBoundary(BoundaryCondition bc) {
+  switch (bc) {
+    case BoundaryCondition::kSimplySupported:
+    case BoundaryCondition::kClamped:
+    case BoundaryCondition::kCantileverFree:
+    case BoundaryCondition::kCantileverGuided:
+      return true;
+  }
+  return false;
+}
+
+inline Status CheckBoundary(std::string_view field, BoundaryCondition bc) {
+  return IsKnownBoundary(bc) ? Status::Ok() : Status::Invalid(field, "unknown boundary condition");
+}
 
 inline Status CheckPositive(std::string_view field, double x, std::string_view reason) {
   return PositiveFinite(x) ? Status::Ok() : Status::Invalid(field, reason);

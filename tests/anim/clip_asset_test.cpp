@@ -130,6 +130,9 @@ TEST(ClipAsset, RefusesBadClipsNamingTheField) {
   bad.parts[3].line_loads = {std::uint32_t(good.line_loads.size()), 1};
   EXPECT_NE(Refusal(SerializeClipAsset(bad)).find("parts[3].loads"), std::string::npos);
   bad = good;
+  bad.parts[2].boundary = static_cast<BoundaryCondition>(4);  // no such family
+  EXPECT_NE(Refusal(SerializeClipAsset(bad)).find("parts[2]"), std::string::npos);
+  bad = good;
   bad.parts.pop_back();
   EXPECT_NE(Refusal(SerializeClipAsset(bad)).find("one key per part per frame"), std::string::npos);
   bad = good;

@@ -607,6 +607,8 @@ TEST(ModalWireValidate, InvalidInputsAreNamed) {
   EXPECT_EQ(field([](M&, S&, J& j) { j.model = nullptr; }), "model");
   EXPECT_EQ(field([](M& m, S&, J&) { m.basis = ModalBasis(); }), "basis");
   EXPECT_EQ(field([](M& m, S&, J&) { m.basis.modes = 33; }), "basis");
+  EXPECT_EQ(field([](M& m, S&, J&) { m.basis.boundary = static_cast<BoundaryCondition>(7); }),
+            "basis");
   EXPECT_EQ(field([](M& m, S&, J&) { m.mass_per_length = -1.0; }), "mass_per_length");
   EXPECT_EQ(field([](M& m, S&, J&) { m.mass_per_length = 0.0; }), "mass_per_length");
   EXPECT_EQ(field([](M& m, S&, J&) { m.mass_per_length = 1e-40; }), "mass_per_length");
