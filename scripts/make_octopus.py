@@ -9,7 +9,10 @@ so it travels instead of bobbing in place. Each stroke has two phases:
   * the refill: the arms flare outwards (their web opening) while the body glides.
 The arms' loads are world-axes line loads on three stretches of each arm, the outer stretches
 later than the inner ones (a wave running root to tip), each arm a little later than the one
-before it around the body (phase-lagged, not in lockstep).
+before it around the body (phase-lagged, not in lockstep), and a couple at each arm's tip that
+curls it inwards at the peak of the pull (large_deflection: the arms curl past half a turn, as a
+co-rotational chain). Partway through, arm 0 reaches for a point in the water the body swims
+past (a reach target: wire IK every step), then lets go.
 
 Usage: scripts/make_octopus.py [OUT]   (default: samples/octopus/octopus.scene.json)
 """
@@ -34,11 +37,56 @@ WAVE_LAG = 0.12      # s between an arm's stretches, root to tip
 STRETCHES = [(0.1, 0.4), (0.4, 0.7), (0.7, 1.0)]
 PULL_IN = 20.0       # N/m, peak inward (and downward) load during the jet
 FLARE = 16.0         # N/m, peak outward load during the refill
+CURL = 18.0          # N m, peak tip couple of the pull (about 2.9 rad of curl on a 0.77 m arm)
+CURL_LAG = 0.2       # s after the pull's inner stretch
+REACH_ARM = 0
+# Arm 0 at rest (the procedural rig's numbers: `wirerig rig` prints them): its tip, the tip's
+# tangent, its spine's length.
+ARM0_TIP = (0.593436, -0.495431, -0.245809)
+ARM0_TIP_TANGENT = (0.155572, -0.985723, -0.0644042)
+ARM0_LENGTH = 0.766195
+# The reach: a point beside the body (riding with the mantle) that moves out and up and back,
+# each position the tip of an exact elastica of the arm (reachable by a tip force, F L^2/EI).
+REACH_KEYS = [(5.8, 0.0, 1.5), (6.4, 1.0, 1.5), (7.1, 1.0, 3.0), (7.9, 1.0, 2.0), (8.5, 0.0, 2.0)]
 ARM_MATERIAL = "cartilage"  # the arms' spines: muscular hydrostats, stiffer than soft tissue
 WIRE_MODES = 8       # the arms have inertia: they trail, lag and swing (playback.wires)
 WIRE_DAMPING = 0.15
 KEYS_PER_STROKE = 8  # cubic keys per stroke for the arms' loads
 JET_KEYS = 6         # linear keys over each jet pulse
+
+
+def elastica_tip(alpha, steps=2000):
+  """Tip (x, y) / L of a cantilever under a tip force perpendicular to its root, F L^2/EI =
+  alpha: theta'' = -alpha cos(theta), theta(0) = 0, theta'(1) = 0, shot on theta'(0) by RK4."""
+  def run(k0):
+    h, state = 1.0 / steps, (0.0, k0, 0.0, 0.0)
+    f = lambda s: (s[1], -alpha * math.cos(s[0]), math.cos(s[0]), math.sin(s[0]))
+    for _ in range(steps):
+      a = f(state)
+      b = f([state[j] + h / 2 * a[j] for j in range(4)])
+      c = f([state[j] + h / 2 * b[j] for j in range(4)])
+      d = f([state[j] + h * c[j] for j in range(4)])
+      state = [state[j] + h / 6 * (a[j] + 2 * b[j] + 2 * c[j] + d[j]) for j in range(4)]
+    return state
+  lo, hi = 0.0, 1.5 * alpha + 1.0
+  for _ in range(60):
+    mid = 0.5 * (lo + hi)
+    lo, hi = (lo, mid) if run(mid)[1] > 0.0 else (mid, hi)
+  state = run(0.5 * (lo + hi))
+  return state[2], state[3]
+
+
+def reach_target(alpha):
+  """Arm 0's tip bent outwards (horizontally away from the body) by an elastica of alpha."""
+  angle = 2.0 * math.pi * (REACH_ARM + 0.5) / ARMS
+  out = (math.cos(angle), 0.0, -math.sin(angle))
+  t = ARM0_TIP_TANGENT
+  along = sum(out[k] * t[k] for k in range(3))
+  e1 = [out[k] - along * t[k] for k in range(3)]
+  norm = math.sqrt(sum(c * c for c in e1))
+  x, y = elastica_tip(alpha)
+  return [round(ARM0_TIP[k] + ARM0_LENGTH * ((x - 1.0) * t[k] + y * e1[k] / norm), 6)
+          for k in range(3)]
 
 
 def jet_thrust(t):
@@ -93,7 +141,24 @@ def arm_track(i):
       force = [round(radial * out[0], 6), round(down, 6), round(radial * out[2], 6)]
       keys.append([round(t, 6), force, "cubic"])
     loads.append({"from": a, "to": b, "axes": "world", "force_per_length": {"keys": keys}})
-  return {"part": f"tentacle_{i}", "boundary": "cantilever_free", "line_loads": loads}
+  couple = []
+  for t in key_times():
+    pull = max(-arm_drive(t - i * ARM_LAG - CURL_LAG), 0.0) ** 2
+    couple.append([round(t, 6), [round(-CURL * pull * out[0], 6), 0.0,
+                                 round(-CURL * pull * out[2], 6)], "cubic"])
+  track = {"part": f"tentacle_{i}", "boundary": "cantilever_free", "large_deflection": True,
+           "line_loads": loads, "tip_couple": {"keys": couple}, "tip_couple_axes": "world"}
+  if i == REACH_ARM:
+    # The target moves along the elastica tips (every key reachable), F L^2/EI linear in time.
+    target_keys = []
+    for (t0, _, a0), (t1, _, a1) in zip(REACH_KEYS, REACH_KEYS[1:]):
+      steps = max(1, int(round((t1 - t0) / 0.1)))
+      target_keys += [[round(t0 + (t1 - t0) * k / steps, 6), reach_target(a0 + (a1 - a0) * k / steps),
+                       "linear"] for k in range(steps)]
+    target_keys.append([REACH_KEYS[-1][0], reach_target(REACH_KEYS[-1][2]), "linear"])
+    track["reach"] = {"parent_frame": True, "target": {"keys": target_keys},
+                      "weight": {"keys": [[t, w, "cubic"] for t, w, _ in REACH_KEYS]}}
+  return track
 
 
 def scene():

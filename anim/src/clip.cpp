@@ -127,8 +127,10 @@ PartChannels<Track> Built(const PartChannels<RawTrack>& c) {
   out.line_loads = BuiltList(c.line_loads);
   out.tip_force = Built(c.tip_force);
   out.tip_couple = Built(c.tip_couple);
+  out.tip_couple_axes = c.tip_couple_axes;
   out.large_deflection = c.large_deflection;
-  out.reach = {Built(c.reach.target), Built(c.reach.weight), c.reach.max_force};
+  out.reach = {Built(c.reach.target), c.reach.parent_frame, Built(c.reach.weight),
+               c.reach.max_force};
   out.start_displacement = Built(c.start_displacement);
   out.end_displacement = Built(c.end_displacement);
   out.axial_fixed_at = c.axial_fixed_at;

@@ -109,15 +109,15 @@ BoundaryCondition ReadBoundary(const json& value, const std::string& path) {
   return out;
 }
 
-LoadAxes ReadAxes(const JsonObject& o) {
-  if (!o.Has("axes")) return LoadAxes::kLocal;
-  const std::string axes = o.String("axes");
+LoadAxes ReadAxes(const JsonObject& o, std::string_view key = "axes") {
+  if (!o.Has(key)) return LoadAxes::kLocal;
+  const std::string axes = o.String(key);
   if (axes == "local") return LoadAxes::kLocal;
   if (axes == "world") return LoadAxes::kWorld;
-  throw FieldError(o.PathOf("axes"), "must be \"local\" or \"world\"");
+  throw FieldError(o.PathOf(key), "must be \"local\" or \"world\"");
 }
-void WriteAxes(json& out, LoadAxes axes) {
-  if (axes == LoadAxes::kWorld) out["axes"] = "world";
+void WriteAxes(json& out, LoadAxes axes, const char* key = "axes") {
+  if (axes == LoadAxes::kWorld) out[key] = "world";
 }
 
 PointLoadChannels<RawTrack> ReadPointLoad(const JsonObject& o) {
@@ -222,10 +222,25 @@ std::vector<BoundaryKey> ReadBoundaryKeys(const JsonObject& o) {
 }
 
 RawPartTracks ReadPartTracks(const JsonObject& o) {
-  o.RejectUnknownKeys({"part", "boundary", "point_loads", "line_loads", "tip_force", "tip_couple",
-                       "large_deflection", "reach", "start_displacement", "end_displacement",
-                       "axial_fixed_at", "axial_point_loads", "axial_line_loads", "rotation",
-                       "translation", "joint_angles", "rigid_forces", "rigid_torque",
+  o.RejectUnknownKeys({"part",
+                       "boundary",
+                       "point_loads",
+                       "line_loads",
+                       "tip_force",
+                       "tip_couple",
+                       "tip_couple_axes",
+                       "large_deflection",
+                       "reach",
+                       "start_displacement",
+                       "end_displacement",
+                       "axial_fixed_at",
+                       "axial_point_loads",
+                       "axial_line_loads",
+                       "rotation",
+                       "translation",
+                       "joint_angles",
+                       "rigid_forces",
+                       "rigid_torque",
                        "rigid_drag"});
   RawPartTracks tracks;
   tracks.part = o.String("part");
@@ -235,10 +250,12 @@ RawPartTracks ReadPartTracks(const JsonObject& o) {
   c.line_loads = ReadList(o, "line_loads", ReadLineLoad);
   ReadOptionalTrack(o, "tip_force", &c.tip_force);
   ReadOptionalTrack(o, "tip_couple", &c.tip_couple);
+  c.tip_couple_axes = ReadAxes(o, "tip_couple_axes");
   c.large_deflection = o.Bool("large_deflection", false);
   if (o.Has("reach")) {
     const JsonObject reach = o.Object("reach");
-    reach.RejectUnknownKeys({"target", "weight", "max_force"});
+    reach.RejectUnknownKeys({"target", "parent_frame", "weight", "max_force"});
+    c.reach.parent_frame = reach.Bool("parent_frame", false);
     ReadOptionalTrack(reach, "target", &c.reach.target);
     ReadOptionalTrack(reach, "weight", &c.reach.weight);
     c.reach.max_force = reach.Number("max_force", c.reach.max_force);
@@ -275,12 +292,14 @@ json ToJson(const RawPartTracks& tracks) {
   WriteList(out, "line_loads", c.line_loads);
   WriteOptionalTrack(out, "tip_force", c.tip_force);
   WriteOptionalTrack(out, "tip_couple", c.tip_couple);
+  WriteAxes(out, c.tip_couple_axes, "tip_couple_axes");
   if (c.large_deflection) out["large_deflection"] = true;
   if (!c.reach.target.keys.empty()) {
     json reach = json::object();
     WriteOptionalTrack(reach, "target", c.reach.target);
     WriteOptionalTrack(reach, "weight", c.reach.weight);
     reach["max_force"] = c.reach.max_force;
+    if (c.reach.parent_frame) reach["parent_frame"] = true;
     out["reach"] = reach;
   }
   WriteOptionalTrack(out, "start_displacement", c.start_displacement);

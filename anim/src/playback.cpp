@@ -48,10 +48,11 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
   if (!wires) return Error{"wires: " + wires.error()};
   playback.wires_ = std::move(wires).value();
   playback.reach_ = ClipReach::Make(model, clip);
+  playback.wire_scale_.assign(model.parts.size(), 1.0);
   if (!playback.wires_.empty()) {
     playback.step_sample_ = MakeClipSample(clip, model);
     SampleClip(clip, 0.0, &playback.step_sample_);
-    if (Status s = playback.reach_.Apply(0.0, true, &playback.step_sample_); !s)
+    if (Status s = playback.reach_.Apply(0.0, ClipReach::Solve::kStep, &playback.step_sample_); !s)
       return Error{"reach: " + ToString(s)};
     if (Status s = playback.wires_.Reset(playback.step_sample_); !s)
       return Error{"wires: " + ToString(s)};
@@ -77,9 +78,9 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
     const std::span<const ModalWireState> wire_states = playback.wires_.states();
     playback.wire_checkpoints_.resize(count * wire_states.size());
     std::copy(wire_states.begin(), wire_states.end(), playback.wire_checkpoints_.begin());
-    const std::span<const Vec3> forces = playback.reach_.kept_forces();
-    playback.reach_checkpoints_.resize(count * forces.size());
-    std::copy(forces.begin(), forces.end(), playback.reach_checkpoints_.begin());
+    const std::span<const ClipReach::Kept> kept = playback.reach_.kept();
+    playback.reach_checkpoints_.resize(count * kept.size());
+    std::copy(kept.begin(), kept.end(), playback.reach_checkpoints_.begin());
     playback.checkpoints_done_ = 1;
   }
   return playback;
@@ -135,7 +136,7 @@ Status Playback::StepBodies(double dt) {
   SampleClip(*clip_, clock_, &step_sample_);
   if (!reach_.empty()) {
     PoseDynamicParts(&step_sample_);
-    if (Status s = reach_.Apply(clock_, true, &step_sample_); !s) return s;
+    if (Status s = reach_.Apply(clock_, ClipReach::Solve::kStep, &step_sample_); !s) return s;
   }
   return wires_.Step(step_sample_, support_acceleration_, support_rotation_, dt);
 }
@@ -153,7 +154,7 @@ void Playback::PoseDynamicParts(ClipSample* sample) const {
 // the missing checkpoints on the way), then whole steps, then one partial step to land on t.
 Status Playback::AdvanceBodies(double t) {
   const std::size_t parts = dynamic_parts_.size(), wires = wires_.size();
-  const std::size_t reaches = reach_.kept_forces().size();
+  const std::size_t reaches = reach_.kept().size();
   const double h = options_.rigid_step;
   const double span = h * static_cast<double>(options_.checkpoint_interval);
   const std::size_t capacity = checkpoint_count_;
@@ -164,7 +165,8 @@ Status Playback::AdvanceBodies(double t) {
     for (std::size_t d = 0; d < parts; ++d)
       bodies_[dynamic_parts_[d]] = checkpoints_[c * parts + d];
     wires_.Restore(std::span<const ModalWireState>(wire_checkpoints_).subspan(c * wires, wires));
-    reach_.Restore(std::span<const Vec3>(reach_checkpoints_).subspan(c * reaches, reaches));
+    reach_.Restore(
+        std::span<const ClipReach::Kept>(reach_checkpoints_).subspan(c * reaches, reaches));
     clock_ = static_cast<double>(c) * span;
   };
   if (wanted < checkpoints_done_) {
@@ -183,9 +185,8 @@ Status Playback::AdvanceBodies(double t) {
       const std::span<const ModalWireState> states = wires_.states();
       std::copy(states.begin(), states.end(),
                 wire_checkpoints_.begin() + std::ptrdiff_t(c * wires));
-      const std::span<const Vec3> forces = reach_.kept_forces();
-      std::copy(forces.begin(), forces.end(),
-                reach_checkpoints_.begin() + std::ptrdiff_t(c * reaches));
+      const std::span<const ClipReach::Kept> kept = reach_.kept();
+      std::copy(kept.begin(), kept.end(), reach_checkpoints_.begin() + std::ptrdiff_t(c * reaches));
       checkpoints_done_ = c + 1;
     }
   }
@@ -321,9 +322,13 @@ Status Playback::Run(double t, EvaluateRigJob& job) {
     if (Status s = AdvanceBodies(local); !s) return s;
     PoseDynamicParts(&sample_);
   }
-  if (Status s = reach_.Apply(local, false, &sample_); !s) return s;
-  if (HasDynamics())
-    if (Status s = wires_.Apply(sample_.poses); !s) return s;
+  if (Status s = reach_.Apply(local, ClipReach::Solve::kFresh, &sample_); !s) return s;
+  if (HasDynamics()) {
+    // A reaching part's motion beyond its static shape fades with the reach's weight.
+    for (std::size_t j = 0; j < reach_.parts().size(); ++j)
+      wire_scale_[reach_.parts()[j]] = 1.0 - reach_.reports()[j].weight;
+    if (Status s = wires_.Apply(sample_.poses, wire_scale_); !s) return s;
+  }
   for (std::size_t p = 0; p < interactive_joints_.size(); ++p)
     if (!interactive_joints_[p].isZero())
       sample_.poses[p].rotation = (sample_.poses[p].rotation *

@@ -99,7 +99,7 @@ Status WireDynamics::Step(const ClipSample& sample, std::span<const Vec3> suppor
   return Status::Ok();
 }
 
-Status WireDynamics::Apply(std::span<PartPose> poses) {
+Status WireDynamics::Apply(std::span<PartPose> poses, std::span<const double> residual_scale) {
   for (std::size_t w = 0; w < wires_.size(); ++w) {
     Wire& wire = wires_[w];
     const ModalWireState& state = states_[w];
@@ -132,6 +132,10 @@ Status WireDynamics::Apply(std::span<PartPose> poses) {
       }
       wire.extra_displacement[k] += d;
       wire.extra_slope[k] += per_length * s;
+    }
+    if (!residual_scale.empty() && residual_scale[wire.part] != 1.0) {
+      for (Vec3& d : wire.extra_displacement) d *= residual_scale[wire.part];
+      for (Vec3& s : wire.extra_slope) s *= residual_scale[wire.part];
     }
     loads.extra_displacement = wire.extra_displacement;
     loads.extra_slope = wire.extra_slope;

@@ -5,14 +5,21 @@
 //    a third of an arm's length at some frame (the strokes);
 //  * its arms have inertia (playback.wires): played again with static wires, the same clip
 //    puts the arm tips elsewhere by a visible amount (the lag and swing of the dynamics);
+//  * its arms curl (large_deflection): at the peak of a stroke an arm's tip, seen from the
+//    mantle, has moved over half the arm's length and turned past 120 degrees;
+//  * arm 0 reaches (wire IK in the clip): at full weight its tip is on the target, a point
+//    riding with the mantle, to 1e-6 of the arm's length;
 //  * the skin holds on every frame sampled: no edge stretched beyond 2x.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 
 #include "sample_test_support.h"
 #include "wirerig/rig/skin_quality.h"
+#include "wirerig/runtime/spine_interpolation.h"
 
 namespace wirerig::samples {
 namespace {
@@ -45,7 +52,11 @@ TEST(OctopusSample, TravelsOverABodySizeAndItsArmsStrokeAndTrail) {
   still_options.wires.modes = 0;
   Playback still = Playback::Make(model, played->playback->clip(), still_options).value();
   std::vector<Vec3> still_positions(rest.size());
-  double stroke = 0.0, lag = 0.0, worst_stretch = 0.0;
+  double stroke = 0.0, lag = 0.0, worst_stretch = 0.0, curl = 0.0, turn = 0.0, reach_miss = 0.0;
+  int reach_frames = 0;
+  const PartModel& arm_model = model.parts[arm];
+  const ReachChannels<Track>& reach = played->playback->clip().parts[arm].reach;
+  ASSERT_FALSE(reach.target.IsEmpty());
   Vec3 start = Vec3::Zero();
   for (double t = 0.0; t <= duration + 1e-9; t += kFrame) {
     played->Evaluate(t);
@@ -61,12 +72,38 @@ TEST(OctopusSample, TravelsOverABodySizeAndItsArmsStrokeAndTrail) {
         lag, (w.spine_points[arm].back() - still.workspace().spine_points[arm].back()).norm());
     worst_stretch =
         std::max(worst_stretch, MeasureSkin(reference, played->positions).worst_stretch);
+    // The mantle's motion (its spine's root frame, rest -> now), undone from the arm's tip.
+    const Mat3 mantle_turn = FrameAxes(w.spine_frames[mantle].front()) *
+                             FrameAxes(model.parts[mantle].spine_frames.front()).transpose();
+    const Vec3 seen = mantle_turn.transpose() * (w.spine_points[arm].back() - root) +
+                      model.parts[mantle].spine_points.front();
+    const Vec3 seen_tangent = mantle_turn.transpose() * w.spine_frames[arm].back().tangent;
+    curl = std::max(curl, (seen - arm_model.spine_points.back()).norm() / arm_length);
+    turn = std::max(turn, std::acos(std::clamp(
+                              seen_tangent.dot(arm_model.spine_frames.back().tangent), -1.0, 1.0)));
+    const double local = played->playback->clip().LocalTime(t);
+    if (reach.weight.Sample(local) >= 1.0) {
+      const Vec3 target =
+          mantle_turn * (reach.target.Sample(local) - model.parts[mantle].spine_points.front()) +
+          root;
+      reach_miss = std::max(reach_miss, (w.spine_points[arm].back() - target).norm());
+      ++reach_frames;
+    }
   }
   const double travel = (played->playback->workspace().spine_points[mantle].front() - start).norm();
   EXPECT_GT(travel, 1.0 * size) << "body size " << size;
   EXPECT_GT(stroke, arm_length / 3.0);
   EXPECT_GT(lag, 0.05 * arm_length);
   EXPECT_LT(worst_stretch, 2.0);
+  EXPECT_GT(curl, 0.5) << "tip turn " << turn * 180.0 / std::numbers::pi << " degrees";
+  EXPECT_GT(turn, 120.0 * std::numbers::pi / 180.0);
+  EXPECT_GT(reach_frames, 10);
+  EXPECT_LT(reach_miss, 1e-6 * arm_length);
+  std::printf(
+      "octopus: travel %.2f body sizes, curl %.2f arm lengths, tip turn %.0f degrees, "
+      "reach miss %.1e m over %d frames, worst stretch %.2f\n",
+      travel / size, curl, turn * 180.0 / std::numbers::pi, reach_miss, reach_frames,
+      worst_stretch);
 }
 
 }  // namespace

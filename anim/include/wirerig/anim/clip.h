@@ -106,7 +106,10 @@ struct RigidDrag {
 // its parents' poses (a parent's own bending is not followed: exact under rigid parents).
 template <template <typename> class TrackT>
 struct ReachChannels {
-  TrackT<Vec3> target;    // m, world axes; no keys: no reach
+  TrackT<Vec3> target;  // m, world axes (of the rest rig, see parent_frame); no keys: none
+  // The target rides with the part's parent (given at the parent's rest placement): a point on
+  // or beside a moving body. Otherwise a fixed point of the world.
+  bool parent_frame = false;
   TrackT<double> weight;  // clamped to [0, 1] when sampled; no keys: 1
   // Bound on the solved force, N, in [0, 1e12]; 0: 16 EI / L^2 (a tip force that turns a
   // cantilever's tip by about 80 degrees).
@@ -124,10 +127,11 @@ struct PartChannels {
   std::vector<PointLoadChannels<TrackT>> point_loads;
   std::vector<LineLoadChannels<TrackT>> line_loads;
   TrackT<Vec3> tip_force;   // N, local axes, cantilevers only
-  TrackT<Vec3> tip_couple;  // N m, local axes: the direction the tip turns towards; free tips
-  TrackT<Vec3> start_displacement;  // X0, m, local axes
-  TrackT<Vec3> end_displacement;    // X1, m, local axes (simply supported and clamped)
-  double axial_fixed_at = 0.0;      // v where the spine is held axially
+  TrackT<Vec3> tip_couple;  // N m: the direction the tip turns towards; free tips
+  LoadAxes tip_couple_axes = LoadAxes::kLocal;  // kWorld: turned into the tip's rest frame
+  TrackT<Vec3> start_displacement;              // X0, m, local axes
+  TrackT<Vec3> end_displacement;                // X1, m, local axes (simply supported and clamped)
+  double axial_fixed_at = 0.0;                  // v where the spine is held axially
   std::vector<AxialPointLoadChannels<TrackT>> axial_point_loads;
   std::vector<AxialLineLoadChannels<TrackT>> axial_line_loads;
   TrackT<Vec3> rotation;      // axis-angle vector, rad, world axes

@@ -2,7 +2,8 @@
 // a reach target, the tip force that puts its spine's tip on the target, blended into the
 // part's loads by the reach's weight. Small-deflection parts solve WireIkJob (one linear solve,
 // exact to round-off); parts with large_deflection solve CorotationalWireIkJob in the plane of
-// the rest tangent and the target (Levenberg-Marquardt, warm-started from the last kept force).
+// the rest tangent and the target (Levenberg-Marquardt from the small-deflection force: the
+// natural solution, the same whatever was solved before).
 //
 // Where the target lies for the part: its support is placed by its own pose and its parents'
 // poses, each a rigid motion of the rest rig (a parent's own bending is not followed, so the
@@ -36,24 +37,43 @@ class ClipReach {
   static ClipReach Make(const RigModel& model, const Clip& clip);
   bool empty() const { return parts_.empty(); }
 
-  // Solves every reach active at clip time t (weight > 0) for the poses in `sample` (rigid
-  // parts already posed by the caller) and blends it into those parts' loads: at weight w the
-  // part's bending loads scale by 1 - w and the solved tip force adds with w. keep: remember the
-  // solved forces as the next solves' first guesses (the playback's fixed steps keep them, its
-  // frame evaluations do not, so frames never change the steps). Never allocates.
-  Status Apply(double t, bool keep, ClipSample* sample);
+  // How Apply gets each reach's force.
+  enum class Solve : int {
+    kStep,   // a playback step: solves when kSolveInterval has passed since the kept solve
+             // (or the weight just became positive) and keeps it; the force holds in between
+    kFresh,  // a frame: solves, keeps nothing
+  };
+  // The reach solve's rate in playback steps (clip time, s): the force holds in between.
+  static constexpr double kSolveInterval = 1.0 / 60.0;
+
+  // Solves (by `solve`) every reach active at clip time t (weight > 0) for the poses in
+  // `sample` (rigid parts already posed by the caller) and blends it into those parts' loads:
+  // at weight w the part's bending loads scale by 1 - w and the solved tip force adds with w.
+  // Frames never change what the steps keep. Never allocates.
+  Status Apply(double t, Solve solve, ClipSample* sample);
 
   std::span<const std::size_t> parts() const { return parts_; }
   std::span<const ReachReport> reports() const { return reports_; }
-  // The kept forces, one per reach part (for checkpoints: copy out, copy back in).
-  std::span<const Vec3> kept_forces() const { return kept_; }
-  void Restore(std::span<const Vec3> forces);
+  // What the steps keep per reach part: its force and when it was solved (for checkpoints:
+  // copy out, copy back in).
+  struct Kept {
+    Vec3 force = Vec3::Zero();  // local axes of the part's tip, N
+    double time = -1.0;         // clip time of the solve, s; < 0: none
+    int segments = 0;           // the chain's K it was solved on (large curls)
+    ReachReport report;
+  };
+  std::span<const Kept> kept() const { return kept_; }
+  void Restore(std::span<const Kept> kept);
 
  private:
+  // Solves reach j at clip time t for the part's sampled loads into *out; the placements are
+  // this Apply's.
+  Status SolveOne(std::size_t j, double t, const SpineLoads& loads, Kept* out) const;
+
   const RigModel* model_ = nullptr;
   const Clip* clip_ = nullptr;
   std::vector<std::size_t> parts_;
-  std::vector<Vec3> kept_;  // local axes of the part's tip, N
+  std::vector<Kept> kept_;
   std::vector<ReachReport> reports_;
   std::vector<Mat3> rotations_;     // per part: rest world -> world, of the rigid placement
   std::vector<Vec3> translations_;  // per part

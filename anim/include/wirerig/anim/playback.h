@@ -116,14 +116,15 @@ class Playback {
   PlaybackOptions options_;
   RigWorkspace workspace_;
   ClipSample sample_;
-  std::vector<std::size_t> dynamic_parts_;        // rigid parts the clip drives by forces
-  std::vector<RigidPartBody> dynamic_bodies_;     // their bodies, same order
-  std::vector<RigidBodyState> bodies_;            // per part, at the current time
-  std::vector<RigidBodyState> checkpoints_;       // #checkpoints x #dynamic parts
-  WireDynamics wires_;                            // the deformable spines with inertia
-  std::vector<ModalWireState> wire_checkpoints_;  // #checkpoints x #wires
-  ClipReach reach_;                               // the clip's reach targets (wire IK)
-  std::vector<Vec3> reach_checkpoints_;           // #checkpoints x #reaches
+  std::vector<std::size_t> dynamic_parts_;          // rigid parts the clip drives by forces
+  std::vector<RigidPartBody> dynamic_bodies_;       // their bodies, same order
+  std::vector<RigidBodyState> bodies_;              // per part, at the current time
+  std::vector<RigidBodyState> checkpoints_;         // #checkpoints x #dynamic parts
+  WireDynamics wires_;                              // the deformable spines with inertia
+  std::vector<ModalWireState> wire_checkpoints_;    // #checkpoints x #wires
+  ClipReach reach_;                                 // the clip's reach targets (wire IK)
+  std::vector<double> wire_scale_;                  // per part: its wire's residual's scale
+  std::vector<ClipReach::Kept> reach_checkpoints_;  // #checkpoints x #reaches
   std::size_t checkpoint_count_ = 0;
   std::size_t checkpoints_done_ = 0;
   double clock_ = 0.0;                      // clip time of the dynamic state, s

@@ -48,8 +48,10 @@ class WireDynamics {
   Status Step(const ClipSample& sample, std::span<const Vec3> support_acceleration,
               std::span<const Mat3> support_rotation, double dt);
   // Points each wire part's SpineLoads::extra_displacement / extra_slope at its residual for
-  // the loads in `poses` (the same loads the wires were last stepped to). Never allocates.
-  Status Apply(std::span<PartPose> poses);
+  // the loads in `poses` (the same loads the wires were last stepped to), times
+  // residual_scale[part] if given (one per part; e.g. a reaching arm held by its muscles).
+  // Never allocates.
+  Status Apply(std::span<PartPose> poses, std::span<const double> residual_scale = {});
 
   // The modal states, one per wire (for checkpoints: copy out, copy back in).
   std::span<const ModalWireState> states() const { return states_; }
