@@ -56,6 +56,9 @@ Result<SampledClip> SampleClipForRuntime(const RigModel& model, const Clip& clip
       const SpineLoads& loads = pose.loads;
       key.boundary = loads.boundary;
       key.tip_force = loads.tip_force;
+      key.tip_couple = loads.tip_couple;
+      key.large_deflection = loads.large_deflection;
+      key.curl_segments = std::uint32_t(loads.curl_segments);
       key.start_displacement = loads.start_displacement;
       key.end_displacement = loads.end_displacement;
       key.axial_fixed_at = loads.axial_fixed_at;

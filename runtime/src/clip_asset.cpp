@@ -24,6 +24,7 @@ void Write(bytes::Writer& w, const PartKey& k) {
   w.V3(k.translation);
   w.U8(std::uint8_t(k.boundary));
   w.V3(k.tip_force), w.V3(k.start_displacement), w.V3(k.end_displacement);
+  w.V3(k.tip_couple), w.U8(k.large_deflection ? 1 : 0), w.U32(k.curl_segments);
   w.F64(k.axial_fixed_at);
   Write(w, k.point_loads), Write(w, k.line_loads);
   Write(w, k.axial_point_loads), Write(w, k.axial_line_loads);
@@ -36,6 +37,7 @@ PartKey ReadPartKey(bytes::Reader& r) {
   k.translation = r.V3();
   k.boundary = BoundaryCondition(r.U8());
   k.tip_force = r.V3(), k.start_displacement = r.V3(), k.end_displacement = r.V3();
+  k.tip_couple = r.V3(), k.large_deflection = r.U8() != 0, k.curl_segments = r.U32();
   k.axial_fixed_at = r.F64();
   k.point_loads = ReadRange(r), k.line_loads = ReadRange(r);
   k.axial_point_loads = ReadRange(r), k.axial_line_loads = ReadRange(r);
@@ -145,6 +147,10 @@ Status ValidateSampledClip(const SampledClip& c, const RigModel* model) {
         !Finite(k.end_displacement) || !OnWire(k.axial_fixed_at) ||
         !detail::IsKnownBoundary(k.boundary))
       return Status::InvalidElement("parts", index, "", "must be finite, v in [0, 1]");
+    if (!Finite(k.tip_couple))
+      return Status::InvalidElement("parts", index, "tip_couple", "must be finite");
+    if (k.curl_segments > 256)
+      return Status::InvalidElement("parts", index, "curl_segments", "must be at most 256");
     if (!Inside(k.point_loads, c.point_loads.size()) ||
         !Inside(k.line_loads, c.line_loads.size()) ||
         !Inside(k.axial_point_loads, c.axial_point_loads.size()) ||
@@ -286,6 +292,10 @@ Status SampleClipJob::Run() const {
     const bool same = a.boundary == e.boundary;
     loads.boundary = (same || f < 0.5) ? a.boundary : e.boundary;
     loads.tip_force = a.tip_force + f * (e.tip_force - a.tip_force);
+    loads.tip_couple = a.tip_couple + f * (e.tip_couple - a.tip_couple);
+    const PartKey& nearer = f < 0.5 ? a : e;
+    loads.large_deflection = nearer.large_deflection;
+    loads.curl_segments = int(nearer.curl_segments);
     loads.start_displacement =
         a.start_displacement + f * (e.start_displacement - a.start_displacement);
     loads.end_displacement = a.end_displacement + f * (e.end_displacement - a.end_displacement);

@@ -18,7 +18,8 @@
 
 namespace wirerig {
 
-inline constexpr std::uint32_t kClipAssetVersion = 1;
+// 2: parts carry tip couples and large curls.
+inline constexpr std::uint32_t kClipAssetVersion = 2;
 
 enum class ClipLoop : int { kOnce = 0, kLoop = 1, kPingPong = 2 };
 
@@ -34,6 +35,9 @@ struct PartKey {
   Vec3 translation = Vec3::Zero();
   BoundaryCondition boundary = BoundaryCondition::kCantileverFree;
   Vec3 tip_force = Vec3::Zero();
+  Vec3 tip_couple = Vec3::Zero();
+  bool large_deflection = false;
+  std::uint32_t curl_segments = 0;
   Vec3 start_displacement = Vec3::Zero();
   Vec3 end_displacement = Vec3::Zero();
   double axial_fixed_at = 0.0;
