@@ -102,9 +102,8 @@ Status CurlSpine(double length, double bending_stiffness, const SpineLoads& load
 
     // Back to local axes.
     const double out_displacement = displacement[k].dot(outside);
-    displacement[k] = loads.start_displacement.head<2>().dot(across.head<2>()) * across +
-                      position.y() * across + out_displacement * outside +
-                      (position.x() - samples[k] * length) * axis;
+    displacement[k] = loads.start_displacement.dot(across) * across + position.y() * across +
+                      out_displacement * outside + (position.x() - samples[k] * length) * axis;
     const Mat3 in_turn = Eigen::AngleAxisd(in, outside).toRotationMatrix();
     const double out = std::atan(slope[k].dot(outside));
     const Vec3 local_tangent = std::cos(out) * (in_turn * axis) + std::sin(out) * outside;

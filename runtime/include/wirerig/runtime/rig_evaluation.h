@@ -55,7 +55,8 @@ struct SpineLoads {
   // tangent), so the spine may curl past half a turn; loads across that plane
   // and extra_slope add small turns to the chain's tangents (extra_displacement only chooses
   // the plane). At most 16 point and 8 line loads. The chain is solved from the straight wire
-  // every frame (deterministic, about 20-70 us per curled spine).
+  // every frame (deterministic; a cold solve is 15-80 chain sweeps of K segments (~0.5 us
+  // per segment): the octopus's 301 frames with 8 curled arms bake in 1.3 s).
   bool large_deflection = false;
   int curl_segments = 0;  // the chain's K (CorotationalWireJob::segments); 0: automatic
 };
