@@ -15,10 +15,11 @@ namespace wirerig::cli {
 CLI::App* AddDemoCommand(CLI::App& app, DemoCommandOptions& options) {
   CLI::App* demo = app.add_subcommand(
       "demo",
-      "The demo: bake the octopus's 10 s swim and the human's 10 s walk to .glb and draw their "
-      "contact sheets, headless");
+      "The demo: bake the octopus's 10 s swim and 10 s crawl and the human's 10 s walk to .glb "
+      "and draw their contact sheets, headless");
   demo->add_option("-o,--output", options.output,
-                   "Folder for octopus.glb, .png and .scene.json, walk.glb and .png")
+                   "Folder for octopus.glb, .png and .scene.json, octopus_crawl.glb and .png, "
+                   "walk.glb and .png")
       ->capture_default_str();
   options.samples = WIRERIG_SAMPLES_DIR;
   demo->add_option("--samples", options.samples,
@@ -56,6 +57,14 @@ int RunDemoCommand(const DemoCommandOptions& options, std::ostream& out, std::os
   render.size = "640x400";
   render.sheet = 6;
   if (int code = RunRenderCommand(render, out, err); code != 0) return code;
+
+  // The octopus's second clip: it crawls along the ground on its arms.
+  bake.clip = render.clip = "crawl";
+  bake.output = (folder / "octopus_crawl.glb").string();
+  if (int code = RunBakeCommand(bake, out, err); code != 0) return code;
+  render.output = (folder / "octopus_crawl.png").string();
+  if (int code = RunRenderCommand(render, out, err); code != 0) return code;
+  bake.clip = render.clip = "";
 
   // The walk: human.zae on its bone chain (its mesh comes from scripts/setup.sh), baked in skin
   // mode (a joint per spine sample, residual-free: a few MB rather than a morph per frame).

@@ -38,8 +38,8 @@ Result<std::vector<CatalogEntry>> LoadCatalog(const std::string& path) {
     const nlohmann::json& array = RequireArray(document, "");
     for (std::size_t i = 0; i < ArraySize(array); ++i) {
       const JsonObject o(ArrayElement(array, i), "/" + std::to_string(i));
-      o.RejectUnknownKeys(
-          {"name", "title", "figure", "scene", "picture", "summary", "time", "sheet", "skin"});
+      o.RejectUnknownKeys({"name", "title", "figure", "scene", "clip", "picture", "summary", "time",
+                           "sheet", "skin"});
       CatalogEntry e;
       e.name = o.String("name");
       e.title = o.String("title");
@@ -47,6 +47,7 @@ Result<std::vector<CatalogEntry>> LoadCatalog(const std::string& path) {
       if (o.Has("scene") == o.Has("picture"))
         throw FieldError(o.path(), "needs exactly one of \"scene\" and \"picture\"");
       e.scene = o.Has("scene") ? o.String("scene") : "";
+      e.clip = o.Has("clip") ? o.String("clip") : "";
       e.picture = o.Has("picture") ? o.String("picture") : "";
       e.summary = o.String("summary");
       e.time = o.Number("time", -1.0);
@@ -120,6 +121,7 @@ int RunGalleryCommand(const SamplesCommandOptions& options, std::ostream& out, s
     RenderCommandOptions render;
     render.scene = scene.string();
     render.output = picture.string();
+    render.clip = e.clip;
     if (e.time >= 0.0) {
       render.time = e.time;
       render.size = "960x640";

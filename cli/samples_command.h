@@ -22,6 +22,7 @@ struct CatalogEntry {
   std::string summary;  // one line
   double time = -1.0;   // picture: a single time (s), or -1 for a contact sheet
   int sheet = 4;        // picture: tiles of the contact sheet
+  std::string clip;     // the scene's clip to draw; empty: its first
   bool skin = false;    // also a picture without the wire overlay (<name>_skin.png)
 };
 

@@ -14,6 +14,16 @@ curls it inwards at the peak of the pull (large_deflection: the arms curl past h
 co-rotational chain). Partway through, arm 0 reaches for a point in the water the body swims
 past (a reach target: wire IK every step), then lets go.
 
+The second clip, "crawl", walks the octopus along the ground plane (across the camera's view)
+in a two-group gait: the body settles onto its arms and glides forwards (keyed root motion)
+while four arms (every other one around the body) hold their tips on footholds on the ground
+(reach targets in world axes: wire IK every step) and the other four let go, swing forwards
+under their own line loads (their tips brushing over the ground) and plant on footholds a
+stride ahead; then the groups swap. The arms' reach is the small-deflection one (a lateral tip
+force, exact sideways): their tips hang nearly straight down, so a foothold's height is out of
+reach of a lateral force and the tips ride within a few cm of it (measured by
+tests/samples/octopus_crawl_test.cpp).
+
 Usage: scripts/make_octopus.py [OUT]   (default: samples/octopus/octopus.scene.json)
 """
 import json
@@ -161,6 +171,96 @@ def arm_track(i):
   return track
 
 
+# The crawl (clip "crawl"): positions in m, times in s.
+CRAWL_DURATION = 10.0
+GROUND = -0.62        # the ground plane's height (the scene's camera.ground)
+FOOT_LIFT = 0.105     # the arm's spine tip over the ground at a foothold (the skin's tip beyond it)
+SETTLE = 1.0          # the body lowers onto its arms (every arm planting) over [0, SETTLE]
+DROP = 0.02           # how far the body lowers: its arms' skin then touches the ground
+GAIT = 1.25           # s per gait cycle: each group holds for half of it, swings the other half
+STRIDE = 0.2          # how far the body moves during half a cycle
+SPLAY = 0.04          # a foothold's offset sideways (outwards, across the heading) from the rest tip
+CAMERA_YAW = 1.2      # rad: the scene's camera looks along (-sin, 0, -cos) of it
+# The crawl's heading: across the camera's view (so the contact sheet shows the path).
+HEADING = (math.cos(CAMERA_YAW), 0.0, -math.sin(CAMERA_YAW))
+LIFT_OFF = 0.25       # s over which a foot lets go of the ground
+SWING_LOAD = 4.0      # N/m along the heading on a free arm: it swings forwards
+
+
+def crawl_travel(t):
+  """The body's travel along HEADING at time t: still while settling, then STRIDE per half
+  cycle."""
+  return max(t - SETTLE, 0.0) * 2.0 * STRIDE / GAIT
+
+
+def crawl_body_y(t):
+  """The body's height offset: lowered by DROP with a smooth ease over [0, SETTLE]."""
+  u = min(t / SETTLE, 1.0)
+  return -DROP * u * u * (3.0 - 2.0 * u)
+
+
+def foothold(i, t):
+  """Arm i's foothold on the ground: beside its rest tip's place (outwards in Z) when the body
+  is where it is at time t. The arm reaches it by bending sideways (its tip hangs nearly
+  straight down: the ground takes up DROP less the rest tips' height over it)."""
+  angle = 2.0 * math.pi * (i + 0.5) / ARMS
+  radius = math.hypot(ARM0_TIP[0], ARM0_TIP[2])
+  tip = (radius * math.cos(angle), -radius * math.sin(angle))
+  across = (-HEADING[2], HEADING[0])  # horizontal, perpendicular to the heading (x, z)
+  side = SPLAY if tip[0] * across[0] + tip[1] * across[1] > 0.0 else -SPLAY
+  travel = crawl_travel(t)
+  return [round(tip[0] + travel * HEADING[0] + side * across[0], 6), round(GROUND + FOOT_LIFT, 6),
+          round(tip[1] + travel * HEADING[2] + side * across[1], 6)]
+
+
+def stances(i):
+  """Arm i's stance intervals: every arm plants while settling; even arms swing second."""
+  half = 0.5 * GAIT
+  first = SETTLE + (half if i % 2 == 0 else 0.0)
+  out = [(0.0, first)]
+  t = first + half
+  while t < CRAWL_DURATION:
+    out.append((t, min(t + half, CRAWL_DURATION)))
+    t += 2.0 * half
+  return out
+
+
+def crawl_arm_track(i):
+  weight, target = [], []
+  for n, (a, b) in enumerate(stances(i)):
+    # The foothold is where the arm's tip lands when the body is at mid-stance's place minus
+    # nothing: the body's place at the middle of the stance, so the arm sweeps from ahead to
+    # behind of its neutral place.
+    mid = 0.5 * (a + b) if n > 0 else SETTLE
+    target.append([round(a, 6), foothold(i, mid), "step"])
+    if n == 0:
+      weight += [[0.0, 0.0, "cubic"], [round(0.8 * SETTLE, 6), 1.0, "linear"]]
+    else:
+      weight += [[round(a, 6), 1.0, "linear"]]
+    if b < CRAWL_DURATION:
+      weight += [[round(b, 6), 1.0, "cubic"], [round(b + LIFT_OFF, 6), 0.0, "cubic"]]
+  load = [round(SWING_LOAD * HEADING[0], 6), 0.0, round(SWING_LOAD * HEADING[2], 6)]
+  return {"part": f"tentacle_{i}", "boundary": "cantilever_free",
+          "line_loads": [{"from": 0.3, "to": 1.0, "axes": "world",
+                          "force_per_length": {"keys": [[0.0, load, "step"]]}}],
+          "reach": {"target": {"keys": target}, "weight": {"keys": weight}}}
+
+
+def crawl_mantle_track():
+  steps = int(round(CRAWL_DURATION / 0.1))
+  keys = []
+  for k in range(steps + 1):
+    t = 0.1 * k
+    keys.append([round(t, 6), [round(crawl_travel(t) * HEADING[0], 6), round(crawl_body_y(t), 6),
+                               round(crawl_travel(t) * HEADING[2], 6)], "linear"])
+  return {"part": "mantle", "translation": {"keys": keys}}
+
+
+def crawl_clip():
+  return {"name": "crawl", "duration": CRAWL_DURATION, "loop": "once",
+          "parts": [crawl_mantle_track()] + [crawl_arm_track(i) for i in range(ARMS)]}
+
+
 def scene():
   return {
       "format": "wirerig.scene",
@@ -179,8 +279,8 @@ def scene():
           "duration": DURATION,
           "loop": "once",
           "parts": [mantle_track()] + [arm_track(i) for i in range(ARMS)],
-      }],
-      "camera": {"target": [0.0, 1.5, 0.0], "yaw": 1.2, "pitch": 0.1, "distance": 6.4, "ground": -0.62,
+      }, crawl_clip()],
+      "camera": {"target": [0.0, 1.5, 0.0], "yaw": CAMERA_YAW, "pitch": 0.1, "distance": 6.4, "ground": GROUND,
                  "fov": 0.8},
   }
 

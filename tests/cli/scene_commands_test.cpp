@@ -271,13 +271,16 @@ TEST_F(DemoCommand, WritesTheSceneTheGlbAndTheContactSheet) {
   std::ostringstream out, err;
   ASSERT_EQ(RunDemoCommand(options, out, err), 0) << err.str();
   for (const char* name :
-       {"octopus.scene.json", "octopus.glb", "octopus.png", "walk.glb", "walk.png"})
+       {"octopus.scene.json", "octopus.glb", "octopus.png", "octopus_crawl.glb",
+        "octopus_crawl.png", "walk.glb", "walk.png"})
     EXPECT_TRUE(fs::exists(fs::path(options.output) / name)) << name;
   const Image sheet = LoadPng(fs::path(options.output) / "octopus.png").value();
   EXPECT_GT(sheet.width, 1000);  // 3 tiles of 640 across
   int code = -1;
   const std::string report = Validate(fs::path(options.output) / "octopus.glb", &code);
   EXPECT_EQ(code, 0) << report;
+  const std::string crawl = Validate(fs::path(options.output) / "octopus_crawl.glb", &code);
+  EXPECT_EQ(code, 0) << crawl;
   const std::string walk = Validate(fs::path(options.output) / "walk.glb", &code);
   EXPECT_EQ(code, 0) << walk;
 }

@@ -26,15 +26,6 @@ namespace {
 
 constexpr double kFrame = 1.0 / 10.0;  // s
 
-double BodySize(const std::vector<Vec3>& rest) {
-  Vec3 lo = rest.front(), hi = rest.front();
-  for (const Vec3& p : rest) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return (hi - lo).maxCoeff();
-}
-
 TEST(OctopusSample, TravelsOverABodySizeAndItsArmsStrokeAndTrail) {
   std::unique_ptr<PlayedScene> played = PlaySample("octopus/octopus.scene.json");
   ASSERT_NE(played, nullptr);

@@ -107,6 +107,16 @@ inline std::string SceneError(const nlohmann::json& document) {
   return built ? "ok" : built.error();
 }
 
+// The largest extent of a point set's bounding box (a body's size), m.
+inline double BodySize(const std::vector<Vec3>& points) {
+  Vec3 lo = points.front(), hi = points.front();
+  for (const Vec3& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).maxCoeff();
+}
+
 // Arc length of the stretch [from, to] of a closed profile (points at u = q / m), at rest.
 inline double StretchLength(const ProfileModel& profile, double from, double to) {
   const std::size_t m = profile.local_points.size();
