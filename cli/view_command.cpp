@@ -31,6 +31,7 @@ int RunViewCommand(const ViewCommandOptions& options, std::ostream& err) {
   SceneViewerOptions viewer;
   viewer.scene = options.scene;
   viewer.clip = options.clip;
+  viewer.import_isolation = ImportIsolation{};  // a crash or hang of Assimp must not end the view
   // The picker: the catalog's scenes, when the catalog is there.
   Result<std::vector<CatalogEntry>> catalog =
       LoadCatalog(std::string(WIRERIG_SAMPLES_DIR) + "/catalog.json");

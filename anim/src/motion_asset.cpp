@@ -11,9 +11,13 @@
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 
+#include <nlohmann/json.hpp>
+
 #include "motion_rotation.h"
+#include "wirerig/anim/clip_json.h"
 #include "wirerig/anim/motion_import.h"
 #include "wirerig/rig/floating_point_hold.h"
+#include "wirerig/rig/isolated_process.h"
 
 namespace wirerig {
 namespace {
@@ -240,6 +244,26 @@ Result<RawClip> ClipFromAssetAnimation(const std::filesystem::path& file, const 
   auto fail = [&](const std::string& reason) { return Error{name + ": " + reason}; };
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return fail("no such motion file");
+  if (options.import.isolation) {
+    // Assimp reads the file in a child process; the clip comes back in its JSON form (which
+    // ReadClip reads back exactly).
+    AssetAnimationOptions in_child = options;
+    in_child.import.isolation.reset();
+    Result<std::string> answer =
+        RunIsolated(file, *options.import.isolation, [&]() -> Result<std::string> {
+          Result<RawClip> clip = ClipFromAssetAnimation(file, mesh, model, in_child);
+          if (!clip) return Error{clip.error()};
+          return ClipToJson(clip.value()).dump();
+        });
+    if (!answer) return Error{answer.error()};
+    const nlohmann::json document = nlohmann::json::parse(answer.value(), nullptr, false);
+    try {
+      if (document.is_discarded()) throw FieldError("", "not JSON");
+      return ReadClip(JsonObject(document, ""));
+    } catch (const FieldError& e) {
+      return fail(std::string("the importer process answered badly: ") + e.what());
+    }
+  }
 
   Assimp::Importer importer;
   importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);

@@ -131,6 +131,7 @@ Result<RawClip> MakeMotionClip(const MotionSource& source, const RawClip& clip,
     std::error_code ec;
     if (!mesh_file.empty() && std::filesystem::equivalent(file, mesh_file, ec))
       options.import = mesh_import;
+    options.import.isolation = mesh_import.isolation;  // every Assimp read of the scene's files
     Result<RawClip> animation = ClipFromAssetAnimation(file, mesh, model, options);
     if (!animation) {
       const std::string& e = animation.error();

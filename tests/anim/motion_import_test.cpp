@@ -27,11 +27,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 
 #include <nlohmann/json.hpp>
 
 #include "samples/sample_test_support.h"
+#include "wirerig/anim/clip_json.h"
 #include "wirerig/anim/scene.h"
 
 #ifndef WIRERIG_ASSET_DIR
@@ -864,6 +866,58 @@ TEST(MotionErrors, AnimationsMustExist) {
   EXPECT_EQ(samples::SceneError(scene),
             "scene \"asset\": /clips/0/motion/file: " + Asset("assimp/X/test.x").string() +
                 ": holds no animation");
+}
+
+}  // namespace
+}  // namespace wirerig
+
+namespace wirerig {
+namespace {
+
+// Motion files go through Assimp as meshes do: with the scene's import isolation, in a child
+// process, so a file that crashes Assimp ends the child only.
+TEST(MotionIsolation, AnIsolatedImportGivesTheSameClipAsInProcess) {
+  std::unique_ptr<PlayedScene> played =
+      samples::PlayDocument(AssetScene("assimp/X/Testwuson.X", "Wuson_Run"));
+  ASSERT_NE(played, nullptr);
+  AssetAnimationOptions options;
+  options.animation_name = "Wuson_Run";
+  const fs::path file = Asset("assimp/X/Testwuson.X");
+  Result<RawClip> in_process =
+      ClipFromAssetAnimation(file, played->scene.mesh, played->scene.model, options);
+  ASSERT_TRUE(in_process) << in_process.error();
+  options.import.isolation = ImportIsolation{};
+  Result<RawClip> isolated =
+      ClipFromAssetAnimation(file, played->scene.mesh, played->scene.model, options);
+  ASSERT_TRUE(isolated) << isolated.error();
+  EXPECT_GT(in_process.value().parts.size(), 3u);
+  EXPECT_EQ(ClipToJson(isolated.value()), ClipToJson(in_process.value()));
+}
+
+// One byte of Assimp's binary X test cube changed: Assimp reads through a bad pointer
+// (tests/rig/isolated_import_test.cpp). As a scene's motion file it fails the scene naming the
+// file, and this process lives on.
+TEST(MotionIsolation, ACorruptedMotionFileCrashesOnlyTheChild) {
+  const fs::path source = Asset("assimp/X/test_cube_binary.x");
+  std::ifstream in(source, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(bytes.size(), 2816u) << source;
+  bytes[2609] = static_cast<char>(0xb2);
+  const fs::path folder = fs::temp_directory_path() / "wirerig_motion_isolation";
+  fs::create_directories(folder);
+  const fs::path corrupted = WriteFile(folder / "corrupted.x", bytes);
+  json document = AssetScene("assimp/X/anim_test.x", 0);
+  document["clips"][0]["motion"]["file"] = corrupted.string();
+  Result<SceneDescription> scene = ParseScene(document, folder);
+  ASSERT_TRUE(scene) << scene.error();
+  scene.value().mesh.import.isolation = ImportIsolation{};
+  const Result<BuiltScene> built = BuildScene(scene.value());
+  ASSERT_FALSE(built);
+  EXPECT_NE(built.error().find("/clips/0/motion/file: " + corrupted.string() +
+                               ": the importer crashed on this file ("),
+            std::string::npos)
+      << built.error();
+  fs::remove_all(folder);
 }
 
 }  // namespace

@@ -168,6 +168,28 @@ TEST(WirerigSpecialFiles, BakeAndRenderOfDevZeroExitOne) {
 #endif
 }
 
+#ifdef WIRERIG_HAS_VIEWER
+// `view` imports a scene's mesh in a child process as `bake` and `render` do: a file that
+// crashes Assimp (one byte of its binary X test cube changed) ends the child, and the viewer
+// exits 1 naming the file.
+TEST(WirerigImportIsolation, ViewOfAMeshThatCrashesAssimpExitsOne) {
+  const fs::path source = fs::path(WIRERIG_ASSET_DIR) / "assimp/X/test_cube_binary.x";
+  std::ifstream in(source, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(bytes.size(), 2816u) << source;
+  bytes[2609] = static_cast<char>(0xb2);
+  const fs::path mesh = Scratch("corrupted.x");
+  std::ofstream(mesh, std::ios::binary) << bytes;
+  const fs::path scene = Scratch("corrupted.scene.json");
+  std::ofstream(scene) << R"({"format": "wirerig.scene", "version": 1, "name": "corrupted",
+    "mesh": {"file": ")"
+                       << mesh.string() << R"("}, "rig": {"from": "automatic"}, "clips": []})";
+  ExpectExit(RunWirerig({"view", scene.string(), "--no-window", "--frames", "1"},
+                        std::chrono::seconds(120)),
+             1, mesh.string() + ": the importer crashed on this file (");
+}
+#endif
+
 // Entries of `dir` whose name holds ".tmp".
 int TemporaryEntries(const fs::path& dir) {
   int n = 0;

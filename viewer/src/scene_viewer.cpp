@@ -17,6 +17,12 @@ constexpr const char* kBoundaryNames[] = {"simply_supported", "clamped", "cantil
 
 }  // namespace
 
+Result<SceneDescription> SceneViewer::Load(const std::filesystem::path& scene) const {
+  Result<SceneDescription> description = LoadScene(scene);
+  if (description) description.value().mesh.import.isolation = options_.import_isolation;
+  return description;
+}
+
 SceneViewer::SceneViewer(SceneViewerOptions options) : options_(std::move(options)) {}
 SceneViewer::~SceneViewer() = default;
 
@@ -52,7 +58,7 @@ Result<bool> SceneViewer::Open(const SceneDescription& description) {
 }
 
 bool SceneViewer::OnInitialize() {
-  Result<SceneDescription> description = LoadScene(options_.scene);
+  Result<SceneDescription> description = Load(options_.scene);
   if (!description) {
     std::fprintf(stderr, "wirerig view: %s\n", description.error().c_str());
     return false;
@@ -271,7 +277,7 @@ void SceneViewer::DrawEditor() {
   if (!options_.samples.empty() && ImGui::BeginCombo("sample", scene_->description.name.c_str())) {
     for (const SceneViewerSample& sample : options_.samples) {
       if (ImGui::Selectable(sample.name.c_str())) {
-        Result<SceneDescription> description = LoadScene(sample.scene);
+        Result<SceneDescription> description = Load(sample.scene);
         Result<bool> opened =
             description ? Open(description.value()) : Result<bool>(Error{description.error()});
         if (opened) {

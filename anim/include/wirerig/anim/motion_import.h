@@ -129,7 +129,8 @@ bool IsBvhFile(const std::filesystem::path& file);
 // with its loop mode) merged with `clip`'s own part and profile tracks (loads, boundaries; a
 // part's rotation, translation or joint angles that the motion drives are refused). `folder`
 // resolves relative paths; `mesh_file` and `mesh_import` are the scene's mesh, whose import
-// options apply when the motion file is that same file. Errors name the field of the motion
+// options apply when the motion file is that same file (and whose isolation, if set, imports
+// any motion file Assimp reads in a child process). Errors name the field of the motion
 // object ("file: ...", "mapping: ...", "animation: ...", "frames: ...") or the clip's field.
 Result<RawClip> MakeMotionClip(const MotionSource& source, const RawClip& clip,
                                const std::filesystem::path& folder, const Mesh& mesh,

@@ -19,6 +19,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,9 @@ struct SceneViewerOptions {
   std::filesystem::path scene;
   std::string clip;                        // empty: the scene's first clip
   std::vector<SceneViewerSample> samples;  // the picker's list (may be empty)
+  // When set, every scene's mesh and motion files are imported in a child process
+  // (isolated_process.h): a file that crashes Assimp cannot take the viewer down.
+  std::optional<ImportIsolation> import_isolation;
 };
 
 class SceneViewer : public Application {
@@ -67,6 +71,8 @@ class SceneViewer : public Application {
   // Loads (or rebuilds after an edit) the scene and everything made from it; the error names
   // the file and field.
   Result<bool> Open(const SceneDescription& description);
+  // LoadScene, with the options' import isolation for its mesh and motion files.
+  Result<SceneDescription> Load(const std::filesystem::path& scene) const;
   void DrawEditor();
   void DrawJointSliders(const PartModel& part);
   // The rotation gizmo of the selected part's joint, as the last evaluation posed it, seen by
