@@ -75,12 +75,15 @@ const BuiltScene& Scene(const std::string& file) {
 
 // The rigid parts' motion over the clip's frames, played once per scene by Playback (whose
 // rigid-body step is the same for both paths, so it is not timed): per frame, every rigid
-// part's pose and every part's support acceleration (world) and rotation (its parent's).
+// part's pose and every part's support acceleration, angular velocity and angular acceleration
+// (world) and rotation (its parent's).
 struct Motion {
   std::size_t frames = 0;
-  std::vector<PartPose> poses;             // frames x parts (rigid parts' are used)
-  std::vector<Vec3> support_acceleration;  // frames x parts
-  std::vector<Mat3> support_rotation;      // frames x parts
+  std::vector<PartPose> poses;                     // frames x parts (rigid parts' are used)
+  std::vector<Vec3> support_acceleration;          // frames x parts
+  std::vector<Vec3> support_angular_velocity;      // frames x parts
+  std::vector<Vec3> support_angular_acceleration;  // frames x parts
+  std::vector<Mat3> support_rotation;              // frames x parts
 };
 
 const Motion& MotionOf(const std::string& file) {
@@ -97,6 +100,8 @@ const Motion& MotionOf(const std::string& file) {
   motion.frames = static_cast<std::size_t>(std::floor(scene.clips.front().duration / kFrame));
   motion.poses.resize(motion.frames * parts);
   motion.support_acceleration.assign(motion.frames * parts, Vec3::Zero());
+  motion.support_angular_velocity.assign(motion.frames * parts, Vec3::Zero());
+  motion.support_angular_acceleration.assign(motion.frames * parts, Vec3::Zero());
   motion.support_rotation.assign(motion.frames * parts, Mat3::Identity());
   std::vector<RigidPartBody> bodies(parts);
   for (std::size_t p = 0; p < parts; ++p)
@@ -111,6 +116,7 @@ const Motion& MotionOf(const std::string& file) {
     return Vec3(state.velocity + (state.orientation * state.angular_velocity).cross(point));
   };
   std::vector<Vec3> positions(model.vertices.size()), previous(parts, Vec3::Zero());
+  std::vector<Vec3> previous_turn(parts, Vec3::Zero());
   for (std::size_t k = 0; k < motion.frames; ++k) {
     if (Status s = playback.Evaluate(double(k) * kFrame, positions, {}); !s) {
       std::cerr << file << ": " << ToString(s) << "\n";
@@ -123,6 +129,12 @@ const Motion& MotionOf(const std::string& file) {
       const Vec3 velocity = support_velocity(p);
       if (k > 0) motion.support_acceleration[k * parts + p] = (velocity - previous[p]) / kFrame;
       previous[p] = velocity;
+      const RigidBodyState& parent_state = playback.bodies()[std::size_t(parent)];
+      const Vec3 turn = parent_state.orientation * parent_state.angular_velocity;
+      motion.support_angular_velocity[k * parts + p] = turn;
+      if (k > 0)
+        motion.support_angular_acceleration[k * parts + p] = (turn - previous_turn[p]) / kFrame;
+      previous_turn[p] = turn;
       motion.support_rotation[k * parts + p] =
           PoseOfRigidPart(bodies[std::size_t(parent)], model.parts[std::size_t(parent)],
                           playback.bodies()[std::size_t(parent)])
@@ -182,8 +194,9 @@ class Frames {
     const std::size_t frame = modal_frame_++ % motion_.frames, parts = model_.parts.size();
     Sample(modal_, frame);
     const auto at = [&](const auto& all) { return std::span(all).subspan(frame * parts, parts); };
-    if (Status s = modal_.wires.Step(modal_.sample, at(motion_.support_acceleration),
-                                     at(motion_.support_rotation), kFrame);
+    if (Status s = modal_.wires.Step(
+            modal_.sample, at(motion_.support_acceleration), at(motion_.support_angular_velocity),
+            at(motion_.support_angular_acceleration), at(motion_.support_rotation), kFrame);
         !s)
       Fail(s);
     if (Status s = modal_.wires.Apply(modal_.sample.poses); !s) Fail(s);

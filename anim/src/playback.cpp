@@ -57,6 +57,8 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
     if (Status s = playback.wires_.Reset(playback.step_sample_); !s)
       return Error{"wires: " + ToString(s)};
     playback.support_acceleration_.assign(model.parts.size(), Vec3::Zero());
+    playback.support_angular_velocity_.assign(model.parts.size(), Vec3::Zero());
+    playback.support_angular_acceleration_.assign(model.parts.size(), Vec3::Zero());
     playback.support_rotation_.assign(model.parts.size(), Mat3::Identity());
   }
   if (options.tracking.frequency > 0.0) {
@@ -86,23 +88,28 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
   return playback;
 }
 
-Vec3 Playback::BodyPointVelocity(std::size_t d, const Vec3& rest) const {
+Vec3 Playback::BodyPointOffset(std::size_t d, const Vec3& rest) const {
   const RigidPartBody& body = dynamic_bodies_[d];
   const RigidBodyState& state = bodies_[dynamic_parts_[d]];
-  const Vec3 point = state.orientation * (body.axes.transpose() * (rest - body.reference));
-  return state.velocity + (state.orientation * state.angular_velocity).cross(point);
+  return state.orientation * (body.axes.transpose() * (rest - body.reference));
+}
+
+Vec3 Playback::BodyAngularVelocity(std::size_t d) const {
+  const RigidBodyState& state = bodies_[dynamic_parts_[d]];
+  return state.orientation * state.angular_velocity;
 }
 
 Status Playback::StepBodies(double dt) {
-  // The wires' supports: their parents' attachment points, before and after the step.
+  // The wires' supports: their parents' motion over the step. Before it, the accelerations
+  // hold the parent's reference velocity and angular velocity (world) until they are
+  // differenced after it.
   if (!wires_.empty())
     for (std::size_t p = 0; p < model_->parts.size(); ++p) {
       const int parent = model_->parts[p].parent;
-      support_acceleration_[p] =
-          parent >= 0 && dynamic_index_[std::size_t(parent)] >= 0
-              ? BodyPointVelocity(std::size_t(dynamic_index_[std::size_t(parent)]),
-                                  model_->parts[p].spine_points.front())
-              : Vec3::Zero();
+      const bool moving = parent >= 0 && dynamic_index_[std::size_t(parent)] >= 0;
+      const auto d = moving ? std::size_t(dynamic_index_[std::size_t(parent)]) : 0;
+      support_acceleration_[p] = moving ? bodies_[std::size_t(parent)].velocity : Vec3::Zero();
+      support_angular_acceleration_[p] = moving ? BodyAngularVelocity(d) : Vec3::Zero();
     }
   for (std::size_t d = 0; d < dynamic_parts_.size(); ++d) {
     const std::size_t p = dynamic_parts_[d];
@@ -127,8 +134,19 @@ Status Playback::StepBodies(double dt) {
     const int parent = model_->parts[p].parent;
     if (parent < 0 || dynamic_index_[std::size_t(parent)] < 0) continue;
     const auto d = std::size_t(dynamic_index_[std::size_t(parent)]);
-    const Vec3 after = BodyPointVelocity(d, model_->parts[p].spine_points.front());
-    support_acceleration_[p] = (after - support_acceleration_[p]) / dt;
+    // The attachment point's acceleration at the step's end, a_ref + alpha x r + omega x
+    // (omega x r), r its offset from the body's reference: the rigid-body formula with omega and
+    // r at the step's end (the frame the wire's loads are taken in). Differencing the point's
+    // velocities instead would tilt its centripetal part by half the step's turn, a lateral
+    // error of omega^3 r dt / 2.
+    const Vec3 omega = BodyAngularVelocity(d);
+    const Vec3 alpha = (omega - support_angular_acceleration_[p]) / dt;
+    const Vec3 r = BodyPointOffset(d, model_->parts[p].spine_points.front());
+    support_acceleration_[p] =
+        (bodies_[std::size_t(parent)].velocity - support_acceleration_[p]) / dt + alpha.cross(r) +
+        omega.cross(omega.cross(r));
+    support_angular_velocity_[p] = omega;
+    support_angular_acceleration_[p] = alpha;
     support_rotation_[p] = PoseOfRigidPart(dynamic_bodies_[d], model_->parts[std::size_t(parent)],
                                            bodies_[std::size_t(parent)])
                                .rotation.toRotationMatrix();
@@ -138,7 +156,8 @@ Status Playback::StepBodies(double dt) {
     PoseDynamicParts(&step_sample_);
     if (Status s = reach_.Apply(clock_, ClipReach::Solve::kStep, &step_sample_); !s) return s;
   }
-  return wires_.Step(step_sample_, support_acceleration_, support_rotation_, dt);
+  return wires_.Step(step_sample_, support_acceleration_, support_angular_velocity_,
+                     support_angular_acceleration_, support_rotation_, dt);
 }
 
 void Playback::PoseDynamicParts(ClipSample* sample) const {

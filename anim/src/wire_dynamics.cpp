@@ -64,12 +64,16 @@ ModalWireLoads WireDynamics::LoadsOf(const Wire& wire, const SpineLoads& loads) 
   out.point_loads = loads.bending_point_loads;
   out.line_loads = loads.bending_line_loads;
   out.support_acceleration = wire.support_acceleration;
+  out.support_angular_velocity = wire.support_angular_velocity;
+  out.support_angular_acceleration = wire.support_angular_acceleration;
   return out;
 }
 
 Status WireDynamics::Reset(const ClipSample& sample) {
   for (std::size_t w = 0; w < wires_.size(); ++w) {
     wires_[w].support_acceleration = Vec3::Zero();
+    wires_[w].support_angular_velocity = Vec3::Zero();
+    wires_[w].support_angular_acceleration = Vec3::Zero();
     const ModalWireLoads loads = LoadsOf(wires_[w], sample.poses[wires_[w].part].loads);
     if (Status s = InitializeModalWireAtStatic(wires_[w].model, loads, &states_[w]); !s) return s;
   }
@@ -77,6 +81,8 @@ Status WireDynamics::Reset(const ClipSample& sample) {
 }
 
 Status WireDynamics::Step(const ClipSample& sample, std::span<const Vec3> support_acceleration,
+                          std::span<const Vec3> support_angular_velocity,
+                          std::span<const Vec3> support_angular_acceleration,
                           std::span<const Mat3> support_rotation, double dt) {
   // A sliver of a step (landing on a frame time within 1 ns) leaves the wires as they are.
   if (dt < ModalWireStepJob::kMinTimeStep) return Status::Ok();
@@ -86,8 +92,15 @@ Status WireDynamics::Step(const ClipSample& sample, std::span<const Vec3> suppor
     // The support's acceleration in the wire's local axes (those of its middle sample, as
     // world-axes line loads are turned).
     const Frame& f = part.spine_frames[part.spine_frames.size() / 2];
-    const Vec3 a = support_rotation[wire.part].transpose() * support_acceleration[wire.part];
+    const Mat3 to_rest = support_rotation[wire.part].transpose();
+    const Vec3 a = to_rest * support_acceleration[wire.part];
     wire.support_acceleration = Vec3(a.dot(f.normal), a.dot(f.binormal), 0.0);
+    // Angular vectors in the right-handed (normal, binormal, tangent) axes, tangent = local z.
+    const auto local = [&f](const Vec3& x) {
+      return Vec3(x.dot(f.normal), x.dot(f.binormal), x.dot(f.tangent));
+    };
+    wire.support_angular_velocity = local(to_rest * support_angular_velocity[wire.part]);
+    wire.support_angular_acceleration = local(to_rest * support_angular_acceleration[wire.part]);
     ModalWireStepJob step;
     step.model = &wire.model;
     step.loads = LoadsOf(wire, sample.poses[wire.part].loads);
@@ -106,20 +119,28 @@ Status WireDynamics::Apply(std::span<PartPose> poses, std::span<const double> re
     const int modes = wire.model.basis.modes;
     for (int m = 0; m < modes; ++m) scratch_[std::size_t(m)] = state.q[m] - state.q_static[m];
     SpineLoads& loads = poses[wire.part].loads;
-    // The support's inertial load, statically (the rig's own closed form has the clip's loads);
-    // none while the support does not accelerate.
+    // The support's inertial loads, statically (the rig's own closed form has the clip's
+    // loads): the uniform load of its acceleration and the linear one of its turning, from zero
+    // at the support to -rho A L r_support at the far end; none while the support is still.
     std::fill(wire.extra_displacement.begin(), wire.extra_displacement.end(), Vec3::Zero());
     std::fill(wire.extra_slope.begin(), wire.extra_slope.end(), Vec3::Zero());
-    const LineLoad inertial{0.0, 1.0, -wire.model.mass_per_length * wire.support_acceleration};
+    const double rho_a = wire.model.mass_per_length;
+    const Vec3 r_support = TurningAccelerationPerLength(wire.support_angular_velocity,
+                                                        wire.support_angular_acceleration);
+    const LineLoad inertial{0.0, 1.0, -rho_a * wire.support_acceleration};
+    const LinearLineLoad turning{0.0, 1.0, Vec3::Zero(), -rho_a * wire.model.length * r_support};
     BendingJob bending;
     bending.boundary = loads.boundary;
     bending.length = wire.model.length;
     bending.bending_stiffness = wire.model.bending_stiffness;
-    bending.line_loads = std::span<const LineLoad>(&inertial, 1);
+    if (!wire.support_acceleration.isZero())
+      bending.line_loads = std::span<const LineLoad>(&inertial, 1);
+    if (!r_support.isZero())
+      bending.linear_line_loads = std::span<const LinearLineLoad>(&turning, 1);
     bending.samples = wire.samples;
     bending.displacement = wire.extra_displacement;
     bending.slope = wire.extra_slope;
-    if (!wire.support_acceleration.isZero())
+    if (!bending.line_loads.empty() || !bending.linear_line_loads.empty())
       if (Status s = bending.Run(); !s) return s;
     const double per_length = 1.0 / wire.model.length;
     for (std::size_t k = 0; k < wire.samples.size(); ++k) {

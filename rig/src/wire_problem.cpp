@@ -18,7 +18,8 @@ namespace wirerig {
 namespace {
 
 WireBendingSpec ReadBending(const JsonObject& b) {
-  b.RejectUnknownKeys({"bc", "mode", "terms", "ends", "tip_force", "point_loads", "line_loads"});
+  b.RejectUnknownKeys({"bc", "mode", "terms", "ends", "tip_force", "point_loads", "line_loads",
+                       "linear_line_loads"});
   WireBendingSpec spec;
   const std::string bc = b.String("bc");
   if (!ParseBoundaryCondition(bc, &spec.boundary))
@@ -49,6 +50,14 @@ WireBendingSpec ReadBending(const JsonObject& b) {
     spec.line_loads.push_back(
         {load.Number("from"), load.Number("to"),
          ReadVector3(load.Required("force_per_length"), load.PathOf("force_per_length"))});
+  });
+  ForEachElement(b, "linear_line_loads", [&](const JsonObject& load) {
+    load.RejectUnknownKeys({"from", "to", "start_force_per_length", "end_force_per_length"});
+    spec.linear_line_loads.push_back(
+        {load.Number("from"), load.Number("to"),
+         ReadVector3(load.Required("start_force_per_length"),
+                     load.PathOf("start_force_per_length")),
+         ReadVector3(load.Required("end_force_per_length"), load.PathOf("end_force_per_length"))});
   });
   return spec;
 }
@@ -101,7 +110,8 @@ std::string CheckWork(const WireProblem& problem) {
   if (problem.bending)
     what +=
         ", " +
-        std::to_string(problem.bending->point_loads.size() + problem.bending->line_loads.size()) +
+        std::to_string(problem.bending->point_loads.size() + problem.bending->line_loads.size() +
+                       problem.bending->linear_line_loads.size()) +
         " bending loads";
   if (problem.axial)
     what += ", " +
@@ -179,7 +189,8 @@ double EstimateWireOperations(const WireProblem& problem) {
   double operations = 0.0;
   if (problem.bending) {
     const WireBendingSpec& b = *problem.bending;
-    const double loads = double(b.point_loads.size()) + double(b.line_loads.size());
+    const double loads = double(b.point_loads.size()) + double(b.line_loads.size()) +
+                         double(b.linear_line_loads.size());
     if (b.mode == BendingMode::kSeries) {
       // Terms out of range are the bending job's to refuse, by their own field.
       const double terms = std::clamp(b.series_terms, 0, BendingJob::kMaxSeriesTerms);
@@ -221,6 +232,7 @@ Result<WireSolution> SolveWireProblem(const WireProblem& problem) {
     job.tip_force = spec.tip_force;
     job.point_loads = spec.point_loads;
     job.line_loads = spec.line_loads;
+    job.linear_line_loads = spec.linear_line_loads;
     job.samples = solution.v;
     job.displacement = solution.bending;
     job.slope = solution.slope;

@@ -114,6 +114,22 @@ Status BendingJob::Validate() const {
                                     "must be finite (N/m)");
     load_sum += load.force_per_length.lpNorm<1>() * length * (load.to - load.from);
   }
+  for (std::size_t i = 0; i < linear_line_loads.size(); ++i) {
+    const LinearLineLoad& load = linear_line_loads[i];
+    const int index = static_cast<int>(i);
+    if (Status s = detail::CheckLoadExtent("linear_line_loads", index, load.from, load.to); !s)
+      return s;
+    if (!AllFinite(load.start_force_per_length))
+      return Status::InvalidElement("linear_line_loads", index, "start_force_per_length",
+                                    "must be finite (N/m)");
+    if (!AllFinite(load.end_force_per_length))
+      return Status::InvalidElement("linear_line_loads", index, "end_force_per_length",
+                                    "must be finite (N/m)");
+    // The trapezoid's total load, bounded by its mean end value times its length.
+    load_sum += 0.5 *
+                (load.start_force_per_length.lpNorm<1>() + load.end_force_per_length.lpNorm<1>()) *
+                length * (load.to - load.from);
+  }
   const double bound =
       start_displacement.lpNorm<1>() + end_displacement.lpNorm<1>() + compliance * load_sum;
   if (!(std::isfinite(bound) && bound < detail::kMaxDeflectionBound))
@@ -140,6 +156,43 @@ Status BendingJob::Run() const {
 namespace detail {
 namespace {
 
+// A linearly varying load's Macaulay terms (bending_job.h): with t_a = <v-a>, t_b = <v-b> and
+// d = b - a, the k-th derivative of its particular solution is
+//   M^(k) = p_a (t_a^j/j! - R_j) + p_b (R_j - t_b^j/j!),   j = 4 - k,
+//   R_j = (t_a^(j+1) - t_b^(j+1)) / ((j+1)! d).
+// Before b (t_b = 0, t_a <= d) R_j = (t_a/d) t_a^j/(j+1)!; past b, where t_a - t_b = d,
+// R_j = (t_a^j + t_a^(j-1) t_b + ... + t_b^j)/(j+1)!: no division by a small width.
+struct RampTerms {
+  double ramp[4];   // R_j, j = 4, 3, 2, 1 (for M, M', M'', M''')
+  double start[4];  // t_a^j / j!
+  double end[4];    // t_b^j / j!
+};
+
+RampTerms MacaulayRamp(double ta, double tb, double width) {
+  RampTerms r;
+  const double ta2 = ta * ta, ta3 = ta2 * ta, ta4 = ta2 * ta2;
+  const double tb2 = tb * tb, tb3 = tb2 * tb, tb4 = tb2 * tb2;
+  r.start[0] = ta4 / 24.0, r.start[1] = ta3 / 6.0, r.start[2] = ta2 / 2.0, r.start[3] = ta;
+  r.end[0] = tb4 / 24.0, r.end[1] = tb3 / 6.0, r.end[2] = tb2 / 2.0, r.end[3] = tb;
+  if (tb <= 0.0) {
+    const double f = std::min(ta / width, 1.0);
+    r.ramp[0] = f * ta4 / 120.0, r.ramp[1] = f * ta3 / 24.0;
+    r.ramp[2] = f * ta2 / 6.0, r.ramp[3] = f * ta / 2.0;
+  } else {
+    const double s1 = ta + tb;
+    const double s2 = ta2 + ta * tb + tb2;
+    const double s3 = (ta2 + tb2) * s1;
+    const double s4 = ta4 + ta3 * tb + ta2 * tb2 + ta * tb3 + tb4;
+    r.ramp[0] = s4 / 120.0, r.ramp[1] = s3 / 24.0, r.ramp[2] = s2 / 6.0, r.ramp[3] = s1 / 2.0;
+  }
+  return r;
+}
+
+// M^(k) of a linear load from its terms (p_a, p_b per unit v).
+Vec3 RampDerivative(const RampTerms& r, int k, const Vec3& pa, const Vec3& pb) {
+  return pa * (r.start[k] - r.ramp[k]) + pb * (r.ramp[k] - r.end[k]);
+}
+
 // X(v) = X0 + c1 v + c2 v^2 + c3 v^3 + compliance * M(v), M the Macaulay particular solution.
 struct ExactPolynomial {
   Vec3 c1, c2, c3;
@@ -162,6 +215,15 @@ ExactPolynomial SolveExactPolynomial(const BendingJob& job, double compliance) {
     m1 += q * ((wa * wa * wa - wb * wb * wb) / 6.0);
     m2 += q * ((wa * wa - wb * wb) / 2.0);
     m3 += q * (load.to - load.from);
+  }
+  for (const LinearLineLoad& load : job.linear_line_loads) {
+    const Vec3 pa = load.start_force_per_length * job.length;  // per unit v
+    const Vec3 pb = load.end_force_per_length * job.length;
+    const RampTerms r = MacaulayRamp(1.0 - load.from, 1.0 - load.to, load.to - load.from);
+    m0 += RampDerivative(r, 0, pa, pb);
+    m1 += RampDerivative(r, 1, pa, pb);
+    m2 += RampDerivative(r, 2, pa, pb);
+    m3 += RampDerivative(r, 3, pa, pb);
   }
   m0 *= compliance;
   m1 *= compliance;
@@ -205,6 +267,15 @@ void EvaluateExact(const BendingJob& job, const ExactPolynomial& poly, double co
       m += q * ((ta2 * ta2 - tb2 * tb2) / 24.0);
       if constexpr (kSlope) dm += q * ((ta2 * ta - tb2 * tb) / 6.0);
       if constexpr (kCurvature) ddm += q * ((ta2 - tb2) / 2.0);
+    }
+    for (const LinearLineLoad& load : job.linear_line_loads) {
+      const Vec3 pa = load.start_force_per_length * job.length;
+      const Vec3 pb = load.end_force_per_length * job.length;
+      const RampTerms r = MacaulayRamp(std::max(v - load.from, 0.0), std::max(v - load.to, 0.0),
+                                       load.to - load.from);
+      m += RampDerivative(r, 0, pa, pb);
+      if constexpr (kSlope) dm += RampDerivative(r, 1, pa, pb);
+      if constexpr (kCurvature) ddm += RampDerivative(r, 2, pa, pb);
     }
     job.displacement[i] = x0 + v * (poly.c1 + v * (poly.c2 + v * poly.c3)) + compliance * m;
     if constexpr (kSlope)

@@ -1,6 +1,10 @@
 // The paper's sine-series solutions, Eqs. (10)-(17), in normalised form (bending_internal.h).
 // With p_n the sine coefficients of the load (Eq. 11 for point loads; the exact patch-load
-// coefficients 2 q (cos n pi a - cos n pi b) / (n pi) for line loads),
+// coefficients 2 q (cos n pi a - cos n pi b) / (n pi) for line loads, and for a linearly varying
+// load p_a -> p_b over [a, b] (width d, middle m)
+//   2/(n pi) [p_a cos(n pi a) - p_b cos(n pi b) + (p_b - p_a) cos(n pi m) sin(x)/x], x = n pi d/2,
+// the integral of (v - a) sin(n pi v) over [a, b] written with sin(n pi b) - sin(n pi a) =
+// 2 cos(n pi m) sin(x) so that a narrow load divides by nothing small),
 //   A_n = p_n / (n^4 pi^4 EI_n),  B_n = n pi A_n,
 //   X(v) = X0 + a1 v + a2 v^2 + a3 v^3 + sum_n A_n sin(n pi v),
 // where the cubic's coefficients come from the boundary conditions through the sums
@@ -26,6 +30,13 @@ Vec3 SeriesCoefficient(const BendingJob& job, int n, double compliance) {
   for (const LineLoad& load : job.line_loads)
     p += (2.0 * job.length * (std::cos(npi * load.from) - std::cos(npi * load.to)) / npi) *
          load.force_per_length;
+  for (const LinearLineLoad& load : job.linear_line_loads) {
+    const double x = 0.5 * npi * (load.to - load.from);  // > 0
+    const double ramp = std::cos(0.5 * npi * (load.from + load.to)) * (std::sin(x) / x);
+    p += (2.0 * job.length / npi) *
+         ((std::cos(npi * load.from) - ramp) * load.start_force_per_length +
+          (ramp - std::cos(npi * load.to)) * load.end_force_per_length);
+  }
   return p * compliance;
 }
 

@@ -77,13 +77,15 @@ Status ValidateModalLoads(const ModalWireModel& model, const ModalWireLoads& loa
   job.tip_couple = loads.tip_couple;
   job.point_loads = loads.point_loads;
   job.line_loads = loads.line_loads;
+  job.linear_line_loads = loads.linear_line_loads;
   job.samples = std::span<const double>(&sample, 1);
   job.displacement = std::span<Vec3>(&ignored, 1);
   if (Status s = job.Validate(); !s) return s;
-  return ValidateSupportAcceleration(model, loads.support_acceleration);
+  return ValidateSupportMotion(model, loads);
 }
 
-Status ValidateSupportAcceleration(const ModalWireModel& model, const Vec3& acceleration) {
+Status ValidateSupportMotion(const ModalWireModel& model, const ModalWireLoads& loads) {
+  const Vec3& acceleration = loads.support_acceleration;
   if (!AllFinite(acceleration))
     return Status::Invalid("support_acceleration", "must be finite (m/s^2)");
   // The inertial load rho A |a| over the whole length, bounded like BendingJob's loads.
@@ -92,6 +94,25 @@ Status ValidateSupportAcceleration(const ModalWireModel& model, const Vec3& acce
       compliance * model.length * model.mass_per_length * acceleration.lpNorm<Eigen::Infinity>();
   if (!(bound < kMaxDeflectionBound))
     return Status::Invalid("support_acceleration",
+                           "too large for the stiffness: the deflection would overflow");
+  // The turning load is at most rho A L (|alpha| + |omega|^2) per length at the far end; its
+  // bound L^4 rho A (...) / EI is compared in logarithms, so no product can overflow.
+  const double log_scale = 5.0 * std::log(model.length) - std::log(model.bending_stiffness) +
+                           std::log(model.mass_per_length);
+  const double log_bound = std::log(kMaxDeflectionBound);
+  const Vec3& omega = loads.support_angular_velocity;
+  if (!AllFinite(omega))
+    return Status::Invalid("support_angular_velocity", "must be finite (rad/s)");
+  const double w = omega.lpNorm<Eigen::Infinity>();
+  if (w > 0.0 && !(log_scale + 2.0 * std::log(w) < log_bound))
+    return Status::Invalid("support_angular_velocity",
+                           "too large for the stiffness: the deflection would overflow");
+  const Vec3& alpha = loads.support_angular_acceleration;
+  if (!AllFinite(alpha))
+    return Status::Invalid("support_angular_acceleration", "must be finite (rad/s^2)");
+  const double a = alpha.lpNorm<Eigen::Infinity>();
+  if (a > 0.0 && !(log_scale + std::log(a) < log_bound))
+    return Status::Invalid("support_angular_acceleration",
                            "too large for the stiffness: the deflection would overflow");
   return Status::Ok();
 }
@@ -119,6 +140,11 @@ void StaticModalCoordinates(const ModalWireModel& model, const ModalWireLoads& l
   const bool tip = !loads.tip_force.isZero(0.0);
   const bool couple = !loads.tip_couple.isZero(0.0);
   const bool support = !inertial.isZero(0.0);
+  // The turning support's load per unit v at v = 1 (it is zero at v = 0): -rho A L^2 r_support.
+  const Vec3 turning = -model.mass_per_length * length * length *
+                       TurningAccelerationPerLength(loads.support_angular_velocity,
+                                                    loads.support_angular_acceleration);
+  const bool turns = !turning.isZero(0.0);
   for (int n = 0; n < basis.modes; ++n) {
     // L f_n: the projection of the loads, N.
     Vec3 force = Vec3::Zero();
@@ -134,7 +160,14 @@ void StaticModalCoordinates(const ModalWireModel& model, const ModalWireLoads& l
     if (couple) force += loads.tip_couple * (ModeSlope(basis, n, 1.0) / length);
     for (const LineLoad& load : loads.line_loads)
       force += (load.force_per_length * length) * ModeIntegral(basis, n, load.from, load.to);
+    for (const LinearLineLoad& load : loads.linear_line_loads) {
+      const double ramp = ModeRampIntegral(basis, n, load.from, load.to);
+      const double whole = ModeIntegral(basis, n, load.from, load.to);
+      force += (load.start_force_per_length * (whole - ramp) + load.end_force_per_length * ramp) *
+               length;
+    }
     if (support) force += inertial * basis.integral[n];
+    if (turns) force += turning * basis.moment[n];
     // q_static = f_n / (rho A omega_n^2) = L^3 (L f_n) / (EI beta_n^4).
     const double beta2 = basis.beta[n] * basis.beta[n];
     out[n] = force * (compliance / (beta2 * beta2));
@@ -181,6 +214,12 @@ Status ValidateModalWireModel(const ModalWireModel& model) {
     return Status::Invalid("mass_per_length",
                            "too large for the stiffness: the lowest mode is below 1e-12 rad/s");
   return Status::Ok();
+}
+
+Vec3 TurningAccelerationPerLength(const Vec3& angular_velocity, const Vec3& angular_acceleration) {
+  const Vec3& w = angular_velocity;
+  const Vec3& a = angular_acceleration;
+  return Vec3(a.y() + w.z() * w.x(), -a.x() + w.z() * w.y(), 0.0);
 }
 
 double ModalFrequency(const ModalWireModel& model, int n) {

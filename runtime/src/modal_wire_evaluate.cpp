@@ -1,4 +1,4 @@
-// ModalWireEvaluateJob: the static closed form (BendingJob, plus the inertial support load)
+// ModalWireEvaluateJob: the static closed form (BendingJob, plus the supports' inertial loads)
 // and the modal residual sum_n (q_n - q_n_static) phi_n(v).
 #include <cmath>
 
@@ -37,6 +37,34 @@ void UniformLoadShape(BoundaryCondition bc, double v, double* g, double* dg) {
   *g = *dg = 0.0;
 }
 
+// Deflection g(v) and dg/dv of a load rising linearly from 0 at v = 0 to 1 at v = 1 with EI = L
+// = 1 and homogeneous ends (the Macaulay solution of bending_job.h with a = 0, b = 1: m0 = 1/120,
+// m1 = 1/24, m2 = 1/6, m3 = 1/2 in the table of PHYSICS.md section 2):
+//   SS v (7 - 10 v^2 + 3 v^4)/360, CC v^2 (2 - 3v + v^3)/120, CF v^2 (20 - 10 v + v^3)/120,
+//   CG v^2 (25 - 20 v + 2 v^3)/240.
+void RampLoadShape(BoundaryCondition bc, double v, double* g, double* dg) {
+  const double v2 = v * v, v4 = v2 * v2;
+  switch (bc) {
+    case BoundaryCondition::kSimplySupported:
+      *g = v * (7.0 - 10.0 * v2 + 3.0 * v4) / 360.0;
+      *dg = (7.0 - 30.0 * v2 + 15.0 * v4) / 360.0;
+      return;
+    case BoundaryCondition::kClamped:
+      *g = v2 * (2.0 - 3.0 * v + v2 * v) / 120.0;
+      *dg = v * (4.0 - 9.0 * v + 5.0 * v2 * v) / 120.0;
+      return;
+    case BoundaryCondition::kCantileverFree:
+      *g = v2 * (20.0 - 10.0 * v + v2 * v) / 120.0;
+      *dg = v * (40.0 - 30.0 * v + 5.0 * v2 * v) / 120.0;
+      return;
+    case BoundaryCondition::kCantileverGuided:
+      *g = v2 * (25.0 - 20.0 * v + 2.0 * v2 * v) / 240.0;
+      *dg = v * (50.0 - 60.0 * v + 10.0 * v2 * v) / 240.0;
+      return;
+  }
+  *g = *dg = 0.0;
+}
+
 BendingJob StaticJob(const ModalWireEvaluateJob& job) {
   BendingJob b;
   b.boundary = job.model->basis.boundary;
@@ -48,6 +76,7 @@ BendingJob StaticJob(const ModalWireEvaluateJob& job) {
   b.tip_couple = job.loads.tip_couple;
   b.point_loads = job.loads.point_loads;
   b.line_loads = job.loads.line_loads;
+  b.linear_line_loads = job.loads.linear_line_loads;
   b.samples = job.samples;
   b.displacement = job.displacement;
   b.slope = job.slope;
@@ -96,8 +125,7 @@ Status ModalWireEvaluateJob::Validate() const {
   if (Status s = detail::ValidateModalState(*model, state); !s) return s;
   // The loads, samples and outputs by BendingJob's rules, then the support acceleration.
   if (Status s = StaticJob(*this).Validate(); !s) return s;
-  if (Status s = detail::ValidateSupportAcceleration(*model, loads.support_acceleration); !s)
-    return s;
+  if (Status s = detail::ValidateSupportMotion(*model, loads); !s) return s;
   const std::size_t table = samples.size() * std::size_t(model->basis.modes);
   if (!mode_values.empty() && mode_values.size() != table)
     return Status::Invalid("mode_values", "must be empty or hold samples x modes values");
@@ -124,6 +152,22 @@ Status ModalWireEvaluateJob::Run() const {
     for (std::size_t i = 0; i < samples.size(); ++i) {
       double g = 0.0, dg = 0.0;
       UniformLoadShape(m.basis.boundary, samples[i], &g, &dg);
+      displacement[i] += x_scale * g;
+      if (!slope.empty()) slope[i] += s_scale * dg;
+    }
+  }
+  // The turning support's inertial load, -rho A L r_support (N/m) at v = 1 falling linearly to
+  // zero at v = 0, in closed form.
+  const Vec3 turning = TurningAccelerationPerLength(loads.support_angular_velocity,
+                                                    loads.support_angular_acceleration);
+  if (!turning.isZero(0.0)) {
+    const double length = m.length;
+    const Vec3 w1 = -m.mass_per_length * length * turning;  // N/m at v = 1
+    const double l3 = length * length * length / m.bending_stiffness;
+    const Vec3 x_scale = w1 * (l3 * length), s_scale = w1 * l3;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      double g = 0.0, dg = 0.0;
+      RampLoadShape(m.basis.boundary, samples[i], &g, &dg);
       displacement[i] += x_scale * g;
       if (!slope.empty()) slope[i] += s_scale * dg;
     }

@@ -9,10 +9,11 @@
 namespace wirerig::detail {
 
 // Checks the loads for the model's family, length and stiffness (BendingJob's rules and field
-// names) and the support acceleration. The model must be valid.
+// names) and the support's motion. The model must be valid.
 Status ValidateModalLoads(const ModalWireModel& model, const ModalWireLoads& loads);
-// The support acceleration alone: finite, and its inertial load bounded like BendingJob's.
-Status ValidateSupportAcceleration(const ModalWireModel& model, const Vec3& acceleration);
+// The support's motion alone (acceleration, angular velocity, angular acceleration): finite,
+// and their inertial loads bounded like BendingJob's.
+Status ValidateSupportMotion(const ModalWireModel& model, const ModalWireLoads& loads);
 
 // Checks that the state belongs to the model (mode count) and holds finite, bounded values.
 Status ValidateModalState(const ModalWireModel& model, const ModalWireState* state);

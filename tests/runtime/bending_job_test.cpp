@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace wirerig {
@@ -16,6 +18,7 @@ struct BendingCase {
   BendingJob job;
   std::vector<PointLoad> point_loads;
   std::vector<LineLoad> line_loads;
+  std::vector<LinearLineLoad> linear_line_loads;
   std::vector<double> samples;
   std::vector<Vec3> x, slope, curvature;
 
@@ -29,6 +32,7 @@ struct BendingCase {
   void Run() {
     job.point_loads = point_loads;
     job.line_loads = line_loads;
+    job.linear_line_loads = linear_line_loads;
     job.samples = samples;
     job.displacement = x;
     job.slope = slope;
@@ -45,6 +49,10 @@ constexpr double kEI = 20.0;  // N m^2 (E = 2 GPa, I = 1e-8 m^4)
 constexpr double kF = 10.0;   // N
 constexpr double kQ = 5.0;    // N/m
 const Vec3 kDown = -Vec3::UnitY();
+
+constexpr std::array kFamilies = {BoundaryCondition::kSimplySupported, BoundaryCondition::kClamped,
+                                  BoundaryCondition::kCantileverFree,
+                                  BoundaryCondition::kCantileverGuided};
 
 double Deflection(BoundaryCondition bc, double at, std::vector<PointLoad> p,
                   std::vector<LineLoad> q, Vec3 tip = Vec3::Zero()) {
@@ -149,11 +157,237 @@ TEST(BendingJobTextbook, PatchLoadEqualsManyPointLoads) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Boundary conditions, the ODE between loads and the jump at loads, for every family.
+// Linearly varying loads against textbook beam tables (Roark's Formulas for Stress and Strain,
+// table 8.1; the AISC beam diagrams), w the largest load per length.
 
-constexpr std::array kFamilies = {BoundaryCondition::kSimplySupported, BoundaryCondition::kClamped,
-                                  BoundaryCondition::kCantileverFree,
-                                  BoundaryCondition::kCantileverGuided};
+// Lateral deflection (along kDown) at the samples under linear loads alone.
+std::vector<double> LinearDeflections(BoundaryCondition bc, BendingMode mode,
+                                      std::vector<LinearLineLoad> loads, std::vector<double> v,
+                                      int terms = 20) {
+  BendingCase c(bc, kL, kEI, std::move(v));
+  c.job.mode = mode;
+  c.job.series_terms = terms;
+  c.linear_line_loads = std::move(loads);
+  c.Run();
+  std::vector<double> out;
+  for (const Vec3& x : c.x) out.push_back(x.dot(kDown));
+  return out;
+}
+
+TEST(BendingJobTextbook, CantileverTriangularLoads) {
+  const double wl4 = kQ * kL * kL * kL * kL / kEI;
+  std::vector<double> v;
+  for (int i = 0; i <= 20; ++i) v.push_back(i / 20.0);
+  // Rising from 0 at the clamp to w at the tip: tip 11 w L^4 / 120 EI, and
+  // y(x) = w x^2 (20 L^3 - 10 L^2 x + x^3) / (120 L EI).
+  const std::vector<double> rising =
+      LinearDeflections(BoundaryCondition::kCantileverFree, BendingMode::kExact,
+                        {{0.0, 1.0, Vec3::Zero(), kQ * kDown}}, v);
+  EXPECT_NEAR(rising.back(), 11.0 * wl4 / 120.0, 1e-13 * wl4);
+  // Falling from w at the clamp to 0 at the tip: tip w L^4 / 30 EI, and
+  // y(x) = w x^2 (10 L^3 - 10 L^2 x + 5 L x^2 - x^3) / (120 L EI).
+  const std::vector<double> falling =
+      LinearDeflections(BoundaryCondition::kCantileverFree, BendingMode::kExact,
+                        {{0.0, 1.0, kQ * kDown, Vec3::Zero()}}, v);
+  EXPECT_NEAR(falling.back(), wl4 / 30.0, 1e-13 * wl4);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const double x = v[i] * kL, l = kL;
+    const double up = kQ * x * x * (20 * l * l * l - 10 * l * l * x + x * x * x) / (120 * l * kEI);
+    const double down = kQ * x * x * (10 * l * l * l - 10 * l * l * x + 5 * l * x * x - x * x * x) /
+                        (120 * l * kEI);
+    EXPECT_NEAR(rising[i], up, 1e-13 * wl4) << "v = " << v[i];
+    EXPECT_NEAR(falling[i], down, 1e-13 * wl4) << "v = " << v[i];
+  }
+}
+
+TEST(BendingJobTextbook, SimplySupportedTriangularLoad) {
+  // Rising from 0 at the left support to w at the right: y = w x (7 L^4 - 10 L^2 x^2 + 3 x^4) /
+  // (360 L EI); at midspan 5 w L^4 / 768 EI; the largest 0.00652 w L^4 / EI at
+  // x = L sqrt(1 - sqrt(8/15)) = 0.5193 L.
+  const double wl4 = kQ * kL * kL * kL * kL / kEI;
+  std::vector<double> v;
+  for (int i = 0; i <= 100000; ++i) v.push_back(i / 100000.0);
+  const std::vector<double> y =
+      LinearDeflections(BoundaryCondition::kSimplySupported, BendingMode::kExact,
+                        {{0.0, 1.0, Vec3::Zero(), kQ * kDown}}, v);
+  EXPECT_NEAR(y[50000], 5.0 * wl4 / 768.0, 1e-13 * wl4);
+  const auto peak = std::max_element(y.begin(), y.end());
+  const double at = v[std::size_t(peak - y.begin())];
+  EXPECT_NEAR(*peak / wl4, 0.00652, 0.000005);  // the table's three digits
+  EXPECT_NEAR(at, 0.519, 0.0005);
+  EXPECT_NEAR(at, std::sqrt(1.0 - std::sqrt(8.0 / 15.0)), 1e-5);
+  for (int i = 0; i <= 100000; i += 2500) {
+    const double x = v[std::size_t(i)] * kL, l = kL;
+    const double expected =
+        kQ * x * (7 * l * l * l * l - 10 * l * l * x * x + 3 * x * x * x * x) / (360 * l * kEI);
+    EXPECT_NEAR(y[std::size_t(i)], expected, 1e-13 * wl4) << "v = " << v[std::size_t(i)];
+  }
+}
+
+TEST(BendingJobTextbook, ClampedAndGuidedTriangularLoads) {
+  // Clamped at both ends, rising 0 -> w: y = w x^2 (L - x)^2 (2L + x) / (120 L EI), largest
+  // 0.00131 w L^4 / EI at x = 0.525 L (the tables' digits); a guided cantilever (the symmetric half
+  // of a clamped-clamped wire) rising 0 -> w toward its guided end: w x^2 (25 L^3 - 20 L^2 x + 2
+  // x^3) / (240 L EI), here from the Macaulay table with a = 0, b = 1 (m0 = 1/120, m1 = 1/24, m3 =
+  // 1/2).
+  const double wl4 = kQ * kL * kL * kL * kL / kEI;
+  std::vector<double> v;
+  for (int i = 0; i <= 20; ++i) v.push_back(i / 20.0);
+  const std::vector<LinearLineLoad> ramp = {{0.0, 1.0, Vec3::Zero(), kQ * kDown}};
+  const std::vector<double> clamped =
+      LinearDeflections(BoundaryCondition::kClamped, BendingMode::kExact, ramp, v);
+  const std::vector<double> guided =
+      LinearDeflections(BoundaryCondition::kCantileverGuided, BendingMode::kExact, ramp, v);
+  std::vector<double> fine;
+  for (int i = 0; i <= 10000; ++i) fine.push_back(i / 10000.0);
+  const std::vector<double> y =
+      LinearDeflections(BoundaryCondition::kClamped, BendingMode::kExact, ramp, fine);
+  const auto peak = std::max_element(y.begin(), y.end());
+  EXPECT_NEAR(*peak / wl4, 0.00131, 0.000005);
+  EXPECT_NEAR(fine[std::size_t(peak - y.begin())], 0.525, 0.0005);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const double x = v[i] * kL, l = kL;
+    EXPECT_NEAR(clamped[i], kQ * x * x * (l - x) * (l - x) * (2 * l + x) / (120 * l * kEI),
+                1e-13 * wl4);
+    EXPECT_NEAR(guided[i],
+                kQ * x * x * (25 * l * l * l - 20 * l * l * x + 2 * x * x * x) / (240 * l * kEI),
+                1e-13 * wl4);
+  }
+}
+
+TEST(BendingJobTextbook, LinearLoadEqualsManyPointLoads) {
+  // A trapezoid on [0.2, 0.6] against 20000 point loads at the slices' midpoints, each the
+  // slice's load (exact for a linear load: its midpoint value times the slice).
+  const Vec3 start = kQ * kDown, end = Vec3(2.0, -0.5 * kQ, 3.0);
+  std::vector<PointLoad> slices;
+  const int n = 20000;
+  for (int k = 0; k < n; ++k) {
+    const double t = (k + 0.5) / n;
+    slices.push_back({0.2 + 0.4 * t, ((1.0 - t) * start + t * end) * (kL * 0.4 / n)});
+  }
+  for (BoundaryCondition bc : kFamilies) {
+    SCOPED_TRACE(ToString(bc));
+    BendingCase linear(bc, kL, kEI, Points({0.1, 0.4, 0.75, 1.0}));
+    linear.linear_line_loads = {{0.2, 0.6, start, end}};
+    linear.Run();
+    BendingCase points(bc, kL, kEI, Points({0.1, 0.4, 0.75, 1.0}));
+    points.point_loads = slices;
+    points.Run();
+    for (std::size_t i = 0; i < 4; ++i)
+      EXPECT_LT((linear.x[i] - points.x[i]).norm(), 1e-8 * points.x[i].norm() + 1e-15);
+  }
+}
+
+TEST(BendingJobTextbook, TrapezoidIsUniformPlusRampInBothModes) {
+  // p_a -> p_b over [a, b] = p_a uniform over [a, b] + a ramp 0 -> p_b - p_a; and a linear
+  // load with equal ends is the uniform LineLoad.
+  const Vec3 pa(1.0, -4.0, 2.0), pb(-3.0, 2.5, 0.5);
+  for (BendingMode mode : {BendingMode::kExact, BendingMode::kSeries})
+    for (BoundaryCondition bc : kFamilies) {
+      SCOPED_TRACE(std::string(ToString(bc)) + " " + std::string(ToString(mode)));
+      const std::vector<double> v = Points({0.0, 0.1, 0.3, 0.5, 0.62, 0.9, 1.0});
+      BendingCase trapezoid(bc, kL, kEI, v), parts(bc, kL, kEI, v), level(bc, kL, kEI, v),
+          uniform(bc, kL, kEI, v);
+      for (BendingCase* c : {&trapezoid, &parts, &level, &uniform}) c->job.mode = mode;
+      trapezoid.linear_line_loads = {{0.25, 0.7, pa, pb}};
+      parts.line_loads = {{0.25, 0.7, pa}};
+      parts.linear_line_loads = {{0.25, 0.7, Vec3::Zero(), pb - pa}};
+      level.linear_line_loads = {{0.25, 0.7, pa, pa}};
+      uniform.line_loads = {{0.25, 0.7, pa}};
+      for (BendingCase* c : {&trapezoid, &parts, &level, &uniform}) c->Run();
+      double scale = 0.0;
+      for (const Vec3& x : trapezoid.x) scale = std::max(scale, x.norm());
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        EXPECT_LT((trapezoid.x[i] - parts.x[i]).norm(), 1e-14 * scale) << "v = " << v[i];
+        EXPECT_LT((trapezoid.slope[i] - parts.slope[i]).norm(), 1e-13 * scale) << "v = " << v[i];
+        EXPECT_LT((level.x[i] - uniform.x[i]).norm(), 1e-14 * scale) << "v = " << v[i];
+        EXPECT_LT((level.curvature[i] - uniform.curvature[i]).norm(), 1e-13 * scale);
+      }
+    }
+}
+
+TEST(BendingJobBoundary, OdeHoldsUnderALinearLoad) {
+  // EI X'''' = p(v) inside the load (fourth difference: exact for the quintic pieces), with the
+  // end conditions met (a trapezoid over [0.3, 0.8] on every family).
+  const Vec3 start(1.0, -6.0, 2.0), end(-2.0, 3.0, 0.5);
+  for (BoundaryCondition bc : kFamilies) {
+    SCOPED_TRACE(ToString(bc));
+    for (double centre : {0.45, 0.6, 0.7}) {
+      const double h = 0.01;
+      BendingCase c(bc, kL, kEI,
+                    Points({centre - 2 * h, centre - h, centre, centre + h, centre + 2 * h}));
+      c.linear_line_loads = {{0.3, 0.8, start, end}};
+      c.Run();
+      const double hs = h * kL;
+      const Vec3 fourth =
+          (c.x[0] - 4.0 * c.x[1] + 6.0 * c.x[2] - 4.0 * c.x[3] + c.x[4]) / (hs * hs * hs * hs);
+      const double t = (centre - 0.3) / 0.5;
+      const Vec3 p = (1.0 - t) * start + t * end;
+      EXPECT_LT((kEI * fourth - p).norm(), 1e-4 * start.norm()) << "v = " << centre;
+    }
+  }
+}
+
+TEST(BendingJobDegenerate, NarrowLinearLoadIsAPointLoadAtItsCentroid) {
+  // Over a width of 1e-6 and 1e-9 a trapezoid acts as its total load at its centroid,
+  // a + d (p_a + 2 p_b) / (3 (p_a + p_b)) (to rounding: like a uniform patch's, a narrow
+  // load's terms cancel to about 1e-16 / d of its effect); over widths down to 1e-300 it stays
+  // finite (nothing divides by the width unguarded).
+  for (double requested : {1e-6, 1e-9}) {
+    for (BoundaryCondition bc : kFamilies) {
+      SCOPED_TRACE(std::string(ToString(bc)) + " width " + std::to_string(requested));
+      const double a = 0.4, b = a + requested, width = b - a;
+      const double pa = 1e3, pb = 3e3;  // N/m, along kDown
+      const double total = 0.5 * (pa + pb) * width * kL;
+      const double centroid = a + width * (pa + 2.0 * pb) / (3.0 * (pa + pb));
+      for (BendingMode mode : {BendingMode::kExact, BendingMode::kSeries}) {
+        BendingCase linear(bc, kL, kEI, Points({0.2, centroid, 0.7, 1.0}));
+        linear.job.mode = mode;
+        linear.linear_line_loads = {{a, b, pa * kDown, pb * kDown}};
+        linear.Run();
+        BendingCase point(bc, kL, kEI, Points({0.2, centroid, 0.7, 1.0}));
+        point.job.mode = mode;
+        point.point_loads = {{centroid, total * kDown}};
+        point.Run();
+        const double scale = point.x[2].norm() + point.x[3].norm();
+        ASSERT_GT(scale, 0.0);
+        for (std::size_t i = 0; i < 4; ++i)
+          EXPECT_LT((linear.x[i] - point.x[i]).norm(), 1e-6 * scale) << ToString(mode) << " " << i;
+      }
+    }
+  }
+  for (BoundaryCondition bc : kFamilies)
+    for (BendingMode mode : {BendingMode::kExact, BendingMode::kSeries})
+      for (auto [a, b] : {std::pair{0.0, 1e-300}, std::pair{0.5, std::nextafter(0.5, 1.0)},
+                          std::pair{std::nextafter(1.0, 0.0), 1.0}}) {
+        BendingCase c(bc, kL, kEI, Points({0.0, a, 0.5, 1.0}));
+        c.job.mode = mode;
+        c.linear_line_loads = {{a, b, 1e5 * kDown, -2e5 * kDown}};
+        c.Run();
+        for (const Vec3& x : c.x) EXPECT_LT(x.norm(), 1e-6);
+      }
+}
+
+TEST(BendingJobDegenerate, LinearLoadsAtTheEndsAndEqualEnds) {
+  // A ramp ending at either end of the wire, a triangle whose peak sits on a support, and a
+  // load on a sliver at v = 1 of a clamped wire (the support takes it): all finite, and the
+  // last one tiny.
+  for (BoundaryCondition bc : kFamilies) {
+    SCOPED_TRACE(ToString(bc));
+    BendingCase c(bc, kL, kEI, Points({0.0, 0.5, 1.0}));
+    c.linear_line_loads = {{0.0, 0.2, kQ * kDown, Vec3::Zero()},
+                           {0.8, 1.0, Vec3::Zero(), kQ * kDown}};
+    c.Run();
+    EXPECT_LT((c.x[0] - c.job.start_displacement).norm(), 1e-15);
+  }
+  BendingCase sliver(BoundaryCondition::kClamped, kL, kEI, Points({0.5, 0.999}));
+  sliver.linear_line_loads = {{1.0 - 1e-12, 1.0, kQ * kDown, kQ * kDown}};
+  sliver.Run();
+  EXPECT_LT(sliver.x[0].norm(), 1e-30);
+}
+
+// ---------------------------------------------------------------------------------------
+// Boundary conditions, the ODE between loads and the jump at loads, for every family.
 
 BendingCase LoadedCase(BoundaryCondition bc, std::vector<double> v) {
   BendingCase c(bc, kL, kEI, std::move(v));
@@ -391,6 +625,36 @@ TEST_F(BendingJobValidation, LineLoadOutsideEmptyOrNotFinite) {
   line_loads[0].to = 0.4;
   line_loads[0].force_per_length = Vec3(NaN(), 0, 0);
   ExpectRefused("line_loads", 0, "force_per_length");
+}
+TEST_F(BendingJobValidation, LinearLineLoadOutsideEmptyReversedOrNotFinite) {
+  std::array<LinearLineLoad, 2> linear{
+      {{0.0, 1.0, Vec3(0, -1, 0), Vec3::Zero()}, {0.2, 0.4, Vec3(0, -1, 0), Vec3(1, -2, 0)}}};
+  job.linear_line_loads = linear;
+  ASSERT_TRUE(job.Validate().ok());
+  for (double bad : {-0.2, 1.1, NaN(), Inf()}) {
+    linear[1].from = bad;
+    ExpectRefused("linear_line_loads", 1, "from");
+  }
+  linear[1].from = 0.2;
+  for (double bad : {2.0, -0.1, NaN()}) {
+    linear[1].to = bad;
+    ExpectRefused("linear_line_loads", 1, "to");
+  }
+  linear[1].to = 0.2;  // zero width
+  ExpectRefused("linear_line_loads", 1, "to");
+  linear[1].to = 0.1;  // from > to
+  ExpectRefused("linear_line_loads", 1, "to");
+  linear[1].to = 0.4;
+  linear[1].start_force_per_length = Vec3(0, NaN(), 0);
+  ExpectRefused("linear_line_loads", 1, "start_force_per_length");
+  linear[1].start_force_per_length = Vec3(0, -1, 0);
+  linear[1].end_force_per_length = Vec3(0, 0, -Inf());
+  ExpectRefused("linear_line_loads", 1, "end_force_per_length");
+  linear[1].end_force_per_length = Vec3(0, -1e200, 0);
+  ExpectRefused("loads");
+  linear[1].end_force_per_length = Vec3::Zero();
+  job.mode = BendingMode::kSeries;
+  EXPECT_TRUE(job.Run().ok());
 }
 TEST_F(BendingJobValidation, LoadsThatWouldOverflow) {
   point_loads[0].force = Vec3(0, -1e200, 0);

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <random>
 #include <sstream>
 #include <string>
@@ -28,6 +29,7 @@ namespace {
 using ::wirerig::testing::FdBeamProblem;
 using ::wirerig::testing::FdBeamSolution;
 using ::wirerig::testing::FdScalarBeamProblem;
+using ::wirerig::testing::FdScalarLinearLineLoad;
 using ::wirerig::testing::FdScalarLineLoad;
 using ::wirerig::testing::FdScalarPointLoad;
 using ::wirerig::testing::SolveFdBeam;
@@ -217,6 +219,78 @@ TEST(FdBeamReference, PatchLoads) {
   }
 }
 
+// Triangular loads (textbook beam tables, w the peak load per length): a cantilever under a
+// load rising to the tip, y = w x^2 (20 L^3 - 10 L^2 x + x^3) / (120 L EI), tip 11 w L^4 /
+// 120 EI, or falling to it, y = w x^2 (10 L^3 - 10 L^2 x + 5 L x^2 - x^3) / (120 L EI), tip
+// w L^4 / 30 EI; a simply supported wire, y = w x (7 L^4 - 10 L^2 x^2 + 3 x^4) / (360 L EI),
+// 5 w L^4 / 768 EI at midspan. The reference's nodal error for linear loads is still even in h.
+TEST(FdBeamReference, TriangularLoads) {
+  const double l4 = kQ * kL * kL * kL * kL / kEI;
+  {
+    SCOPED_TRACE("cantilever, rising to the tip");
+    FdScalarBeamProblem p = Scalar(BoundaryCondition::kCantileverFree);
+    p.linear_line_loads = {{0.0, 1.0, 0.0, kQ}};
+    const FdBeamSolution fd = SolveFdBeamRichardson(p, kCoarse);
+    ASSERT_TRUE(fd.ok()) << fd.error;
+    EXPECT_NEAR(At(fd, 1.0), 11.0 * l4 / 120.0, kFdTolerance * l4);
+    EXPECT_LE(RelativeError(fd, kL,
+                            [](double x) {
+                              return kQ * x * x *
+                                     (20 * kL * kL * kL - 10 * kL * kL * x + x * x * x) /
+                                     (120 * kL * kEI);
+                            }),
+              kFdTolerance);
+  }
+  {
+    SCOPED_TRACE("cantilever, falling to the tip");
+    FdScalarBeamProblem p = Scalar(BoundaryCondition::kCantileverFree);
+    p.linear_line_loads = {{0.0, 1.0, kQ, 0.0}};
+    const FdBeamSolution fd = SolveFdBeamRichardson(p, kCoarse);
+    ASSERT_TRUE(fd.ok()) << fd.error;
+    EXPECT_NEAR(At(fd, 1.0), l4 / 30.0, kFdTolerance * l4);
+    EXPECT_LE(
+        RelativeError(fd, kL,
+                      [](double x) {
+                        return kQ * x * x *
+                               (10 * kL * kL * kL - 10 * kL * kL * x + 5 * kL * x * x - x * x * x) /
+                               (120 * kL * kEI);
+                      }),
+        kFdTolerance);
+  }
+  {
+    SCOPED_TRACE("simply supported, rising");
+    FdScalarBeamProblem p = Scalar(BoundaryCondition::kSimplySupported);
+    p.linear_line_loads = {{0.0, 1.0, 0.0, kQ}};
+    const FdBeamSolution fd = SolveFdBeamRichardson(p, kCoarse);
+    ASSERT_TRUE(fd.ok()) << fd.error;
+    EXPECT_NEAR(At(fd, 0.5), 5.0 * l4 / 768.0, kFdTolerance * l4);
+    EXPECT_LE(
+        RelativeError(fd, kL,
+                      [](double x) {
+                        return kQ * x *
+                               (7 * kL * kL * kL * kL - 10 * kL * kL * x * x + 3 * x * x * x * x) /
+                               (360 * kL * kEI);
+                      }),
+        kFdTolerance);
+  }
+  {
+    // A partial ramp through reciprocity: the cantilever's tip deflection under r (x - a) on
+    // [a, b] is the integral of r (x - a) x^2 (3L - x) / 6EI over [a, b].
+    SCOPED_TRACE("cantilever, ramp on [0.2, 0.7]");
+    FdScalarBeamProblem p = Scalar(BoundaryCondition::kCantileverFree);
+    p.linear_line_loads = {{0.2, 0.7, 0.0, kQ}};
+    const FdBeamSolution fd = SolveFdBeamRichardson(p, kCoarse);
+    ASSERT_TRUE(fd.ok()) << fd.error;
+    const double a = 0.2 * kL, b = 0.7 * kL, r = kQ / (b - a);
+    // Antiderivative of (x - a) x^2 (3L - x) = -x^4 + (3L + a) x^3 - 3 a L x^2.
+    auto primitive = [&](double x) {
+      return -x * x * x * x * x / 5.0 + (3 * kL + a) * x * x * x * x / 4.0 - a * kL * x * x * x;
+    };
+    const double tip = r * (primitive(b) - primitive(a)) / (6.0 * kEI);
+    EXPECT_NEAR(At(fd, 1.0), tip, kFdTolerance * tip);
+  }
+}
+
 // End displacements alone: a straight line (simply supported), the Hermite cubic (clamped),
 // a rigid translation (cantilevers, which ignore X1).
 TEST(FdBeamReference, EndDisplacements) {
@@ -341,6 +415,7 @@ struct LoadSet {
   Vec3 tip = Vec3::Zero();
   std::vector<PointLoad> points;
   std::vector<LineLoad> lines;
+  std::vector<LinearLineLoad> linear;
 };
 
 std::string Describe(const LoadSet& s) {
@@ -351,6 +426,10 @@ std::string Describe(const LoadSet& s) {
   for (const PointLoad& p : s.points) out << "; P(" << p.at << ") = " << p.force.transpose();
   for (const LineLoad& l : s.lines) {
     out << "; q[" << l.from << ", " << l.to << "] = " << l.force_per_length.transpose();
+  }
+  for (const LinearLineLoad& l : s.linear) {
+    out << "; q[" << l.from << ", " << l.to << "] = " << l.start_force_per_length.transpose()
+        << " -> " << l.end_force_per_length.transpose();
   }
   return out.str();
 }
@@ -401,6 +480,7 @@ double CompareWithReference(BoundaryCondition bc, const LoadSet& s) {
   job.tip_force = s.tip;
   job.point_loads = s.points;
   job.line_loads = s.lines;
+  job.linear_line_loads = s.linear;
   job.samples = samples;
   job.displacement = x;
   const Status status = job.Run();
@@ -416,6 +496,7 @@ double CompareWithReference(BoundaryCondition bc, const LoadSet& s) {
   p.tip_force = s.tip;
   p.point_loads = s.points;
   p.line_loads = s.lines;
+  p.linear_line_loads = s.linear;
   const FdBeamSolution fd = SolveFdBeamRichardson(p, kCoarse);
   EXPECT_TRUE(fd.ok()) << fd.error;
   if (!fd.ok()) return 1.0;
@@ -489,6 +570,73 @@ TEST(BendingReference, LoadsAtAndNearTheEndsMatchFiniteDifferences) {
     SCOPED_TRACE(Describe(s));
     CompareWithReference(bc, s);
   }
+}
+
+// Linearly varying loads on every family: a partial trapezoid (the task's case), ramps touching
+// either end, a full-span triangle, with end displacements and tip forces, then random sets of
+// trapezoids and point loads.
+TEST(BendingReference, LinearLoadsOnEveryFamilyMatchFiniteDifferences) {
+  double worst = 0.0;
+  for (BoundaryCondition bc :
+       {BoundaryCondition::kSimplySupported, BoundaryCondition::kClamped,
+        BoundaryCondition::kCantileverFree, BoundaryCondition::kCantileverGuided}) {
+    {
+      LoadSet s;
+      s.name = std::string(ToString(bc)) + " partial trapezoid";
+      s.length = 2.1;
+      s.ei = 55.0;
+      s.linear = {{0.23, 0.71, Vec3(30.0, -12.0, 5.0), Vec3(-8.0, 40.0, 20.0)}};
+      SCOPED_TRACE(Describe(s));
+      worst = std::max(worst, CompareWithReference(bc, s));
+    }
+    {
+      LoadSet s;
+      s.name = std::string(ToString(bc)) + " ends";
+      s.length = 1.7;
+      s.ei = 35.0;
+      s.x0 = Vec3(0.002, -0.001, 0.0);
+      s.x1 = Vec3(-0.003, 0.0, 0.004);
+      if (IsCantilever(bc)) s.tip = Vec3(3.0, -8.0, 1.0);
+      s.points = {{0.37, Vec3(-20.0, 10.0, 5.0)}};
+      s.lines = {{0.1, 0.3, Vec3(4.0, -3.0, 2.0)}};
+      s.linear = {{0.0, 1.0, Vec3::Zero(), Vec3(-10.0, 25.0, 6.0)},
+                  {0.0, 0.15, Vec3(50.0, 0.0, -20.0), Vec3(-5.0, 10.0, 0.0)},
+                  {0.85, 1.0, Vec3(0.0, -30.0, 8.0), Vec3(60.0, 15.0, -40.0)}};
+      SCOPED_TRACE(Describe(s));
+      worst = std::max(worst, CompareWithReference(bc, s));
+    }
+    std::mt19937 rng(5005u + static_cast<std::uint32_t>(bc));
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    auto vec = [&](double scale) {
+      const double x = unit(rng);
+      const double y = unit(rng);
+      const double z = unit(rng);
+      return Vec3(scale * x, scale * y, scale * z);
+    };
+    for (int i = 0; i < 10; ++i) {
+      LoadSet s;
+      s.name = std::string(ToString(bc)) + " random #" + std::to_string(i);
+      s.length = std::uniform_real_distribution<double>(0.5, 3.0)(rng);
+      s.ei = std::pow(10.0, std::uniform_real_distribution<double>(0.0, 3.0)(rng));
+      s.x0 = vec(0.010);
+      s.x1 = vec(0.010);
+      if (IsCantilever(bc)) s.tip = vec(100.0);
+      s.points.push_back({std::uniform_int_distribution<int>(1, 99)(rng) / 100.0, vec(100.0)});
+      const int count = std::uniform_int_distribution<int>(1, 3)(rng);
+      for (int k = 0; k < count; ++k) {
+        const int a = std::uniform_int_distribution<int>(0, 99)(rng);
+        const int b = std::uniform_int_distribution<int>(a + 1, 100)(rng);
+        const Vec3 start = vec(100.0);
+        s.linear.push_back({a / 100.0, b / 100.0, start, vec(100.0)});
+      }
+      SCOPED_TRACE(Describe(s));
+      worst = std::max(worst, CompareWithReference(bc, s));
+    }
+  }
+  std::printf("[measure] linear loads vs finite differences: worst %.1e of max |X|\n", worst);
+  std::ostringstream text;
+  text << worst;
+  ::testing::Test::RecordProperty("worst_relative_difference", text.str());
 }
 
 }  // namespace

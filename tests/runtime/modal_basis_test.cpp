@@ -269,6 +269,53 @@ TEST(ModalBasis, IntegralMatchesQuadratureOverPatches) {
     }
 }
 
+// The first moment about a, integral_a^b (v - a) phi_n dv, against composite Simpson on
+// [a, b] (20000 intervals: error ~ h^4 beta^4 (b - a)^6 / 180, below 1e-13 here), for every
+// family, all 32 modes, wide, narrow and end-touching stretches; the ramp integral is the
+// moment over the width, and the basis's `moment` the moment over the whole wire.
+TEST(ModalBasis, MomentMatchesQuadratureOverPatches) {
+  const std::vector<double> w = SimpsonWeights(20000);
+  double worst = 0.0;
+  for (BoundaryCondition bc : kFamilies) {
+    SCOPED_TRACE(ToString(bc));
+    const ModalBasis basis = Build(bc, 32);
+    for (int n = 0; n < 32; ++n)
+      for (auto [a, b] :
+           {std::pair{0.0, 1.0}, std::pair{0.0, 0.3}, std::pair{0.25, 0.8}, std::pair{0.9, 1.0},
+            std::pair{0.41, 0.415}, std::pair{0.6, 0.6 + 1e-7}}) {
+        const double d = b - a;
+        double moment = 0.0;
+        for (int i = 0; i <= 20000; ++i) {
+          const double t = i / 20000.0;
+          moment += w[i] * d * (d * t) * ModeValue(basis, n, a + d * t);
+        }
+        // Relative to the size of the moment's terms, d^2 max|phi| (|phi| <= 2).
+        const double scale = d * d;
+        const double error = std::abs(ModeMoment(basis, n, a, b) - moment) / scale;
+        worst = std::max(worst, error);
+        EXPECT_LT(error, 1e-12) << "mode " << n + 1 << " on [" << a << ", " << b << "]";
+        EXPECT_NEAR(ModeRampIntegral(basis, n, a, b), moment / d, 1e-12 * d)
+            << "mode " << n + 1 << " on [" << a << ", " << b << "]";
+      }
+    for (int n = 0; n < 32; ++n) EXPECT_EQ(basis.moment[n], ModeMoment(basis, n, 0.0, 1.0));
+    EXPECT_EQ(ModeMoment(basis, 3, 0.5, 0.5), 0.0);
+    EXPECT_EQ(ModeRampIntegral(basis, 3, 0.5, 0.5), 0.0);
+  }
+  std::printf("[measure] ModeMoment vs Simpson: worst %.1e of (b - a)^2\n", worst);
+}
+
+// Where the kernels switch from their Taylor series to the closed forms (beta (b - a) = 1),
+// the moment is continuous to rounding.
+TEST(ModalBasis, MomentIsContinuousWhereItsKernelsSwitchForm) {
+  const ModalBasis basis = Build(BoundaryCondition::kCantileverFree, 8);
+  for (int n = 0; n < 8; ++n) {
+    const double d = 1.0 / basis.beta[n];
+    const double below = ModeMoment(basis, n, 0.1, 0.1 + std::nextafter(d, 0.0));
+    const double at = ModeMoment(basis, n, 0.1, 0.1 + d);
+    EXPECT_NEAR(below, at, 1e-14 * d * d) << "mode " << n + 1;
+  }
+}
+
 TEST(ModalBasis, InvalidInputsAreNamed) {
   ModalBasis basis;
   EXPECT_EQ(BuildModalBasis(BoundaryCondition::kClamped, 0, &basis).field, "modes");

@@ -23,6 +23,7 @@ TEST(ModalWireNoAllocation, CountingAllocatorSeesAllocations) {
 TEST(ModalWireNoAllocation, BuildStepAndEvaluateWithEveryOption) {
   std::vector<PointLoad> point = {{0.2, Vec3(0, -1, 0)}, {0.7, Vec3(1, 0, 0)}};
   std::vector<LineLoad> line = {{0.1, 0.5, Vec3(0, 0, 2)}};
+  std::vector<LinearLineLoad> linear = {{0.2, 0.9, Vec3(1, 0, 0), Vec3(0, -2, 1)}};
   std::vector<double> v(33);
   for (std::size_t i = 0; i < v.size(); ++i) v[i] = double(i) / double(v.size() - 1);
   std::vector<double> values(v.size() * 32), slopes(v.size() * 32);
@@ -44,7 +45,10 @@ TEST(ModalWireNoAllocation, BuildStepAndEvaluateWithEveryOption) {
       loads.line_loads = line;
       loads.start_displacement = Vec3(0.0, 0.01, 0.0);
       if (IsCantilever(bc)) loads.tip_force = Vec3(0.0, 0.5, 0.0);
+      loads.linear_line_loads = linear;
       loads.support_acceleration = Vec3(2.0, -9.81, 0.0);
+      loads.support_angular_velocity = Vec3(0.5, -1.0, 2.0);
+      loads.support_angular_acceleration = Vec3(3.0, 0.0, -1.0);
       ModalWireState state;
       ModalStepTable table;
       ASSERT_TRUE(InitializeModalWireAtRest(model, &state).ok());

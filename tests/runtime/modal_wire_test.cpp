@@ -201,11 +201,27 @@ TEST(ModalWireStatics, SimplySupportedPointLoadGivesTheSineSeriesCoefficients) {
   }
 }
 
-// BendingJob's exact answer for the same loads (the inertial support load as a line load).
+// The lateral part of alpha x (s t) + omega x (omega x (s t)) at s = 1 m, t = local z: the
+// rigid-body acceleration of a point 1 m along the wire beyond its support's (computed here
+// with cross products, independently of the runtime's formula).
+Vec3 TurningAccelerationReference(const ModalWireLoads& loads) {
+  const Vec3 t = Vec3::UnitZ();
+  const Vec3& w = loads.support_angular_velocity;
+  const Vec3 a = loads.support_angular_acceleration.cross(t) + w.cross(w.cross(t));
+  return Vec3(a.x(), a.y(), 0.0);
+}
+
+// BendingJob's exact answer for the same loads (the inertial support loads as a uniform and a
+// linear line load).
 std::vector<Vec3> StaticReference(const ModalWireModel& model, const ModalWireLoads& loads,
                                   const std::vector<double>& v, std::vector<Vec3>* slope) {
   std::vector<LineLoad> line(loads.line_loads.begin(), loads.line_loads.end());
   line.push_back({0.0, 1.0, -model.mass_per_length * loads.support_acceleration});
+  std::vector<LinearLineLoad> linear(loads.linear_line_loads.begin(),
+                                     loads.linear_line_loads.end());
+  const Vec3 turning = TurningAccelerationReference(loads);
+  if (!turning.isZero(0.0))
+    linear.push_back({0.0, 1.0, Vec3::Zero(), -model.mass_per_length * model.length * turning});
   std::vector<Vec3> x(v.size());
   slope->resize(v.size());
   BendingJob job;
@@ -218,6 +234,7 @@ std::vector<Vec3> StaticReference(const ModalWireModel& model, const ModalWireLo
   job.tip_couple = loads.tip_couple;
   job.point_loads = loads.point_loads;
   job.line_loads = line;
+  job.linear_line_loads = linear;
   job.samples = v;
   job.displacement = x;
   job.slope = *slope;
@@ -267,6 +284,82 @@ TEST(ModalWireStatics, AWireAtRestUnderItsLoadsIsBendingJobsExactSolution) {
       EXPECT_LT((sim.Evaluate(at) - x_ref[i]).norm(), 1e-13 * scale);
     }
   }
+}
+
+TEST(ModalWireStatics, LinearLoadsAndATurningSupportAtRestAreBendingJobsExactSolution) {
+  const std::vector<LinearLineLoad> linear = {{0.15, 0.65, Vec3(1, -2, 0), Vec3(-0.5, 3, 1)},
+                                              {0.0, 1.0, Vec3(0, 0.4, 0), Vec3(0.8, 0, 0)}};
+  std::vector<double> v(33);
+  for (int i = 0; i <= 32; ++i) v[i] = i / 32.0;
+  for (BoundaryCondition bc : kFamilies) {
+    SCOPED_TRACE(ToString(bc));
+    const ModalWireModel model = MakeModel(bc, 0.1);
+    ModalWireLoads loads;
+    loads.linear_line_loads = linear;
+    loads.support_acceleration = Vec3(0.5, -9.81, 0.0);
+    loads.support_angular_velocity = Vec3(0.7, -1.1, 1.6);
+    loads.support_angular_acceleration = Vec3(-2.0, 3.5, 4.0);
+    std::vector<Vec3> slope_ref;
+    const std::vector<Vec3> x_ref = StaticReference(model, loads, v, &slope_ref);
+    double scale = 0.0;
+    for (const Vec3& x : x_ref) scale = std::max(scale, x.norm());
+    ModalWireState state;
+    ASSERT_TRUE(InitializeModalWireAtStatic(model, loads, &state).ok());
+    std::vector<Vec3> x(v.size()), slope(v.size());
+    ModalWireEvaluateJob job;
+    job.model = &model;
+    job.state = &state;
+    job.loads = loads;
+    job.samples = v;
+    job.displacement = x;
+    job.slope = slope;
+    ASSERT_TRUE(job.Run().ok());
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      EXPECT_LT((x[i] - x_ref[i]).norm(), 1e-13 * scale) << v[i];
+      EXPECT_LT((slope[i] - slope_ref[i]).norm(), 1e-12 * scale / kL) << v[i];
+    }
+    // Stepping under the same loads keeps it there (to rounding).
+    Simulation sim{model, state, loads, 0.01};
+    for (int i = 0; i < 100; ++i) sim.Step();
+    EXPECT_LT((sim.Evaluate(0.75) - x_ref[24]).norm(), 1e-13 * scale);
+  }
+}
+
+TEST(ModalWireStatics, LinearLoadAndTurningCoordinatesAreTheProjectionOfTheStaticSolution) {
+  // As StaticCoordinatesAreTheProjectionOfTheStaticSolution: BendingJob's X under the linear
+  // loads and the turning support's ramp, integrated against the modes by composite Simpson.
+  const std::vector<LinearLineLoad> linear = {{0.1, 0.6, Vec3(1, 0, -2), Vec3(0, 2, 1)},
+                                              {0.5, 1.0, Vec3(0, 3, 0), Vec3(-1, 0, 0)}};
+  const int intervals = 20000;
+  std::vector<double> v(intervals + 1);
+  for (int i = 0; i <= intervals; ++i) v[i] = double(i) / intervals;
+  double worst = 0.0;
+  for (BoundaryCondition bc : kFamilies) {
+    SCOPED_TRACE(ToString(bc));
+    const ModalWireModel model = MakeModel(bc, 0.1, 12);
+    ModalWireLoads loads;
+    loads.linear_line_loads = linear;
+    loads.support_angular_velocity = Vec3(1.2, 0.3, -0.9);
+    loads.support_angular_acceleration = Vec3(0.0, -5.0, 2.0);
+    std::vector<Vec3> slope;
+    const std::vector<Vec3> x = StaticReference(model, loads, v, &slope);
+    std::vector<Vec3> q(12);
+    ASSERT_TRUE(ComputeStaticModalCoordinates(model, loads, q).ok());
+    double scale = 0.0;
+    for (int n = 0; n < 12; ++n) scale = std::max(scale, q[n].norm());
+    for (int n = 0; n < 12; ++n) {
+      Vec3 projection = Vec3::Zero();
+      for (int i = 0; i <= intervals; ++i) {
+        const double w =
+            (i == 0 || i == intervals ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0)) / (3.0 * intervals);
+        projection += x[i] * (w * ModeValue(model.basis, n, v[i]));
+      }
+      worst = std::max(worst, (q[n] - projection).norm() / scale);
+      EXPECT_LT((q[n] - projection).norm(), 1e-10 * scale) << "mode " << n + 1;
+    }
+  }
+  std::printf("[measure] linear-load static coordinates vs Simpson projection: worst %.1e\n",
+              worst);
 }
 
 TEST(ModalWireStep, ModeValuesAtTheLoadsGiveTheSameStep) {
@@ -577,6 +670,68 @@ TEST(ModalWireSupport, ConstantSupportAccelerationSettlesAtTheInertialLoadsDefle
   EXPECT_NEAR(s[1].y(), w * std::pow(kL, 3) / (6.0 * kEI), 1e-9 * std::abs(expected));
 }
 
+// A cantilever whose support starts turning at constant angular acceleration alpha about local
+// y (omega ~ 0): the point at s accelerates by alpha s along +x, so the wire feels the ramp
+// -rho A alpha s and settles (damped) at its textbook static deflection, tip
+// 11 w L^4 / 120 EI with w = rho A alpha L, i.e. 11 rho A alpha L^5 / (120 EI), against the turn.
+TEST(ModalWireSupport, ConstantAngularAccelerationSettlesAtTheRampLoadsDeflection) {
+  Simulation sim;
+  sim.model = MakeModel(BoundaryCondition::kCantileverFree, 0.1);
+  ASSERT_TRUE(InitializeModalWireAtRest(sim.model, &sim.state).ok());
+  const double alpha = 7.0;  // rad/s^2 about +y: alpha x z = +x
+  sim.loads.support_angular_acceleration = Vec3(0.0, alpha, 0.0);
+  sim.dt = 0.005;
+  const double expected = -11.0 * kRhoA * alpha * std::pow(kL, 5) / (120.0 * kEI);
+  std::vector<double> x;
+  for (int i = 0; i < int(60.0 / sim.dt); ++i) {
+    sim.Step();
+    x.push_back(sim.Evaluate(1.0).x());
+  }
+  // It lags at first and overshoots (about 1 + exp(-pi zeta / sqrt(1 - zeta^2)) = 1.73 for the
+  // first mode alone), then settles.
+  EXPECT_LT(std::abs(x[0]), 0.02 * std::abs(expected));
+  const double peak = *std::min_element(x.begin(), x.end()) / expected;
+  const Vec3 tip = sim.Evaluate(1.0);
+  std::printf("[measure] turning support: overshoot %.4f x static, settled error %.2e\n", peak,
+              std::abs(tip.x() / expected - 1.0));
+  EXPECT_NEAR(peak, 1.73, 0.05);
+  EXPECT_NEAR(tip.x(), expected, 1e-9 * std::abs(expected));
+  EXPECT_EQ(tip.y(), 0.0);
+  // The settled shape is the textbook curve w x^2 (20 L^3 - 10 L^2 x + x^3) / (120 L EI).
+  for (double v : {0.25, 0.5, 0.75}) {
+    const double s = v * kL;
+    const double shape = -kRhoA * alpha * kL * s * s *
+                         (20 * kL * kL * kL - 10 * kL * kL * s + s * s * s) / (120 * kL * kEI);
+    EXPECT_NEAR(sim.Evaluate(v).x(), shape, 1e-9 * std::abs(expected)) << "v = " << v;
+  }
+}
+
+// A support spinning steadily about a tilted axis (omega = (w_x, 0, w_z)): the centripetal
+// acceleration of the point at s, omega x (omega x s t), has the lateral part s w_z w_x along
+// x, so the wire settles at the ramp's deflection, tip -11 rho A w_z w_x L^5 / (120 EI).
+TEST(ModalWireSupport, SteadySpinAboutATiltedAxisSettlesAtItsCentripetalRamp) {
+  for (BoundaryCondition bc : {BoundaryCondition::kCantileverFree, BoundaryCondition::kClamped}) {
+    SCOPED_TRACE(ToString(bc));
+    Simulation sim;
+    sim.model = MakeModel(bc, 0.3);
+    ASSERT_TRUE(InitializeModalWireAtRest(sim.model, &sim.state).ok());
+    sim.loads.support_angular_velocity = Vec3(1.5, 0.0, 2.0);
+    sim.dt = 0.01;
+    for (int i = 0; i < int(40.0 / sim.dt); ++i) sim.Step();
+    const Vec3 lateral = TurningAccelerationReference(sim.loads);
+    ASSERT_NEAR(lateral.x(), 3.0, 1e-15);
+    const double w = -kRhoA * lateral.x() * kL;  // N/m at the far end
+    const double l4 = std::pow(kL, 4) / kEI;
+    if (bc == BoundaryCondition::kCantileverFree) {
+      EXPECT_NEAR(sim.Evaluate(1.0).x(), 11.0 * w * l4 / 120.0, 1e-9 * std::abs(w * l4));
+    } else {
+      // Clamped at both ends: w x^2 (L - x)^2 (2L + x) / (120 L EI) at midspan, 5/3840 w L^4/EI.
+      EXPECT_NEAR(sim.Evaluate(0.5).x(), 5.0 * w * l4 / 3840.0, 1e-9 * std::abs(w * l4));
+    }
+    EXPECT_EQ(sim.Evaluate(0.5).y(), 0.0);
+  }
+}
+
 TEST(ModalWireValidate, InvalidInputsAreNamed) {
   ModalWireModel model = MakeModel(BoundaryCondition::kCantileverFree, 0.05);
   ModalWireState state;
@@ -631,6 +786,23 @@ TEST(ModalWireValidate, InvalidInputsAreNamed) {
             "support_acceleration");
   EXPECT_EQ(field([](M&, S&, J& j) { j.loads.support_acceleration.z() = 1e200; }),
             "support_acceleration");
+  EXPECT_EQ(field([&](M&, S&, J& j) { j.loads.support_angular_velocity.x() = nan; }),
+            "support_angular_velocity");
+  EXPECT_EQ(field([&](M&, S&, J& j) { j.loads.support_angular_velocity.z() = -inf; }),
+            "support_angular_velocity");
+  EXPECT_EQ(field([](M&, S&, J& j) { j.loads.support_angular_velocity.y() = 1e100; }),
+            "support_angular_velocity");
+  EXPECT_EQ(field([&](M&, S&, J& j) { j.loads.support_angular_acceleration.y() = nan; }),
+            "support_angular_acceleration");
+  EXPECT_EQ(field([](M&, S&, J& j) { j.loads.support_angular_acceleration.x() = -1e200; }),
+            "support_angular_acceleration");
+  EXPECT_EQ(field([](M&, S&, J& j) { j.loads.support_angular_acceleration.x() = 1e3; }), "");
+  const std::vector<LinearLineLoad> reversed = {{0.6, 0.2, Vec3::UnitY(), Vec3::UnitX()}};
+  EXPECT_EQ(field([&](M&, S&, J& j) { j.loads.linear_line_loads = reversed; }),
+            "linear_line_loads");
+  const std::vector<LinearLineLoad> nan_load = {{0.2, 0.6, Vec3(0, nan, 0), Vec3::UnitX()}};
+  EXPECT_EQ(field([&](M&, S&, J& j) { j.loads.linear_line_loads = nan_load; }),
+            "linear_line_loads");
   EXPECT_EQ(field([&](M&, S&, J& j) { j.loads.tip_force.x() = inf; }), "tip_force");
   const std::vector<PointLoad> outside = {{1.2, Vec3::UnitY()}};
   EXPECT_EQ(field([&](M&, S&, J& j) { j.loads.point_loads = outside; }), "point_loads");
@@ -680,6 +852,12 @@ TEST(ModalWireValidate, InvalidInputsAreNamed) {
   EXPECT_EQ(eval_field([&](E& e) { e.mode_values = values, e.slope = s; }), "mode_slopes");
   EXPECT_EQ(eval_field([&](E& e) { e.mode_values = values, e.mode_slopes = slopes, e.slope = s; }),
             "");
+  EXPECT_EQ(eval_field([&](E& e) { e.loads.support_angular_velocity.x() = nan; }),
+            "support_angular_velocity");
+  EXPECT_EQ(eval_field([&](E& e) { e.loads.support_angular_acceleration.x() = inf; }),
+            "support_angular_acceleration");
+  const std::vector<LinearLineLoad> beyond = {{0.2, 1.5, Vec3::UnitY(), Vec3::UnitX()}};
+  EXPECT_EQ(eval_field([&](E& e) { e.loads.linear_line_loads = beyond; }), "linear_line_loads");
 }
 
 }  // namespace

@@ -40,6 +40,7 @@ TEST(NoAllocation, CountingAllocatorSeesAllocations) {
 TEST(NoAllocation, BendingRunInBothModesWithAllOutputs) {
   std::vector<PointLoad> p = {{0.2, Vec3(0, -1, 0)}, {0.7, Vec3(1, 0, 0)}};
   std::vector<LineLoad> q = {{0.1, 0.5, Vec3(0, 0, 2)}};
+  std::vector<LinearLineLoad> r = {{0.3, 0.9, Vec3(0, 0, 2), Vec3(1, -1, 0)}};
   std::vector<double> v(257);
   for (std::size_t i = 0; i < v.size(); ++i) v[i] = double(i) / double(v.size() - 1);
   std::vector<Vec3> x(v.size()), slope(v.size()), curvature(v.size());
@@ -53,6 +54,7 @@ TEST(NoAllocation, BendingRunInBothModesWithAllOutputs) {
     job.tip_force = Vec3(0, 1, 0);
     job.point_loads = p;
     job.line_loads = q;
+    job.linear_line_loads = r;
     job.samples = v;
     job.displacement = x;
     job.slope = slope;

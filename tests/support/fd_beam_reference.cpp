@@ -140,6 +140,23 @@ std::string AssembleLoads(const FdBeamProblem& p, const Grid& g, Loads* out) {
       out->node_load[k] += w * load.force_per_length;
     }
   }
+  for (size_t i = 0; i < p.linear_line_loads.size(); ++i) {
+    const LinearLineLoad& load = p.linear_line_loads[i];
+    int ka = 0;
+    int kb = 0;
+    if (!SnapToNode(load.from, g.n, &ka) || !SnapToNode(load.to, g.n, &kb)) {
+      return "linear_line_loads[" + std::to_string(i) + "] end is not on a grid node";
+    }
+    if (ka >= kb) return "linear_line_loads[" + std::to_string(i) + "] needs from < to";
+    for (int k = ka; k <= kb; ++k) {
+      double w = 1.0;
+      if (k == ka || k == kb) w = 0.5;
+      if (k == g.n && free_end) w = 1.0;
+      const double t = static_cast<double>(k - ka) / (kb - ka);
+      out->node_load[k] +=
+          w * ((1.0 - t) * load.start_force_per_length + t * load.end_force_per_length);
+    }
+  }
   return {};
 }
 
@@ -226,6 +243,7 @@ std::string SolveOnGrid(const FdBeamProblem& p, int n, std::vector<Vec3>* x) {
 struct ScalarAs3d {
   std::vector<PointLoad> points;
   std::vector<LineLoad> lines;
+  std::vector<LinearLineLoad> linear_lines;
   FdBeamProblem problem;
 
   explicit ScalarAs3d(const FdScalarBeamProblem& s) {
@@ -235,6 +253,10 @@ struct ScalarAs3d {
     for (const FdScalarLineLoad& l : s.line_loads) {
       lines.push_back({l.from, l.to, Vec3(l.force_per_length, 0.0, 0.0)});
     }
+    for (const FdScalarLinearLineLoad& l : s.linear_line_loads) {
+      linear_lines.push_back({l.from, l.to, Vec3(l.start_force_per_length, 0.0, 0.0),
+                              Vec3(l.end_force_per_length, 0.0, 0.0)});
+    }
     problem.boundary = s.boundary;
     problem.length = s.length;
     problem.bending_stiffness = s.bending_stiffness;
@@ -243,6 +265,7 @@ struct ScalarAs3d {
     problem.tip_force = Vec3(s.tip_force, 0.0, 0.0);
     problem.point_loads = points;
     problem.line_loads = lines;
+    problem.linear_line_loads = linear_lines;
   }
 };
 
@@ -281,6 +304,15 @@ FdBeamSolution SolveFdBeamRichardson(const FdBeamProblem& problem, int n) {
     if (!SnapToNode(problem.line_loads[i].from, std::max(n, 1), &k) ||
         !SnapToNode(problem.line_loads[i].to, std::max(n, 1), &k)) {
       solution.error = "line_loads[" + std::to_string(i) + "] end is not on a coarse grid node";
+      return solution;
+    }
+  }
+  for (size_t i = 0; i < problem.linear_line_loads.size(); ++i) {
+    int k = 0;
+    if (!SnapToNode(problem.linear_line_loads[i].from, std::max(n, 1), &k) ||
+        !SnapToNode(problem.linear_line_loads[i].to, std::max(n, 1), &k)) {
+      solution.error =
+          "linear_line_loads[" + std::to_string(i) + "] end is not on a coarse grid node";
       return solution;
     }
   }

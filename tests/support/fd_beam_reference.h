@@ -15,9 +15,12 @@
 //
 // Loads: a point load P at node k becomes p[k] = P/h; a uniform patch load q over [a, b] gives
 // p[k] = q strictly inside, q/2 at an interior end node, and q at a free or guided end node
-// (the one-sided value there). Loads on a node with a prescribed displacement are taken by the
-// support; a point load on a cantilever's end node is added to the tip force. Every load
-// position must lie on a node of the coarsest grid; otherwise the solve fails with a message.
+// (the one-sided value there); a linearly varying load gives its value p(s_k) likewise (half
+// of it at an interior end node). For a linear load the nodal residuals near its ends are
+// r h/120, 7 r h/30, r h/120 (r its slope, a symmetric pattern), so the error stays even in h.
+// Loads on a node with a prescribed displacement are taken by the support; a point load on a
+// cantilever's end node is added to the tip force. Every load position must lie on a node of the
+// coarsest grid; otherwise the solve fails with a message.
 //
 // Accuracy: every truncation error of this scheme is even in h, so the error is
 // c2 h^2 + c4 h^4 + c6 h^6 + ...; two Richardson levels over N = n, 2n, 4n remove the h^2 and
@@ -53,6 +56,7 @@ struct FdBeamProblem {
   Vec3 tip_force = Vec3::Zero();           // F at v = 1, N; cantilevers only (EI X'''(L) = -F)
   std::span<const PointLoad> point_loads;  // positions on grid nodes
   std::span<const LineLoad> line_loads;    // from < to, both on grid nodes
+  std::span<const LinearLineLoad> linear_line_loads;  // from < to, both on grid nodes
 };
 
 // The same problem for one scalar component.
@@ -65,6 +69,12 @@ struct FdScalarLineLoad {
   double to = 1.0;                // v in [0, 1], from < to
   double force_per_length = 0.0;  // N/m
 };
+struct FdScalarLinearLineLoad {
+  double from = 0.0;                    // v in [0, 1]
+  double to = 1.0;                      // v in [0, 1], from < to
+  double start_force_per_length = 0.0;  // N/m at v = from
+  double end_force_per_length = 0.0;    // N/m at v = to
+};
 struct FdScalarBeamProblem {
   BoundaryCondition boundary = BoundaryCondition::kSimplySupported;
   double length = 1.0;
@@ -74,6 +84,7 @@ struct FdScalarBeamProblem {
   double tip_force = 0.0;
   std::vector<FdScalarPointLoad> point_loads;
   std::vector<FdScalarLineLoad> line_loads;
+  std::vector<FdScalarLinearLineLoad> linear_line_loads;
 };
 
 // Displacements X(v_k) at the nodes v_k = k/n, k = 0..n, or an error message.

@@ -105,8 +105,11 @@ class Playback {
   Status AdvanceBodies(double local_time);
   Status StepBodies(double dt);
   bool HasDynamics() const { return !dynamic_parts_.empty() || !wires_.empty(); }
-  // The velocity (world) of the rest point `rest` of dynamic part d's body, now.
-  Vec3 BodyPointVelocity(std::size_t d, const Vec3& rest) const;
+  // The offset (world) of the rest point `rest` of dynamic part d's body from the body's
+  // reference point (its state's position), now.
+  Vec3 BodyPointOffset(std::size_t d, const Vec3& rest) const;
+  // The angular velocity (world) of dynamic part d's body, now.
+  Vec3 BodyAngularVelocity(std::size_t d) const;
   void ApplyInteractiveLoad();
   // Poses the dynamic rigid parts of `sample` from their bodies (keeping the sampled loads).
   void PoseDynamicParts(ClipSample* sample) const;
@@ -127,11 +130,13 @@ class Playback {
   std::vector<ClipReach::Kept> reach_checkpoints_;  // #checkpoints x #reaches
   std::size_t checkpoint_count_ = 0;
   std::size_t checkpoints_done_ = 0;
-  double clock_ = 0.0;                      // clip time of the dynamic state, s
-  ClipSample step_sample_;                  // the clip at a step's end (wires' loads)
-  std::vector<int> dynamic_index_;          // per part: its index in dynamic_parts_, or -1
-  std::vector<Vec3> support_acceleration_;  // per part, world axes, of the last step
-  std::vector<Mat3> support_rotation_;      // per part: its parent's rotation
+  double clock_ = 0.0;                              // clip time of the dynamic state, s
+  ClipSample step_sample_;                          // the clip at a step's end (wires' loads)
+  std::vector<int> dynamic_index_;                  // per part: its index in dynamic_parts_, or -1
+  std::vector<Vec3> support_acceleration_;          // per part, world axes, of the last step
+  std::vector<Vec3> support_angular_velocity_;      // per part, world axes, at the step's end
+  std::vector<Vec3> support_angular_acceleration_;  // per part, world axes, of the last step
+  std::vector<Mat3> support_rotation_;              // per part: its parent's rotation
   std::optional<ArticulatedTracking> tracking_;
   std::optional<InteractiveLoad> interactive_;
   std::vector<Vec3> interactive_joints_;            // per part, degrees

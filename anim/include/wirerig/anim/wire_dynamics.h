@@ -4,15 +4,22 @@
 // Each deformable part's spine is a ModalWireModel: its length and EI, mass per length = the
 // part's mass (its enclosed volume times its material's density) over its spine length, the
 // options' damping ratio and mode count, and the boundary family its clip starts with. Each
-// fixed step takes the clip's loads at the step's end and the acceleration of the part's
-// support (its parent's attachment point, when the parent is a rigid body moved by dynamics),
+// fixed step takes the clip's loads at the step's end and the motion of the part's support
+// (its parent, when the parent is a rigid body moved by dynamics): the acceleration a of the
+// attachment point, and the parent's angular velocity omega and angular acceleration alpha,
 // and advances every mode exactly. What the evaluation adds to the static closed form is the
 // modal residual sum (q_n - q_n_static) phi_n and the static shape of the support's inertial
-// load -rho A a (SpineLoads::extra_displacement / extra_slope).
+// loads (SpineLoads::extra_displacement / extra_slope): the uniform -rho A a plus the linear
+// -rho A s [alpha x t + (omega . t) omega] (lateral parts, s from the attachment; modal_wire.h
+// "Turning supports").
 //
 // Limits: a family change during the clip keeps the first family's modes (the static part
 // follows the clip exactly; the residual is projected on the old modes); a keyed (not
-// simulated) parent motion gives no support acceleration.
+// simulated) parent motion gives no support motion; the support's motion is taken in the local
+// axes of the spine's middle frame and the spine as straight along that frame's tangent (a
+// curved spine's lever arms are its chord's); the child's own joint rotation relative to its
+// parent adds no inertial load; the turning support's axial (centrifugal) load and the Coriolis
+// load of the wire's own motion are left out (modal_wire.h).
 #pragma once
 
 #include <span>
@@ -43,9 +50,13 @@ class WireDynamics {
   // Every wire resting at the static shape of its loads in `sample` (clip time 0).
   Status Reset(const ClipSample& sample);
   // Advances every wire by dt to the loads of `sample` (taken at the step's end), its support
-  // accelerating by support_acceleration[part] (m/s^2, world axes, one per part) in the rotation
-  // `support_rotation[part]` (rest world axes -> world) of its parent.
+  // accelerating by support_acceleration[part] (m/s^2, world axes, one per part) and turning
+  // with support_angular_velocity[part] (rad/s, world axes, at the step's end) and
+  // support_angular_acceleration[part] (rad/s^2, world axes) in the rotation
+  // `support_rotation[part]` (rest world axes -> world) of its parent. Never allocates.
   Status Step(const ClipSample& sample, std::span<const Vec3> support_acceleration,
+              std::span<const Vec3> support_angular_velocity,
+              std::span<const Vec3> support_angular_acceleration,
               std::span<const Mat3> support_rotation, double dt);
   // Points each wire part's SpineLoads::extra_displacement / extra_slope at its residual for
   // the loads in `poses` (the same loads the wires were last stepped to), times
@@ -62,7 +73,9 @@ class WireDynamics {
     std::size_t part = 0;
     ModalWireModel model;
     ModalStepTable table;
-    Vec3 support_acceleration = Vec3::Zero();  // local axes, of the last step
+    Vec3 support_acceleration = Vec3::Zero();          // local axes, of the last step
+    Vec3 support_angular_velocity = Vec3::Zero();      // local axes, of the last step
+    Vec3 support_angular_acceleration = Vec3::Zero();  // local axes, of the last step
     std::vector<double> samples, mode_values, mode_slopes;
     std::vector<Vec3> extra_displacement, extra_slope;
   };

@@ -29,6 +29,7 @@ struct WireBendingSpec {
   Vec3 tip_force = Vec3::Zero();           // N
   std::vector<PointLoad> point_loads;
   std::vector<LineLoad> line_loads;
+  std::vector<LinearLineLoad> linear_line_loads;
 };
 
 struct WireAxialSpec {

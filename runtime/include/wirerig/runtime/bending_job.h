@@ -9,13 +9,24 @@
 // X1 is ignored by the cantilevers: their free end's position is an output.
 //
 // Modes: kExact evaluates the piecewise-polynomial Green's-function solution of PHYSICS.md
-// section 2 (exact for point and uniform patch loads, O(J) per sample). kSeries evaluates the
-// paper's sine series, Eqs. (10)-(17), truncated at N terms; it converges as N^-3 for simply
-// supported and clamped wires and only as N^-1 for cantilevers.
+// section 2 (exact for point, uniform and linearly varying patch loads, O(J) per sample).
+// kSeries evaluates the paper's sine series, Eqs. (10)-(17), truncated at N terms, with each
+// load's exact sine coefficients; it converges as N^-3 for simply supported and clamped wires
+// and only as N^-1 for cantilevers.
+//
+// A linearly varying load over [a, b] (per unit v: p_a at a, p_b at b, width d = b - a) adds
+// the Macaulay particular solution
+//   M(v) = p_a <v-a>^4/24 - p_b <v-b>^4/24 + (p_b - p_a) (<v-a>^5 - <v-b>^5) / (120 d),
+// evaluated as p_a (t_a^4/24 - R) + p_b (R - t_b^4/24) with R = (t_a^5 - t_b^5) / (120 d) summed
+// as (t_a^4 + t_a^3 t_b + ... + t_b^4) / 120 past b, so a narrow load divides by nothing small;
+// and its sine coefficients
+//   p_n = 2/(n pi) [p_a cos(n pi a) - p_b cos(n pi b) + (p_b - p_a) cos(n pi m) sinc(n pi d/2)],
+// m = (a + b)/2, sinc(x) = sin(x)/x.
 //
 // Degenerate cases, each tested by name: a point load at a support (v = 0; v = 1 for simply
-// supported and clamped) produces no deflection; a line load of zero width is refused; a tip
-// force on a simply supported or clamped wire is refused (the supports would take it).
+// supported and clamped) produces no deflection; a line load (uniform or linear) of zero width
+// is refused; a tip force on a simply supported or clamped wire is refused (the supports would
+// take it).
 #pragma once
 
 #include <span>
@@ -68,6 +79,8 @@ struct BendingJob {
 
   std::span<const PointLoad> point_loads;  // any order, any count
   std::span<const LineLoad> line_loads;    // any order, any count
+  // Linearly varying line loads (loads.h), any order, any count.
+  std::span<const LinearLineLoad> linear_line_loads;
 
   // Sample parameters v_i in [0, 1], any order; at least one.
   std::span<const double> samples;

@@ -21,6 +21,18 @@ struct LineLoad {
   Vec3 force_per_length = Vec3::Zero();  // N/m of wire
 };
 
+// A lateral line load varying linearly over v in [from, to], from < to: start_force_per_length
+// at v = from, end_force_per_length at v = to, straight in between (a trapezoid; a triangle when
+// one end is zero), none outside. LineLoad is the special case start = end. Examples: the
+// inertial load of a wire whose support turns (it grows with the distance from the support),
+// a load tapering along a limb.
+struct LinearLineLoad {
+  double from = 0.0;                           // v in [0, 1]
+  double to = 1.0;                             // v in [0, 1]
+  Vec3 start_force_per_length = Vec3::Zero();  // N/m of wire, at v = from
+  Vec3 end_force_per_length = Vec3::Zero();    // N/m of wire, at v = to
+};
+
 // A concentrated axial force at v = at, positive along +v (towards v = 1).
 struct AxialPointLoad {
   double at = 0.0;     // v in [0, 1]

@@ -51,6 +51,9 @@ struct ModalBasis {
   std::array<std::array<double, 4>, kMaxModes> coefficients{};
   // integral_0^1 phi_n dv, the projection of a unit uniform load.
   std::array<double, kMaxModes> integral{};
+  // integral_0^1 v phi_n dv, the projection of a load rising linearly from 0 at v = 0 to 1 at
+  // v = 1 (ModeMoment(basis, n, 0, 1)).
+  std::array<double, kMaxModes> moment{};
   // phi_n(1), the projection of a unit tip force (0 for simply supported and clamped wires).
   std::array<double, kMaxModes> end_value{};
   // exp(-beta_n), for EvaluateMode.
@@ -69,6 +72,17 @@ double ModeSlope(const ModalBasis& basis, int n, double v);
 void EvaluateMode(const ModalBasis& basis, int n, double v, double* value, double* slope);
 // integral_a^b phi_n(v) dv, 0 <= a <= b <= 1, in closed form.
 double ModeIntegral(const ModalBasis& basis, int n, double a, double b);
+// integral_a^b (v - a) phi_n(v) dv, 0 <= a <= b <= 1: the first moment about a, in closed form.
+// With d = b - a and phi(a + d t) expanded in cos, sin and the two exponentials, it is
+// d^2 integral_0^1 t phi(a + d t) dt, whose four kernels (integral_0^1 t cos(x t) dt, ...,
+// x = beta_n d) are taken in closed form for x >= 1 and by their Taylor series below, where the
+// closed forms cancel: full precision for any width. A linearly varying load p_a at a to p_b at
+// b projects as p_a ModeIntegral + (p_b - p_a) ModeRampIntegral.
+double ModeMoment(const ModalBasis& basis, int n, double a, double b);
+// integral_a^b ((v - a) / (b - a)) phi_n(v) dv, 0 <= a <= b <= 1 (0 when a = b): ModeMoment / (b -
+// a) without the division (d integral_0^1 t phi(a + d t) dt), the projection of a load rising
+// from 0 at a to 1 at b.
+double ModeRampIntegral(const ModalBasis& basis, int n, double a, double b);
 
 // Tabulates phi_n(v_i) (and d phi_n/dv (v_i) if `slopes` is not empty) for the evaluation
 // jobs, so a wire whose sample parameters are fixed evaluates its modes once:

@@ -9,14 +9,18 @@
 //   q_n'' + 2 zeta omega_n q_n' + omega_n^2 q_n = f_n(t) / (rho A),
 //   omega_n = beta_n^2 sqrt(EI / (rho A L^4)),
 //   f_n = [ sum_j F_j phi_n(a_j) + F_tip phi_n(1) ] / L + sum_k w_k integral_{a_k}^{b_k} phi_n dv
-//         - rho A a_support integral_0^1 phi_n dv                                       (N/m),
-// for point loads F_j at v = a_j, line loads w_k (N/m) over [a_k, b_k], the tip force and the
-// support acceleration, with the same modal damping ratio zeta for every mode.
+//         + sum_l integral_{a_l}^{b_l} w_l(v) phi_n dv
+//         - rho A a_support integral_0^1 phi_n dv - rho A L r_support integral_0^1 v phi_n dv
+//         (N/m),
+// for point loads F_j at v = a_j, uniform line loads w_k (N/m) over [a_k, b_k], linearly
+// varying ones w_l(v) (ModeIntegral and ModeRampIntegral, exact), the tip force, the support
+// acceleration and the support's turning r_support (below), with the same modal damping ratio
+// zeta for every mode.
 //
 // Mode-acceleration form. The wire is evaluated as
 //   X(v, t) = X_static(v; loads(t)) + sum_n (q_n(t) - q_n_static(t)) phi_n(v),
 // where X_static is BendingJob's exact closed form for the current loads and end displacements
-// (plus the closed form of the inertial support load) and q_n_static = f_n / (rho A omega_n^2)
+// (plus the closed forms of the supports' inertial loads) and q_n_static = f_n / (rho A omega_n^2)
 // is the modal coordinate of that static solution. The modes above N respond statically, so
 // the static closed form is the exact limit: a wire at rest under constant loads is exactly
 // BendingJob's answer, and a damped wire tends to it.
@@ -27,6 +31,17 @@
 // whole wire, in the static part and in the modal forces alike. End displacements X0, X1 enter
 // the static part only (quasi-statically, as in BendingJob); their own accelerations are not
 // inertial loads unless they are passed as support acceleration.
+//
+// Turning supports. When the supports also turn, with angular velocity omega and angular
+// acceleration alpha (local axes; the wire's tangent t is local z), the point at s = L v from
+// the v = 0 end accelerates by a further alpha x (s t) + omega x (omega x (s t)). Its lateral
+// part s r_support, r_support = [alpha x t + (omega . t) omega]_lateral
+// = (alpha_y + omega_z omega_x, -alpha_x + omega_z omega_y, 0), gives the inertial line load
+// -rho A s r_support, zero at the support and growing linearly to the free end: a turning body's
+// tail or trunk lags and overshoots. Left out: the axial part -s |omega_lateral|^2 t (the
+// centrifugal pull along the wire and the stiffening it would give), and the Coriolis load
+// -2 rho A omega x X_t of the wire's own deflection velocity (and so any gyroscopic coupling of
+// the lateral components); the wire is straight along t for these loads.
 //
 // Time stepping. Each oscillator is advanced by its exact solution over the step with the load
 // held constant over the step (zero-order hold of the step's loads, which act from the step's
@@ -82,10 +97,25 @@ struct ModalWireLoads {
   Vec3 tip_couple = Vec3::Zero();          // N m at v = 1, free cantilevers only
   std::span<const PointLoad> point_loads;
   std::span<const LineLoad> line_loads;
+  std::span<const LinearLineLoad> linear_line_loads;
   // Lateral acceleration of the wire's supports, m/s^2, local axes: the inertial line load
   // -rho A a_support acts on the whole wire.
   Vec3 support_acceleration = Vec3::Zero();
+  // Angular velocity (rad/s) and angular acceleration (rad/s^2) of the wire's supports, local
+  // axes (x, y lateral, z along the wire's tangent): the inertial line load
+  // -rho A s [alpha x t + (omega . t) omega]_lateral at s = L v from the v = 0 end (see "Turning
+  // supports" above: the axial part and the Coriolis load of the wire's own motion are not
+  // modelled). Each finite, and its load bounded like BendingJob's loads.
+  Vec3 support_angular_velocity = Vec3::Zero();
+  Vec3 support_angular_acceleration = Vec3::Zero();
 };
+
+// r_support = [alpha x t + (omega . t) omega]_lateral with t = (0, 0, 1)
+//           = (alpha_y + omega_z omega_x, -alpha_x + omega_z omega_y, 0), 1/s^2 (in m/s^2 per
+// metre from the support): the lateral acceleration, beyond the support's own, of the point at
+// s = 1 m along a wire whose support turns with angular velocity omega and angular acceleration
+// alpha (local axes, rad/s and rad/s^2). The inertial load at s is -rho A s r_support.
+Vec3 TurningAccelerationPerLength(const Vec3& angular_velocity, const Vec3& angular_acceleration);
 
 // The modal coordinates of a wire, per mode and component, in fixed storage (no allocation).
 // Made by InitializeModalWireAtRest or InitializeModalWireAtStatic; advanced by
@@ -155,7 +185,8 @@ struct ModalWireStepJob {
   ModalWireState* state = nullptr;
 
   // Names the first invalid input: "model" (null) or the model's field, the loads' field
-  // (BendingJob's names, or "support_acceleration"), "dt", "hold", "point_load_modes" (size, or
+  // (BendingJob's names, or "support_acceleration", "support_angular_velocity",
+  // "support_angular_acceleration"), "dt", "hold", "point_load_modes" (size, or
   // not point_loads x modes), "step_table", "state"
   // (null, mode count not the model's, or values not finite / beyond 1e150).
   Status Validate() const;
@@ -184,7 +215,8 @@ struct ModalWireEvaluateJob {
   std::span<Vec3> slope;         // dX/ds at v_i, dimensionless (s = L v)
 
   // Names the first invalid input: "model", "state", the loads' or samples' field (BendingJob's
-  // names), "mode_values", "mode_slopes", "displacement", "slope".
+  // names, or the support's as ModalWireStepJob), "mode_values", "mode_slopes", "displacement",
+  // "slope".
   Status Validate() const;
   // Validates, then fills the outputs. Never allocates; never writes NaN.
   Status Run() const;
