@@ -96,9 +96,9 @@ TEST(BakeCommand, FailuresNameTheFileAndFieldAndWriteNothing) {
        "bad_track.scene.json: /clips/0/parts/0/tip_force/keys/1/1: must be an array of 3 "
        "numbers"},
       {kData + "missing.scene.json", "", "missing.scene.json: no such file"},
-      {kOctopus, "dance", "octopus.scene.json: no clip is named \"dance\" (clips: swim)"},
+      {kOctopus, "dance", "octopus.scene.json: no clip is named \"dance\" (clips: swim, crawl)"},
       {kOctopus, "swimm",
-       "octopus.scene.json: no clip is named \"swimm\"; did you mean \"swim\"? (clips: swim)"},
+       "octopus.scene.json: no clip is named \"swimm\"; did you mean \"swim\"? (clips: swim, crawl)"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.scene);
