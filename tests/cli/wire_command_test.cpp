@@ -197,7 +197,19 @@ TEST(WireCommandErrors, InvalidLoadsAndSamples) {
   ExpectError(p, "/samples: must lie in [2, 1000000]");
   p = ValidProblem();
   p["samples"] = 5000000000LL;
-  ExpectError(p, "/samples: is out of range");
+  ExpectError(p, "/samples: is out of range (an integer within [-2147483648, 2147483647])");
+  // 2^64 - 1 (unsigned: must not wrap to -1), 2^64 and 1e300 (floating point in JSON, yet
+  // integers): out of range; 2.5: not an integer.
+  for (const nlohmann::json& huge :
+       {nlohmann::json(18446744073709551615ULL), nlohmann::json::parse("18446744073709551616"),
+        nlohmann::json(1e300)}) {
+    p = ValidProblem();
+    p["samples"] = huge;
+    ExpectError(p, "/samples: is out of range (an integer within [-2147483648, 2147483647])");
+  }
+  p = ValidProblem();
+  p["samples"] = 2.5;
+  ExpectError(p, "/samples: must be an integer");
   p = ValidProblem();
   p["bending"]["point_loads"][0]["force"] = {0, -1e200, 0};
   p["material"]["E"] = 1.0;
