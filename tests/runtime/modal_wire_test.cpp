@@ -174,6 +174,27 @@ TEST(ModalWireCantilever, LogarithmicDecrementMatchesTheDampingRatio) {
   }
 }
 
+// A wire at rest at its static shape (`state`) evaluates to the reference shape and slope at
+// the samples `v`: displacement to 1e-13 of `scale`, slope to 1e-12 of scale / L.
+void ExpectEvaluationAt(const ModalWireModel& model, const ModalWireState& state,
+                        const ModalWireLoads& loads, const std::vector<double>& v,
+                        const std::vector<Vec3>& x_ref, const std::vector<Vec3>& slope_ref,
+                        double scale) {
+  std::vector<Vec3> x(v.size()), slope(v.size());
+  ModalWireEvaluateJob job;
+  job.model = &model;
+  job.state = &state;
+  job.loads = loads;
+  job.samples = v;
+  job.displacement = x;
+  job.slope = slope;
+  ASSERT_TRUE(job.Run().ok());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    EXPECT_LT((x[i] - x_ref[i]).norm(), 1e-13 * scale) << v[i];
+    EXPECT_LT((slope[i] - slope_ref[i]).norm(), 1e-12 * scale / kL) << v[i];
+  }
+}
+
 TEST(ModalWireStatics, SimplySupportedPointLoadGivesTheSineSeriesCoefficients) {
   const ModalWireModel model = MakeModel(BoundaryCondition::kSimplySupported, 0.1, 16);
   const double a = 0.3;
@@ -263,19 +284,7 @@ TEST(ModalWireStatics, AWireAtRestUnderItsLoadsIsBendingJobsExactSolution) {
 
     ModalWireState state;
     ASSERT_TRUE(InitializeModalWireAtStatic(model, loads, &state).ok());
-    std::vector<Vec3> x(v.size()), slope(v.size());
-    ModalWireEvaluateJob job;
-    job.model = &model;
-    job.state = &state;
-    job.loads = loads;
-    job.samples = v;
-    job.displacement = x;
-    job.slope = slope;
-    ASSERT_TRUE(job.Run().ok());
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      EXPECT_LT((x[i] - x_ref[i]).norm(), 1e-13 * scale) << v[i];
-      EXPECT_LT((slope[i] - slope_ref[i]).norm(), 1e-12 * scale / kL) << v[i];
-    }
+    ExpectEvaluationAt(model, state, loads, v, x_ref, slope_ref, scale);
     // Stepping under the same loads keeps it there (to rounding).
     Simulation sim{model, state, loads, 0.01};
     for (int i = 0; i < 100; ++i) sim.Step();
@@ -305,19 +314,7 @@ TEST(ModalWireStatics, LinearLoadsAndATurningSupportAtRestAreBendingJobsExactSol
     for (const Vec3& x : x_ref) scale = std::max(scale, x.norm());
     ModalWireState state;
     ASSERT_TRUE(InitializeModalWireAtStatic(model, loads, &state).ok());
-    std::vector<Vec3> x(v.size()), slope(v.size());
-    ModalWireEvaluateJob job;
-    job.model = &model;
-    job.state = &state;
-    job.loads = loads;
-    job.samples = v;
-    job.displacement = x;
-    job.slope = slope;
-    ASSERT_TRUE(job.Run().ok());
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      EXPECT_LT((x[i] - x_ref[i]).norm(), 1e-13 * scale) << v[i];
-      EXPECT_LT((slope[i] - slope_ref[i]).norm(), 1e-12 * scale / kL) << v[i];
-    }
+    ExpectEvaluationAt(model, state, loads, v, x_ref, slope_ref, scale);
     // Stepping under the same loads keeps it there (to rounding).
     Simulation sim{model, state, loads, 0.01};
     for (int i = 0; i < 100; ++i) sim.Step();
