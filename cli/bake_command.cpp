@@ -56,6 +56,7 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
                  "skin mode: add residual morph targets so the export matches the bake exactly");
   bake->add_flag("--quantize", options.quantize,
                  "Store morph position (and normal) deltas as shorts (KHR_mesh_quantization)");
+  AddImportLimitOptions(bake, options.import_limits);
   return bake;
 }
 
@@ -69,7 +70,7 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   if (Result<bool> writable = CheckOutputFile(options.output, {".glb", ".gltf"}); !writable)
     return fail(writable.error());
   const auto start = std::chrono::steady_clock::now();
-  Result<BuiltScene> built = LoadAndBuildScene(options.scene, ImportIsolation{});
+  Result<BuiltScene> built = LoadAndBuildScene(options.scene, options.import_limits.Isolation());
   if (!built) return fail(built.error());
   const BuiltScene& scene = built.value();
   const Clip* clip = scene.FindClip(options.clip);

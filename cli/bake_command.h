@@ -9,6 +9,8 @@
 
 #include <CLI/App.hpp>
 
+#include "import_limits.h"
+
 namespace wirerig::cli {
 
 struct BakeCommandOptions {
@@ -20,6 +22,7 @@ struct BakeCommandOptions {
   bool residual = false;
   bool quantize = false;
   bool progress = false;  // set by main when stderr is a terminal
+  ImportLimitOptions import_limits;
 };
 
 CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options);

@@ -24,6 +24,7 @@ CLI::App* AddBuildCommand(CLI::App& app, BuildCommandOptions& options) {
   build->add_option("--fps", options.fps, "Frames per second of the sampled clips")
       ->check(InRange(1, 1000))
       ->capture_default_str();
+  AddImportLimitOptions(build, options.import_limits);
   return build;
 }
 
@@ -34,7 +35,7 @@ int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::
   };
   if (Result<bool> writable = CheckOutputFile(options.output, {".wrig"}); !writable)
     return fail(writable.error());
-  Result<BuiltScene> built = LoadAndBuildScene(options.scene, ImportIsolation{});
+  Result<BuiltScene> built = LoadAndBuildScene(options.scene, options.import_limits.Isolation());
   if (!built) return fail(built.error());
   // The clips first, while the scene is whole; nothing is written until everything is made.
   std::vector<std::pair<std::filesystem::path, std::vector<std::uint8_t>>> clip_files;

@@ -11,6 +11,8 @@
 
 #include <CLI/App.hpp>
 
+#include "import_limits.h"
+
 namespace wirerig::cli {
 
 struct BuildCommandOptions {
@@ -18,6 +20,7 @@ struct BuildCommandOptions {
   std::string output;
   bool clips = false;
   double fps = 30.0;
+  ImportLimitOptions import_limits;
 };
 
 CLI::App* AddBuildCommand(CLI::App& app, BuildCommandOptions& options);

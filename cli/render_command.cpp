@@ -52,6 +52,7 @@ CLI::App* AddRenderCommand(CLI::App& app, RenderCommandOptions& options) {
                    "Skin colour: base, moment (bending moment) or strain (axial strain)")
       ->check(CLI::IsMember({"base", "moment", "strain"}))
       ->capture_default_str();
+  AddImportLimitOptions(render, options.import_limits);
   return render;
 }
 
@@ -66,7 +67,7 @@ int RunRenderCommand(const RenderCommandOptions& options, std::ostream& out, std
   Size size;
   if (!ParseSize(options.size, &size))
     return fail("--size: must be WIDTHxHEIGHT, each in [16, 8192], e.g. 1280x720");
-  Result<BuiltScene> built = LoadAndBuildScene(options.scene, ImportIsolation{});
+  Result<BuiltScene> built = LoadAndBuildScene(options.scene, options.import_limits.Isolation());
   if (!built) return fail(built.error());
   const BuiltScene& scene = built.value();
   const Clip* clip = scene.FindClip(options.clip);

@@ -8,6 +8,8 @@
 
 #include <CLI/App.hpp>
 
+#include "import_limits.h"
+
 namespace wirerig::cli {
 
 struct RenderCommandOptions {
@@ -19,6 +21,7 @@ struct RenderCommandOptions {
   int sheet = 0;  // 0: one picture; N > 0: a contact sheet of N times
   bool wires = true;
   std::string color = "base";  // base, moment or strain
+  ImportLimitOptions import_limits;
 };
 
 CLI::App* AddRenderCommand(CLI::App& app, RenderCommandOptions& options);

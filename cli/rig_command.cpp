@@ -151,6 +151,7 @@ CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options) {
                 "edges, stretch, limb volume and cross-section perimeters per skinning method");
   rig->add_flag("--joint-poses", options.joint_poses,
                 "With --joint-report: also list each pose where the wire rig misses a target");
+  AddImportLimitOptions(rig, options.import_limits);
   return rig;
 }
 
@@ -177,7 +178,8 @@ int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostr
     import.up_axis = axis;
   }
   if (options.unit_scale > 0.0) import.unit_scale = options.unit_scale;
-  import.isolation = ImportIsolation{};  // a crash or hang of Assimp must not take wirerig down
+  import.isolation =
+      options.import_limits.Isolation();  // a crash or hang of Assimp must not take wirerig down
   Result<ImportedMesh> imported = ImportMesh(options.mesh, import);
   if (!imported) return fail(imported.error());
   const Mesh& mesh = imported.value().mesh;

@@ -10,6 +10,8 @@
 
 #include <CLI/App.hpp>
 
+#include "import_limits.h"
+
 namespace wirerig::cli {
 
 struct RigCommandOptions {
@@ -24,6 +26,7 @@ struct RigCommandOptions {
   bool strict = false;           // warnings are errors: nothing written
   bool ignore_skeleton = false;  // automatic: describe from the surface, not the file's bones
   double wrap_alpha = 0.0;       // automatic, open meshes: the wrap's alpha (m); 0 = from the mesh
+  ImportLimitOptions import_limits;
 };
 
 CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options);

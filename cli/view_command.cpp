@@ -24,6 +24,7 @@ CLI::App* AddViewCommand(CLI::App& app, ViewCommandOptions& options) {
   view->add_option("--input", options.input, "Replay an input script (mouse and keys per frame)");
   view->add_option("--screenshot", options.screenshot, "Write the last frame to this PNG");
   view->add_flag("--no-window", options.no_window, "Run headless (EGL), for scripts and tests");
+  AddImportLimitOptions(view, options.import_limits);
   return view;
 }
 
@@ -31,7 +32,8 @@ int RunViewCommand(const ViewCommandOptions& options, std::ostream& err) {
   SceneViewerOptions viewer;
   viewer.scene = options.scene;
   viewer.clip = options.clip;
-  viewer.import_isolation = ImportIsolation{};  // a crash or hang of Assimp must not end the view
+  viewer.import_isolation =
+      options.import_limits.Isolation();  // a crash or hang of Assimp must not end the view
   // The picker: the catalog's scenes, when the catalog is there.
   Result<std::vector<CatalogEntry>> catalog =
       LoadCatalog(std::string(WIRERIG_SAMPLES_DIR) + "/catalog.json");

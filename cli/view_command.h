@@ -9,6 +9,8 @@
 
 #include <CLI/App.hpp>
 
+#include "import_limits.h"
+
 namespace wirerig::cli {
 
 struct ViewCommandOptions {
@@ -19,6 +21,7 @@ struct ViewCommandOptions {
   std::string input;
   std::string screenshot;
   bool no_window = false;
+  ImportLimitOptions import_limits;
 };
 
 CLI::App* AddViewCommand(CLI::App& app, ViewCommandOptions& options);

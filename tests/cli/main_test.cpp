@@ -190,6 +190,19 @@ TEST(WirerigImportIsolation, ViewOfAMeshThatCrashesAssimpExitsOne) {
 }
 #endif
 
+// The import child's limits are options of every command that imports.
+TEST(WirerigImportIsolation, LimitsAreOptions) {
+  const std::string cow = std::string(WIRERIG_ASSET_DIR) + "/cow.off";
+  const fs::path rig = Scratch("cow.rig.json");
+  ExpectExit(RunWirerig({"rig", cow, "-o", rig.string(), "--import-memory", "1"}), 1,
+             "cow.off: cannot import: out of memory (limit 1 MiB");
+  EXPECT_FALSE(fs::exists(rig));
+  ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--import-seconds", "0"}), 2,
+             "--import-seconds: must be in [0.001, 1e+06] (got 0)");
+  ExpectExit(RunWirerig({"build", kOctopus, "-o", "x.wrig", "--import-memory", "-1"}), 2,
+             "--import-memory");
+}
+
 // Entries of `dir` whose name holds ".tmp".
 int TemporaryEntries(const fs::path& dir) {
   int n = 0;
