@@ -48,6 +48,12 @@ inline TestRig MakeCylinderRig(SpineKind kind) {
   return RigMesh(MakeCylinder(0.1, 1.0, 32, 24), description, kind);
 }
 
+// MakeCylinderRig(kDeformable), built once per test program.
+inline const TestRig& Beam() {
+  static const TestRig rig = MakeCylinderRig(SpineKind::kDeformable);
+  return rig;
+}
+
 // The same cylinder as two parts: "base", the root, from the top (y = 1) down to the middle,
 // and "arm", its child, from the middle down to the bottom.
 inline TestRig MakeJointedCylinderRig(SpineKind kind) {

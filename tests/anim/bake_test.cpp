@@ -12,10 +12,7 @@
 namespace wirerig {
 namespace {
 
-const testing::TestRig& Beam() {
-  static const testing::TestRig rig = testing::MakeCylinderRig(SpineKind::kDeformable);
-  return rig;
-}
+using testing::Beam;
 
 Clip TipLoadClip(double duration) {
   RawClip raw;

@@ -34,10 +34,7 @@ RawClip PointLoadClip() {
   return raw;
 }
 
-const testing::TestRig& Beam() {
-  static const testing::TestRig rig = testing::MakeCylinderRig(SpineKind::kDeformable);
-  return rig;
-}
+using testing::Beam;
 
 TEST(Clip, BuildsAgainstTheRigAndCollectsKeyTimes) {
   Result<Clip> clip = BuildClip(PointLoadClip(), Beam().model);

@@ -20,10 +20,7 @@ namespace {
 using testing::Constant;
 using testing::Keys;
 
-const testing::TestRig& Beam() {
-  static const testing::TestRig rig = testing::MakeCylinderRig(SpineKind::kDeformable);
-  return rig;
-}
+using testing::Beam;
 
 // The spine (points and frames, world) of the beam under `loads`.
 struct Spine {

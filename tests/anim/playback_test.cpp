@@ -16,10 +16,7 @@ namespace {
 using testing::Constant;
 using testing::Keys;
 
-const testing::TestRig& Beam() {
-  static const testing::TestRig rig = testing::MakeCylinderRig(SpineKind::kDeformable);
-  return rig;
-}
+using testing::Beam;
 const testing::TestRig& Block() {
   static const testing::TestRig rig = testing::MakeCylinderRig(SpineKind::kRigid);
   return rig;

@@ -21,10 +21,7 @@ namespace {
 using testing::Constant;
 using testing::Keys;
 
-const testing::TestRig& Beam() {
-  static const testing::TestRig rig = testing::MakeCylinderRig(SpineKind::kDeformable);
-  return rig;
-}
+using testing::Beam;
 
 // A tip force switched on over the first millisecond and held.
 Clip StepLoadClip(double force, double duration) {
@@ -63,6 +60,15 @@ double TipDeflection(Playback& playback, double t) {
   const PartModel& beam = Beam().model.parts[0];
   return (playback.workspace().spine_points[0].back() - beam.spine_points.back())
       .dot(beam.spine_frames.back().normal);
+}
+
+// 6000 rigid steps over `duration` and wires of 8 modes, damping ratio 0.4.
+PlaybackOptions FineStepsWithWires(double duration) {
+  PlaybackOptions options;
+  options.rigid_step = duration / 6000.0;
+  options.wires.modes = 8;
+  options.wires.damping_ratio = 0.4;
+  return options;
 }
 
 TEST(WireDynamics, ASuddenTipForceSwingsAtTheFirstNaturalFrequency) {
@@ -143,10 +149,7 @@ TEST(WireDynamics, AnAcceleratingParentLeavesItsChildTrailingByTheInertialLoad) 
   part.channels.rigid_forces.push_back(force);
   raw.parts.push_back(part);
   const Clip clip = BuildClip(raw, model).value();
-  PlaybackOptions options;
-  options.rigid_step = duration / 6000.0;
-  options.wires.modes = 8;
-  options.wires.damping_ratio = 0.4;
+  const PlaybackOptions options = FineStepsWithWires(duration);
   Playback playback = Playback::Make(model, clip, options).value();
   std::vector<Vec3> positions(model.vertices.size());
   ASSERT_TRUE(playback.Evaluate(duration, positions, {}).ok());
@@ -199,10 +202,7 @@ TEST(WireDynamics, ASpunUpParentLeavesItsChildLaggingByTheTurningLoad) {
   part.channels.rigid_torque = Constant(torque);
   raw.parts.push_back(part);
   const Clip clip = BuildClip(raw, model).value();
-  PlaybackOptions options;
-  options.rigid_step = duration / 6000.0;
-  options.wires.modes = 8;
-  options.wires.damping_ratio = 0.4;
+  const PlaybackOptions options = FineStepsWithWires(duration);
   Playback playback = Playback::Make(model, clip, options).value();
   std::vector<Vec3> positions(model.vertices.size());
   // The tip's lag behind the rigid turn, along the turn's direction at the tip (the root's

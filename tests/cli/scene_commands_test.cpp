@@ -98,7 +98,8 @@ TEST(BakeCommand, FailuresNameTheFileAndFieldAndWriteNothing) {
       {kData + "missing.scene.json", "", "missing.scene.json: no such file"},
       {kOctopus, "dance", "octopus.scene.json: no clip is named \"dance\" (clips: swim, crawl)"},
       {kOctopus, "swimm",
-       "octopus.scene.json: no clip is named \"swimm\"; did you mean \"swim\"? (clips: swim, crawl)"},
+       "octopus.scene.json: no clip is named \"swimm\"; did you mean \"swim\"? (clips: swim, "
+       "crawl)"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.scene);
@@ -270,9 +271,8 @@ TEST_F(DemoCommand, WritesTheSceneTheGlbAndTheContactSheet) {
   options.samples = std::string(WIRERIG_SOURCE_DIR) + "/samples";
   std::ostringstream out, err;
   ASSERT_EQ(RunDemoCommand(options, out, err), 0) << err.str();
-  for (const char* name :
-       {"octopus.scene.json", "octopus.glb", "octopus.png", "octopus_crawl.glb",
-        "octopus_crawl.png", "walk.glb", "walk.png"})
+  for (const char* name : {"octopus.scene.json", "octopus.glb", "octopus.png", "octopus_crawl.glb",
+                           "octopus_crawl.png", "walk.glb", "walk.png"})
     EXPECT_TRUE(fs::exists(fs::path(options.output) / name)) << name;
   const Image sheet = LoadPng(fs::path(options.output) / "octopus.png").value();
   EXPECT_GT(sheet.width, 1000);  // 3 tiles of 640 across

@@ -263,6 +263,20 @@ std::vector<Vec3> StaticReference(const ModalWireModel& model, const ModalWireLo
   return x;
 }
 
+// integral_0^1 X(v) phi_n(v) dv by composite Simpson over the even number of equal intervals
+// `v` spans (v[0] = 0, v.back() = 1), X given at every v.
+Vec3 SimpsonProjection(const ModalBasis& basis, int n, const std::vector<double>& v,
+                       const std::vector<Vec3>& x) {
+  const int intervals = int(v.size()) - 1;
+  Vec3 projection = Vec3::Zero();
+  for (int i = 0; i <= intervals; ++i) {
+    const double w =
+        (i == 0 || i == intervals ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0)) / (3.0 * intervals);
+    projection += x[i] * (w * ModeValue(basis, n, v[i]));
+  }
+  return projection;
+}
+
 TEST(ModalWireStatics, AWireAtRestUnderItsLoadsIsBendingJobsExactSolution) {
   const std::vector<PointLoad> point = {{0.2, Vec3(0, -1, 0.5)}, {0.75, Vec3(0.3, 2, 0)}};
   const std::vector<LineLoad> line = {{0.1, 0.6, Vec3(1, 0, -2)}};
@@ -345,12 +359,7 @@ TEST(ModalWireStatics, LinearLoadAndTurningCoordinatesAreTheProjectionOfTheStati
     double scale = 0.0;
     for (int n = 0; n < 12; ++n) scale = std::max(scale, q[n].norm());
     for (int n = 0; n < 12; ++n) {
-      Vec3 projection = Vec3::Zero();
-      for (int i = 0; i <= intervals; ++i) {
-        const double w =
-            (i == 0 || i == intervals ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0)) / (3.0 * intervals);
-        projection += x[i] * (w * ModeValue(model.basis, n, v[i]));
-      }
+      const Vec3 projection = SimpsonProjection(model.basis, n, v, x);
       worst = std::max(worst, (q[n] - projection).norm() / scale);
       EXPECT_LT((q[n] - projection).norm(), 1e-10 * scale) << "mode " << n + 1;
     }
@@ -414,12 +423,7 @@ TEST(ModalWireStatics, StaticCoordinatesAreTheProjectionOfTheStaticSolution) {
     double scale = 0.0;
     for (int n = 0; n < 12; ++n) scale = std::max(scale, q[n].norm());
     for (int n = 0; n < 12; ++n) {
-      Vec3 projection = Vec3::Zero();
-      for (int i = 0; i <= intervals; ++i) {
-        const double w =
-            (i == 0 || i == intervals ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0)) / (3.0 * intervals);
-        projection += x[i] * (w * ModeValue(model.basis, n, v[i]));
-      }
+      const Vec3 projection = SimpsonProjection(model.basis, n, v, x);
       EXPECT_LT((q[n] - projection).norm(), 1e-10 * scale) << "mode " << n + 1;
     }
   }
