@@ -55,24 +55,25 @@ int JsonObject::Integer(std::string_view key, int fallback) const {
   if (!Has(key)) return fallback;
   const nlohmann::json& value = Required(key);
   constexpr int kLow = std::numeric_limits<int>::min(), kHigh = std::numeric_limits<int>::max();
-  const std::string out_of_range = "is out of range (an integer within [" + std::to_string(kLow) +
-                                   ", " + std::to_string(kHigh) + "])";
+  const auto out_of_range = [&] {
+    return FieldError(PathOf(key), "is out of range (an integer within [" + std::to_string(kLow) +
+                                       ", " + std::to_string(kHigh) + "])");
+  };
   // Integers too large for 64 bits arrive as floating-point numbers: out of range, not "not an
   // integer"; unsigned ones above 2^63 must not wrap to negative values.
   if (value.is_number_float()) {
     const double x = value.get<double>();
-    throw FieldError(PathOf(key), std::isfinite(x) && x == std::floor(x)
-                                      ? out_of_range
-                                      : std::string("must be an integer"));
+    if (std::isfinite(x) && x == std::floor(x)) throw out_of_range();
+    throw FieldError(PathOf(key), "must be an integer");
   }
   if (!value.is_number_integer()) throw FieldError(PathOf(key), "must be an integer");
   if (value.is_number_unsigned()) {
     if (value.get<unsigned long long>() > static_cast<unsigned long long>(kHigh))
-      throw FieldError(PathOf(key), out_of_range);
+      throw out_of_range();
     return static_cast<int>(value.get<unsigned long long>());
   }
   const auto wide = value.get<long long>();
-  if (wide < kLow || wide > kHigh) throw FieldError(PathOf(key), out_of_range);
+  if (wide < kLow || wide > kHigh) throw out_of_range();
   return static_cast<int>(wide);
 }
 
