@@ -45,17 +45,16 @@ int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::
       Result<SampledClip> sampled = SampleClipForRuntime(
           built.value().model, clip, built.value().description.playback, options.fps);
       if (!sampled) return fail(options.scene + ": " + sampled.error());
-      if (built.value().description.playback.wires.modes > 0)
-        out << "note: clip \"" << clip.name
-            << "\": its wires' inertia (playback.wires) is not in .wclip yet; the engine plays "
-               "them static\n";
       std::filesystem::path path = output;
       std::string name = clip.name;  // as a file name: letters, digits, '-' and '_' kept
       for (char& c : name)
         if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
       path.replace_filename(output.stem().string() + "." + name + ".wclip");
       out << "clip \"" << clip.name << "\": " << sampled.value().frame_count() << " frames at "
-          << options.fps << " fps\n";
+          << options.fps << " fps";
+      if (!sampled.value().wires.empty())
+        out << ", " << sampled.value().wires.size() << " wires with inertia";
+      out << "\n";
       clip_files.emplace_back(path, SerializeClipAsset(sampled.value()));
     }
   }

@@ -139,10 +139,13 @@ def cylinder_obj(radial=8, rings=6):
 
 def scene(name, kind, loop):
     clip = dict(CLIP, loop=loop)
-    return {"format": "wirerig.scene", "version": 1, "name": name,
-            "mesh": {"procedural": "cylinder", "parameters": {
-                "radius": 0.1, "height": 1.0, "radial_segments": 8, "height_segments": 6}},
-            "rig": {"description": {"parts": PARTS}}, "default_kind": kind, "clips": [clip]}
+    document = {"format": "wirerig.scene", "version": 1, "name": name,
+                "mesh": {"procedural": "cylinder", "parameters": {
+                    "radius": 0.1, "height": 1.0, "radial_segments": 8, "height_segments": 6}},
+                "rig": {"description": {"parts": PARTS}}, "default_kind": kind, "clips": [clip]}
+    if kind == "deformable":  # wires with inertia: the .wclip records their motion
+        document["playback"] = {"wires": {"modes": 3, "damping_ratio": 0.2}}
+    return document
 
 
 def fresh(target):

@@ -31,9 +31,7 @@ Result<SampledClip> SampleClipForRuntime(const RigModel& model, const Clip& clip
   if (!(std::isfinite(fps) && fps > 0.0 && fps <= 1000.0))
     return Error{"fps: must lie in (0, 1000]"};
   if (!(clip.duration > 0.0)) return Error{"clip \"" + clip.name + "\": has no duration to sample"};
-  PlaybackOptions options = playback;
-  options.wires.modes = 0;  // the asset carries loads, not the wires' modal states
-  Result<Playback> made = Playback::Make(model, clip, options);
+  Result<Playback> made = Playback::Make(model, clip, playback);
   if (!made) return Error{made.error()};
   Playback& player = made.value();
   SampledClip out;
@@ -42,6 +40,14 @@ Result<SampledClip> SampleClipForRuntime(const RigModel& model, const Clip& clip
   out.frame_rate = fps;
   out.loop = LoopOf(clip.loop);
   out.part_count = std::uint32_t(model.parts.size());
+  const WireDynamics& wires = player.wires();
+  for (std::size_t w = 0; w < wires.size(); ++w) {
+    const ModalWireModel& m = wires.model(w);
+    out.wires.push_back({std::uint32_t(wires.part(w)), m.basis.boundary,
+                         std::uint32_t(m.basis.modes),
+                         std::uint32_t(model.parts[wires.part(w)].spine_points.size()), m.length,
+                         m.bending_stiffness});
+  }
   const auto frames = std::size_t(std::ceil(clip.duration * fps - 1e-9)) + 1;
   std::vector<Vec3> positions(model.vertices.size());
   for (std::size_t k = 0; k < frames; ++k) {
@@ -76,6 +82,12 @@ Result<SampledClip> SampleClipForRuntime(const RigModel& model, const Clip& clip
       key.point_loads = Append(p.point_loads, &out.point_loads);
       key.line_loads = Append(p.line_loads, &out.line_loads);
       out.profile_keys.push_back(key);
+    }
+    for (const ModalResidual& r : wires.residuals()) {
+      out.wire_motion.insert(out.wire_motion.end(), r.coordinates.begin(),
+                             r.coordinates.begin() + r.modes);
+      out.wire_motion.push_back(r.uniform_load);
+      out.wire_motion.push_back(r.turning_load);
     }
   }
   if (Status s = ValidateSampledClip(out, &model); !s)

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <string>
 
-#include "wirerig/runtime/bending_job.h"
-
 namespace wirerig {
 
 Result<WireDynamics> WireDynamics::Make(const RigModel& model, const Clip& clip,
@@ -49,6 +47,7 @@ Result<WireDynamics> WireDynamics::Make(const RigModel& model, const Clip& clip,
     out.wires_.push_back(std::move(wire));
   }
   out.states_.resize(out.wires_.size());
+  out.residuals_.resize(out.wires_.size());
   out.scratch_.resize(std::size_t(options.modes));
   return out;
 }
@@ -116,48 +115,30 @@ Status WireDynamics::Apply(std::span<PartPose> poses, std::span<const double> re
   for (std::size_t w = 0; w < wires_.size(); ++w) {
     Wire& wire = wires_[w];
     const ModalWireState& state = states_[w];
-    const int modes = wire.model.basis.modes;
-    for (int m = 0; m < modes; ++m) scratch_[std::size_t(m)] = state.q[m] - state.q_static[m];
-    SpineLoads& loads = poses[wire.part].loads;
-    // The support's inertial loads, statically (the rig's own closed form has the clip's
-    // loads): the uniform load of its acceleration and the linear one of its turning, from zero
-    // at the support to -rho A L r_support at the far end; none while the support is still.
-    std::fill(wire.extra_displacement.begin(), wire.extra_displacement.end(), Vec3::Zero());
-    std::fill(wire.extra_slope.begin(), wire.extra_slope.end(), Vec3::Zero());
+    const double scale = residual_scale.empty() ? 1.0 : residual_scale[wire.part];
+    // Beyond the clip's loads (the rig's own closed form): the modal residual and the
+    // support's inertial loads, the uniform one of its acceleration and the linear one of its
+    // turning, from zero at the support to -rho A L r_support at the far end.
+    ModalResidual& r = residuals_[w];
+    r.modes = wire.model.basis.modes;
+    for (int m = 0; m < r.modes; ++m) r.coordinates[m] = scale * (state.q[m] - state.q_static[m]);
     const double rho_a = wire.model.mass_per_length;
-    const Vec3 r_support = TurningAccelerationPerLength(wire.support_angular_velocity,
-                                                        wire.support_angular_acceleration);
-    const LineLoad inertial{0.0, 1.0, -rho_a * wire.support_acceleration};
-    const LinearLineLoad turning{0.0, 1.0, Vec3::Zero(), -rho_a * wire.model.length * r_support};
-    BendingJob bending;
-    bending.boundary = loads.boundary;
-    bending.length = wire.model.length;
-    bending.bending_stiffness = wire.model.bending_stiffness;
-    if (!wire.support_acceleration.isZero())
-      bending.line_loads = std::span<const LineLoad>(&inertial, 1);
-    if (!r_support.isZero())
-      bending.linear_line_loads = std::span<const LinearLineLoad>(&turning, 1);
-    bending.samples = wire.samples;
-    bending.displacement = wire.extra_displacement;
-    bending.slope = wire.extra_slope;
-    if (!bending.line_loads.empty() || !bending.linear_line_loads.empty())
-      if (Status s = bending.Run(); !s) return s;
-    const double per_length = 1.0 / wire.model.length;
-    for (std::size_t k = 0; k < wire.samples.size(); ++k) {
-      const double* value = &wire.mode_values[k * std::size_t(modes)];
-      const double* slope = &wire.mode_slopes[k * std::size_t(modes)];
-      Vec3 d = Vec3::Zero(), s = Vec3::Zero();
-      for (int m = 0; m < modes; ++m) {
-        d += value[m] * scratch_[std::size_t(m)];
-        s += slope[m] * scratch_[std::size_t(m)];
-      }
-      wire.extra_displacement[k] += d;
-      wire.extra_slope[k] += per_length * s;
-    }
-    if (!residual_scale.empty() && residual_scale[wire.part] != 1.0) {
-      for (Vec3& d : wire.extra_displacement) d *= residual_scale[wire.part];
-      for (Vec3& s : wire.extra_slope) s *= residual_scale[wire.part];
-    }
+    r.uniform_load = -scale * rho_a * wire.support_acceleration;
+    r.turning_load = -scale * rho_a * wire.model.length *
+                     TurningAccelerationPerLength(wire.support_angular_velocity,
+                                                  wire.support_angular_acceleration);
+    SpineLoads& loads = poses[wire.part].loads;
+    ModalResidualJob job;
+    job.boundary = loads.boundary;
+    job.length = wire.model.length;
+    job.bending_stiffness = wire.model.bending_stiffness;
+    job.residual = &r;
+    job.samples = wire.samples;
+    job.mode_values = wire.mode_values;
+    job.mode_slopes = wire.mode_slopes;
+    job.displacement = wire.extra_displacement;
+    job.slope = wire.extra_slope;
+    if (Status s = job.Run(); !s) return s;
     loads.extra_displacement = wire.extra_displacement;
     loads.extra_slope = wire.extra_slope;
   }

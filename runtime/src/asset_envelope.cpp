@@ -29,7 +29,8 @@ Status OpenEnvelope(std::span<const std::uint8_t> bytes, const AssetMagic& magic
   const std::uint64_t size = header.U64();
   const std::uint32_t checksum = header.U32();
   if (found_version != version)
-    return Status::Invalid("version", "is not one this runtime reads (it reads version 1)");
+    return Status::Invalid("version",
+                           "is not one this runtime reads (rebuild the asset with this wirerig)");
   if (size != bytes.size() - kRigAssetHeaderSize)
     return Status::Invalid("size", "does not match the file: truncated or padded");
   *payload = bytes.subspan(kRigAssetHeaderSize);

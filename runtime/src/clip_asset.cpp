@@ -67,6 +67,46 @@ Status ValidateLoads(const SampledClip& c) {
   return Status::Ok();
 }
 
+Status ValidateWires(const SampledClip& c, const RigModel* model) {
+  std::vector<bool> seen(c.part_count, false);
+  for (std::size_t i = 0; i < c.wires.size(); ++i) {
+    const ClipWire& w = c.wires[i];
+    const int index = int(i);
+    if (w.part >= c.part_count || seen[w.part])
+      return Status::InvalidElement("wires", index, "part", "must name a part no other wire does");
+    seen[w.part] = true;
+    if (!detail::IsKnownBoundary(w.boundary))
+      return Status::InvalidElement("wires", index, "boundary", "unknown boundary condition");
+    if (w.modes < 1 || w.modes > std::uint32_t(ModalBasis::kMaxModes))
+      return Status::InvalidElement("wires", index, "modes", "must lie in [1, 32]");
+    if (w.samples < 2 || w.samples > 65536)
+      return Status::InvalidElement("wires", index, "samples", "must lie in [2, 65536]");
+    if (!(Finite(w.length) && w.length > 0.0) ||
+        !(Finite(w.bending_stiffness) && w.bending_stiffness > 0.0))
+      return Status::InvalidElement("wires", index, "",
+                                    "length and bending_stiffness must be "
+                                    "finite and positive");
+    // Keeps every residual's closed form finite (ModalResidualJob): loads are at most 1e12.
+    const double compliance = std::pow(w.length, 4) / w.bending_stiffness;
+    if (!(std::isfinite(compliance) && compliance <= 1e138))
+      return Status::InvalidElement("wires", index, "bending_stiffness",
+                                    "too small for the length (L^4 / EI above 1e138)");
+    if (model != nullptr) {
+      const PartModel& part = model->parts[w.part];
+      if (part.kind != SpineKind::kDeformable || part.spine_points.size() != w.samples)
+        return Status::InvalidElement("wires", index, "part",
+                                      "is not a deformable part with as many spine samples");
+    }
+  }
+  // The stride is at most 34 x 65536 x part_count: no overflow in the product below.
+  if (c.wire_motion.size() != c.frame_count() * c.wire_motion_stride())
+    return Status::Invalid("wire_motion", "needs every wire's residual at every frame");
+  for (std::size_t i = 0; i < c.wire_motion.size(); ++i)
+    if (!Finite(c.wire_motion[i]))
+      return Status::InvalidElement("wire_motion", int(i), "", "must be finite, at most 1e12");
+  return Status::Ok();
+}
+
 // The largest count of a range over the part keys (per part) and profile keys, for buffers.
 template <class Key, class Member>
 std::uint32_t MostOf(const std::vector<Key>& keys, Member member) {
@@ -174,7 +214,14 @@ Status ValidateSampledClip(const SampledClip& c, const RigModel* model) {
       return Status::InvalidElement("profile_keys", index, "loads",
                                     "range past the end of the loads");
   }
+  if (Status s = ValidateWires(c, model); !s) return s;
   return ValidateLoads(c);
+}
+
+std::size_t SampledClip::wire_motion_stride() const {
+  std::size_t stride = 0;
+  for (const ClipWire& w : wires) stride += std::size_t(w.modes) + 2;
+  return stride;
 }
 
 std::vector<std::uint8_t> SerializeClipAsset(const SampledClip& c) {
@@ -199,6 +246,13 @@ std::vector<std::uint8_t> SerializeClipAsset(const SampledClip& c) {
   w.Count(c.axial_line_loads.size());
   for (const AxialLineLoad& l : c.axial_line_loads)
     w.F64(l.from), w.F64(l.to), w.F64(l.force_per_length);
+  w.Count(c.wires.size());
+  for (const ClipWire& wire : c.wires) {
+    w.U32(wire.part), w.U8(std::uint8_t(wire.boundary)), w.U32(wire.modes), w.U32(wire.samples);
+    w.F64(wire.length), w.F64(wire.bending_stiffness);
+  }
+  w.Count(c.wire_motion.size());
+  for (const Vec3& x : c.wire_motion) w.V3(x);
   return Envelope(kMagic, kClipAssetVersion, w.bytes());
 }
 
@@ -232,6 +286,14 @@ Status ParseClipAsset(std::span<const std::uint8_t> bytes, SampledClip* out) {
   c.axial_line_loads.resize(r.Count(24));
   for (AxialLineLoad& l : c.axial_line_loads)
     l.from = r.F64(), l.to = r.F64(), l.force_per_length = r.F64();
+  c.wires.resize(r.Count(29));
+  for (ClipWire& wire : c.wires) {
+    wire.part = r.U32(), wire.boundary = BoundaryCondition(r.U8());
+    wire.modes = r.U32(), wire.samples = r.U32();
+    wire.length = r.F64(), wire.bending_stiffness = r.F64();
+  }
+  c.wire_motion.resize(r.Count(24));
+  for (Vec3& x : c.wire_motion) x = r.V3();
   if (!r.ok()) return Status::Invalid("payload", "ends before its contents do");
   if (r.left() != 0) return Status::Invalid("payload", "has bytes after its contents");
   if (Status s = ValidateSampledClip(c); !s) return s;
@@ -256,6 +318,24 @@ ClipPlaybackBuffers MakeClipPlaybackBuffers(const SampledClip& c) {
   b.line_loads.resize(lines);
   b.axial_point_loads.resize(c.part_count * MostOf(c.parts, &PartKey::axial_point_loads));
   b.axial_line_loads.resize(c.part_count * MostOf(c.parts, &PartKey::axial_line_loads));
+  b.wires.resize(c.wires.size());
+  for (std::size_t i = 0; i < c.wires.size(); ++i) {
+    const ClipWire& wire = c.wires[i];
+    ClipPlaybackBuffers::Wire& out = b.wires[i];
+    ModalBasis basis;
+    if (!BuildModalBasis(wire.boundary, int(wire.modes), &basis)) continue;  // refused later
+    out.samples.resize(wire.samples);
+    for (std::size_t k = 0; k < wire.samples; ++k)
+      out.samples[k] = double(k) / double(wire.samples - 1);
+    out.mode_values.resize(std::size_t(wire.samples) * wire.modes);
+    out.mode_slopes.resize(out.mode_values.size());
+    if (!TabulateModes(basis, out.samples, out.mode_values, out.mode_slopes)) {
+      out = {};
+      continue;
+    }
+    out.displacement.resize(wire.samples);
+    out.slope.resize(wire.samples);
+  }
   return b;
 }
 
@@ -265,6 +345,11 @@ Status SampleClipJob::Validate() const {
   if (buffers->poses.size() != clip->part_count)
     return Status::Invalid("buffers", "were made for another clip");
   if (!std::isfinite(time)) return Status::Invalid("time", "must be finite");
+  if (buffers->wires.size() != clip->wires.size())
+    return Status::Invalid("buffers", "were made for another clip");
+  for (std::size_t i = 0; i < clip->wires.size(); ++i)
+    if (buffers->wires[i].displacement.size() != clip->wires[i].samples)
+      return Status::Invalid("buffers", "were made for another clip (or a wire's modes failed)");
   return Status::Ok();
 }
 
@@ -310,6 +395,35 @@ Status SampleClipJob::Run() const {
     loads.axial_line_loads =
         Blend(c.axial_line_loads, a.axial_line_loads, e.axial_line_loads, f, same,
               LerpOf<AxialLineLoad>, b.axial_line_loads.data() + p * axial_line_stride);
+  }
+  // The wires' motion beyond their static shapes: residuals interpolated, then evaluated.
+  const std::size_t stride = c.wire_motion_stride();
+  std::size_t offset = 0;
+  for (std::size_t i = 0; i < c.wires.size(); ++i) {
+    const ClipWire& wire = c.wires[i];
+    const Vec3* a = c.wire_motion.data() + f0 * stride + offset;
+    const Vec3* e = c.wire_motion.data() + f1 * stride + offset;
+    offset += std::size_t(wire.modes) + 2;
+    ModalResidual r;
+    r.modes = int(wire.modes);
+    for (std::uint32_t n = 0; n < wire.modes; ++n) r.coordinates[n] = a[n] + f * (e[n] - a[n]);
+    r.uniform_load = a[wire.modes] + f * (e[wire.modes] - a[wire.modes]);
+    r.turning_load = a[wire.modes + 1] + f * (e[wire.modes + 1] - a[wire.modes + 1]);
+    ClipPlaybackBuffers::Wire& out = b.wires[i];
+    SpineLoads& loads = b.poses[wire.part].loads;
+    ModalResidualJob job;
+    job.boundary = loads.boundary;
+    job.length = wire.length;
+    job.bending_stiffness = wire.bending_stiffness;
+    job.residual = &r;
+    job.samples = out.samples;
+    job.mode_values = out.mode_values;
+    job.mode_slopes = out.mode_slopes;
+    job.displacement = out.displacement;
+    job.slope = out.slope;
+    if (Status s = job.Run(); !s) return s;
+    loads.extra_displacement = out.displacement;
+    loads.extra_slope = out.slope;
   }
   // Profile loads: the two frames' keys pair up when they list the same profiles in the same
   // order; otherwise the nearer frame's are taken.

@@ -1,5 +1,6 @@
 // ModalWireEvaluateJob: the static closed form (BendingJob, plus the supports' inertial loads)
 // and the modal residual sum_n (q_n - q_n_static) phi_n(v).
+#include <algorithm>
 #include <cmath>
 
 #include "bending_internal.h"
@@ -83,38 +84,86 @@ BendingJob StaticJob(const ModalWireEvaluateJob& job) {
   return b;
 }
 
-// Adds the modal residual, from the tables or evaluating the modes here.
+// Adds the closed forms of a uniform load (N/m over the whole wire) and of a load rising
+// linearly from 0 at v = 0 to turning_load (N/m) at v = 1, for a wire of the family.
+void AddInertialShapes(BoundaryCondition boundary, double length, double bending_stiffness,
+                       const Vec3& uniform_load, const Vec3& turning_load,
+                       std::span<const double> samples, std::span<Vec3> displacement,
+                       std::span<Vec3> slope) {
+  const double l3 = length * length * length / bending_stiffness;
+  const auto add = [&](const Vec3& w, auto shape) {
+    if (w.isZero(0.0)) return;
+    const Vec3 x_scale = w * (l3 * length), s_scale = w * l3;  // w L^4/EI, w L^3/EI
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      double g = 0.0, dg = 0.0;
+      shape(boundary, samples[i], &g, &dg);
+      displacement[i] += x_scale * g;
+      if (!slope.empty()) slope[i] += s_scale * dg;
+    }
+  };
+  add(uniform_load, UniformLoadShape);
+  add(turning_load, RampLoadShape);
+}
+
+// Adds the modal residual sum_n r_n phi_n(v_i), from the tables or evaluating the modes here.
 template <bool kTables, bool kSlope>
-void AddResidual(const ModalWireEvaluateJob& job,
-                 const std::array<Vec3, ModalBasis::kMaxModes>& r) {
-  const ModalBasis& basis = job.model->basis;
-  const int modes = basis.modes;
-  const double inv_length = 1.0 / job.model->length;
-  for (std::size_t i = 0; i < job.samples.size(); ++i) {
+void AddResidualOf(const ModalBasis* basis, double length,
+                   const std::array<Vec3, ModalBasis::kMaxModes>& r, int modes,
+                   std::span<const double> samples, std::span<const double> mode_values,
+                   std::span<const double> mode_slopes, std::span<Vec3> displacement,
+                   std::span<Vec3> slope) {
+  const double inv_length = 1.0 / length;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
     Vec3 x = Vec3::Zero(), dx = Vec3::Zero();
     if constexpr (kTables) {
-      const double* phi = job.mode_values.data() + i * modes;
-      const double* dphi = kSlope ? job.mode_slopes.data() + i * modes : nullptr;
+      const double* phi = mode_values.data() + i * std::size_t(modes);
+      const double* dphi = kSlope ? mode_slopes.data() + i * std::size_t(modes) : nullptr;
       for (int n = 0; n < modes; ++n) {
         x += r[n] * phi[n];
         if constexpr (kSlope) dx += r[n] * dphi[n];
       }
     } else {
-      const double v = job.samples[i];
+      const double v = samples[i];
       for (int n = 0; n < modes; ++n) {
         if constexpr (kSlope) {
           double phi = 0.0, dphi = 0.0;
-          EvaluateMode(basis, n, v, &phi, &dphi);
+          EvaluateMode(*basis, n, v, &phi, &dphi);
           x += r[n] * phi;
           dx += r[n] * dphi;
         } else {
-          x += r[n] * ModeValue(basis, n, v);
+          x += r[n] * ModeValue(*basis, n, v);
         }
       }
     }
-    job.displacement[i] += x;
-    if constexpr (kSlope) job.slope[i] += dx * inv_length;
+    displacement[i] += x;
+    if constexpr (kSlope) slope[i] += dx * inv_length;
   }
+}
+
+// Dispatches AddResidualOf on whether tables and a slope are given; the basis is read only
+// without tables (it may be null with them).
+void AddResidual(const ModalBasis* basis, double length,
+                 const std::array<Vec3, ModalBasis::kMaxModes>& r, int modes,
+                 std::span<const double> samples, std::span<const double> mode_values,
+                 std::span<const double> mode_slopes, std::span<Vec3> displacement,
+                 std::span<Vec3> slope) {
+  const bool tables = !mode_values.empty(), with_slope = !slope.empty();
+  if (tables && with_slope)
+    AddResidualOf<true, true>(basis, length, r, modes, samples, mode_values, mode_slopes,
+                              displacement, slope);
+  else if (tables)
+    AddResidualOf<true, false>(basis, length, r, modes, samples, mode_values, mode_slopes,
+                               displacement, slope);
+  else if (with_slope)
+    AddResidualOf<false, true>(basis, length, r, modes, samples, mode_values, mode_slopes,
+                               displacement, slope);
+  else
+    AddResidualOf<false, false>(basis, length, r, modes, samples, mode_values, mode_slopes,
+                                displacement, slope);
+}
+
+bool Bounded(const Vec3& x, double bound) {
+  return x.allFinite() && x.cwiseAbs().maxCoeff() <= bound;
 }
 
 }  // namespace
@@ -143,47 +192,68 @@ Status ModalWireEvaluateJob::Run() const {
   // The static closed form for the loads and end displacements.
   const BendingJob static_job = StaticJob(*this);
   detail::RunExactBending(static_job);
-  // The inertial support load -rho A a over the whole wire, in closed form.
-  if (!loads.support_acceleration.isZero(0.0)) {
-    const double length = m.length;
-    const Vec3 w = -m.mass_per_length * loads.support_acceleration;  // N/m
-    const double l3 = length * length * length / m.bending_stiffness;
-    const Vec3 x_scale = w * (l3 * length), s_scale = w * l3;  // w L^4/EI, w L^3/EI
-    for (std::size_t i = 0; i < samples.size(); ++i) {
-      double g = 0.0, dg = 0.0;
-      UniformLoadShape(m.basis.boundary, samples[i], &g, &dg);
-      displacement[i] += x_scale * g;
-      if (!slope.empty()) slope[i] += s_scale * dg;
-    }
-  }
-  // The turning support's inertial load, -rho A L r_support (N/m) at v = 1 falling linearly to
-  // zero at v = 0, in closed form.
+  // The supports' inertial loads in closed form: -rho A a over the whole wire, and the
+  // turning's -rho A L r_support (N/m) at v = 1 falling linearly to zero at v = 0.
   const Vec3 turning = TurningAccelerationPerLength(loads.support_angular_velocity,
                                                     loads.support_angular_acceleration);
-  if (!turning.isZero(0.0)) {
-    const double length = m.length;
-    const Vec3 w1 = -m.mass_per_length * length * turning;  // N/m at v = 1
-    const double l3 = length * length * length / m.bending_stiffness;
-    const Vec3 x_scale = w1 * (l3 * length), s_scale = w1 * l3;
-    for (std::size_t i = 0; i < samples.size(); ++i) {
-      double g = 0.0, dg = 0.0;
-      RampLoadShape(m.basis.boundary, samples[i], &g, &dg);
-      displacement[i] += x_scale * g;
-      if (!slope.empty()) slope[i] += s_scale * dg;
-    }
-  }
+  AddInertialShapes(m.basis.boundary, m.length, m.bending_stiffness,
+                    -m.mass_per_length * loads.support_acceleration,
+                    -m.mass_per_length * m.length * turning, samples, displacement, slope);
   // The modal residual.
   std::array<Vec3, ModalBasis::kMaxModes> r;
   for (int n = 0; n < m.basis.modes; ++n) r[n] = state->q[n] - state->q_static[n];
-  const bool tables = !mode_values.empty(), with_slope = !slope.empty();
-  if (tables && with_slope)
-    AddResidual<true, true>(*this, r);
-  else if (tables)
-    AddResidual<true, false>(*this, r);
-  else if (with_slope)
-    AddResidual<false, true>(*this, r);
-  else
-    AddResidual<false, false>(*this, r);
+  AddResidual(&m.basis, m.length, r, m.basis.modes, samples, mode_values, mode_slopes, displacement,
+              slope);
+  return Status::Ok();
+}
+
+ModalResidual::ModalResidual() { coordinates.fill(Vec3::Zero()); }
+
+Status ModalResidualJob::Validate() const {
+  if (Status s = detail::CheckBoundary("boundary", boundary); !s) return s;
+  if (Status s = detail::CheckPositive("length", length, "must be finite and positive (m)"); !s)
+    return s;
+  if (Status s = detail::CheckPositive("bending_stiffness", bending_stiffness,
+                                       "must be finite and positive (N m^2)");
+      !s)
+    return s;
+  if (residual == nullptr) return Status::Invalid("residual", "must not be null");
+  const ModalResidual& r = *residual;
+  if (r.modes < 0 || r.modes > ModalBasis::kMaxModes)
+    return Status::Invalid("residual", "modes must lie in [0, 32]");
+  // Bounded inputs keep every output finite: |r| phi (|phi| < 2) and w L^4 / EI (shape < 1).
+  const double compliance = length * length * length * length / bending_stiffness;
+  for (int n = 0; n < r.modes; ++n)
+    if (!Bounded(r.coordinates[n], 1e12))
+      return Status::InvalidElement("residual", n, "coordinates", "must be finite, at most 1e12");
+  if (!Bounded(r.uniform_load, 1e12) || !Bounded(r.turning_load, 1e12) ||
+      !(std::isfinite(compliance) && compliance * std::max(r.uniform_load.cwiseAbs().maxCoeff(),
+                                                           r.turning_load.cwiseAbs().maxCoeff()) <=
+                                         detail::kMaxDeflectionBound))
+    return Status::Invalid("residual",
+                           "loads must be finite, at most 1e12 N/m, and their "
+                           "deflections bounded");
+  if (Status s = detail::CheckSamples(samples); !s) return s;
+  const std::size_t table = samples.size() * std::size_t(r.modes);
+  if (mode_values.size() != table)
+    return Status::Invalid("mode_values", "must hold samples x modes values (TabulateModes)");
+  if (!slope.empty() && mode_slopes.size() != table)
+    return Status::Invalid("mode_slopes", "must hold samples x modes values for the slope");
+  if (Status s = detail::CheckOutput("displacement", displacement.size(), samples.size(), true); !s)
+    return s;
+  return detail::CheckOutput("slope", slope.size(), samples.size(), false);
+}
+
+Status ModalResidualJob::Run() const {
+  if (Status s = Validate(); !s) return s;
+  const ModalResidual& r = *residual;
+  std::fill(displacement.begin(), displacement.end(), Vec3::Zero());
+  std::fill(slope.begin(), slope.end(), Vec3::Zero());
+  AddInertialShapes(boundary, length, bending_stiffness, r.uniform_load, r.turning_load, samples,
+                    displacement, slope);
+  if (r.modes > 0)
+    AddResidual(nullptr, length, r.coordinates, r.modes, samples, mode_values, mode_slopes,
+                displacement, slope);
   return Status::Ok();
 }
 

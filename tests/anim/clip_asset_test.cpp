@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <limits>
 #include <map>
 #include <random>
 
@@ -64,10 +66,8 @@ TEST_P(ClipAssetReplay, MatchesOfflinePlayback) {
   const SampledClip& asset = sampled.value();
   EXPECT_EQ(asset.frame_count(), std::size_t(std::ceil(clip.duration * kFps - 1e-9)) + 1);
 
-  // The asset carries no wire dynamics (clip_asset_export.h): replayed against static wires.
-  PlaybackOptions options = scene.description.playback;
-  options.wires.modes = 0;
-  Result<Playback> playback = Playback::Make(scene.model, clip, options);
+  // The playback as the scene sets it up, wire dynamics included (the octopus's arms).
+  Result<Playback> playback = Playback::Make(scene.model, clip, scene.description.playback);
   ASSERT_TRUE(playback.ok()) << playback.error();
   std::vector<Vec3> offline(scene.model.vertices.size());
   const std::size_t last = asset.frame_count() - 1;
@@ -96,6 +96,47 @@ TEST_P(ClipAssetReplay, MatchesOfflinePlayback) {
   ASSERT_TRUE(parsed.ok()) << ToString(parsed);
   EXPECT_EQ(SerializeClipAsset(loaded), bytes);
   EXPECT_TRUE(ValidateSampledClip(loaded, &scene.model).ok());
+}
+
+// The octopus's arms swing with inertia (playback.wires): the asset records each arm's motion
+// beyond its static shape, and without that record the replay would miss the offline frames by
+// centimetres.
+TEST(ClipAsset, CarriesTheWiresMotion) {
+  const BuiltScene& scene = SceneNamed("octopus/octopus.scene.json");
+  ASSERT_GT(scene.description.playback.wires.modes, 0);
+  const Clip& clip = scene.clips.front();
+  Result<SampledClip> sampled =
+      SampleClipForRuntime(scene.model, clip, scene.description.playback, 30.0);
+  ASSERT_TRUE(sampled.ok()) << sampled.error();
+  const SampledClip& asset = sampled.value();
+  std::size_t deformable = 0;
+  for (const PartModel& part : scene.model.parts)
+    deformable += part.kind == SpineKind::kDeformable ? 1 : 0;
+  ASSERT_EQ(asset.wires.size(), deformable);
+  for (const ClipWire& wire : asset.wires) {
+    EXPECT_EQ(wire.modes, std::uint32_t(scene.description.playback.wires.modes));
+    EXPECT_EQ(wire.samples, scene.model.parts[wire.part].spine_points.size());
+  }
+  EXPECT_EQ(asset.wire_motion.size(), asset.frame_count() * asset.wire_motion_stride());
+
+  SampledClip static_wires = asset;
+  static_wires.wires.clear();
+  static_wires.wire_motion.clear();
+  Result<Playback> playback = Playback::Make(scene.model, clip, scene.description.playback);
+  ASSERT_TRUE(playback.ok()) << playback.error();
+  std::vector<Vec3> offline(scene.model.vertices.size());
+  double with = 0.0, without = 0.0;
+  for (const double t : {2.0, 4.5, 7.0}) {
+    ASSERT_TRUE(playback.value().Evaluate(t, offline, {}).ok());
+    with = std::max(with, LargestGap(Replay(scene.model, asset, t), offline));
+    without = std::max(without, LargestGap(Replay(scene.model, static_wires, t), offline));
+  }
+  std::printf(
+      "[measure] .wclip replay of the octopus against offline playback: %.1e m with the "
+      "wires' motion, %.3f m without\n",
+      with, without);
+  EXPECT_LT(with, 1e-9);
+  EXPECT_GT(without, 0.01);
 }
 
 INSTANTIATE_TEST_SUITE_P(Samples, ClipAssetReplay,
@@ -135,6 +176,29 @@ TEST(ClipAsset, RefusesBadClipsNamingTheField) {
   bad = good;
   bad.parts.pop_back();
   EXPECT_NE(Refusal(SerializeClipAsset(bad)).find("one key per part per frame"), std::string::npos);
+  ASSERT_FALSE(good.wires.empty());
+  bad = good;
+  bad.wires[0].modes = 0;
+  EXPECT_EQ(Refusal(SerializeClipAsset(bad)), "wires[0].modes: must lie in [1, 32]");
+  bad = good;
+  bad.wires[1].part = bad.wires[0].part;
+  EXPECT_NE(Refusal(SerializeClipAsset(bad)).find("wires[1].part"), std::string::npos);
+  bad = good;
+  bad.wires[0].length = -1.0;
+  EXPECT_NE(Refusal(SerializeClipAsset(bad)).find("wires[0]"), std::string::npos);
+  bad = good;
+  bad.wire_motion.pop_back();
+  EXPECT_NE(Refusal(SerializeClipAsset(bad)).find("wire_motion"), std::string::npos);
+  bad = good;
+  bad.wire_motion[5].y() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(Refusal(SerializeClipAsset(bad)).find("wire_motion[5]"), std::string::npos);
+  // Against the rig: a wire's samples must be its part's.
+  bad = good;
+  bad.wires[0].samples += 1;
+  bad.wire_motion = good.wire_motion;
+  EXPECT_NE(ToString(ValidateSampledClip(bad, &SceneNamed("octopus/octopus.scene.json").model))
+                .find("wires[0].part"),
+            std::string::npos);
   bad = good;
   bad.duration = 0.0;
   EXPECT_NE(Refusal(SerializeClipAsset(bad)).find("duration"), std::string::npos);
@@ -153,6 +217,12 @@ TEST(ClipAsset, SampleJobRefusesBuffersOfAnotherClip) {
   other.part_count = 1;
   ClipPlaybackBuffers wrong = MakeClipPlaybackBuffers(other);
   EXPECT_FALSE((SampleClipJob{&clip, 1.0, &wrong}.Run().ok()));
+  SampledClip without_wires = clip;
+  without_wires.wires.clear();
+  without_wires.wire_motion.clear();
+  ClipPlaybackBuffers no_wires = MakeClipPlaybackBuffers(without_wires);
+  EXPECT_EQ(ToString(SampleClipJob{&clip, 1.0, &no_wires}.Run()),
+            "buffers: were made for another clip");
   ClipPlaybackBuffers right = MakeClipPlaybackBuffers(clip);
   EXPECT_FALSE((SampleClipJob{&clip, std::nan(""), &right}.Run().ok()));
   EXPECT_TRUE((SampleClipJob{&clip, -3.0, &right}.Run().ok()));  // before the start: frame 0

@@ -509,6 +509,96 @@ TEST(ModalWireEvaluate, TablesGiveTheSameAnswerAsEvaluatingTheModes) {
   }
 }
 
+// A recorded residual (what a .wclip keeps per wire and frame) against its definition: BendingJob's
+// exact solution for the uniform and the ramp load, plus sum_n r_n phi_n(v) with the modes
+// evaluated one by one; the slope against central differences of that reference.
+TEST(ModalResidual, IsTheClosedFormOfItsLoadsPlusItsModes) {
+  const std::vector<double> v = {0.0, 0.15, 0.4, 0.5, 0.81, 1.0};
+  for (BoundaryCondition bc : kFamilies) {
+    const ModalWireModel model = MakeModel(bc, 0.0, 6);
+    std::vector<double> values(v.size() * 6), slopes(v.size() * 6);
+    ASSERT_TRUE(TabulateModes(model.basis, v, values, slopes).ok());
+    ModalResidual r;
+    r.modes = 6;
+    for (int n = 0; n < 6; ++n) r.coordinates[n] = Vec3(0.01 * (n + 1), -0.004 * n, 0.002);
+    r.uniform_load = Vec3(0.7, -1.2, 0.0);
+    r.turning_load = Vec3(-0.5, 0.3, 0.0);
+    // The reference at one v: BendingJob with the two loads, plus the modes.
+    const auto reference = [&](double at) {
+      const LineLoad uniform{0.0, 1.0, r.uniform_load};
+      const LinearLineLoad ramp{0.0, 1.0, Vec3::Zero(), r.turning_load};
+      std::vector<double> one = {at};
+      Vec3 x = Vec3::Zero();
+      BendingJob bending;
+      bending.boundary = bc;
+      bending.length = kL;
+      bending.bending_stiffness = kEI;
+      bending.line_loads = std::span<const LineLoad>(&uniform, 1);
+      bending.linear_line_loads = std::span<const LinearLineLoad>(&ramp, 1);
+      bending.samples = one;
+      bending.displacement = std::span<Vec3>(&x, 1);
+      EXPECT_TRUE(bending.Run().ok());
+      for (int n = 0; n < 6; ++n) x += r.coordinates[n] * ModeValue(model.basis, n, at);
+      return x;
+    };
+    std::vector<Vec3> x(v.size()), s(v.size());
+    ModalResidualJob job;
+    job.boundary = bc;
+    job.length = kL;
+    job.bending_stiffness = kEI;
+    job.residual = &r;
+    job.samples = v;
+    job.mode_values = values;
+    job.mode_slopes = slopes;
+    job.displacement = x;
+    job.slope = s;
+    ASSERT_TRUE(job.Run().ok());
+    const double h = 1e-6;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      EXPECT_LT((x[i] - reference(v[i])).norm(), 1e-13) << int(bc) << " v " << v[i];
+      if (v[i] > 0.0 && v[i] < 1.0) {
+        const Vec3 d = (reference(v[i] + h) - reference(v[i] - h)) / (2.0 * h * kL);
+        EXPECT_LT((s[i] - d).norm(), 1e-7) << int(bc) << " v " << v[i];
+      }
+    }
+  }
+}
+
+TEST(ModalResidual, InvalidInputsAreNamed) {
+  const ModalWireModel model = MakeModel(BoundaryCondition::kCantileverFree, 0.0, 4);
+  const std::vector<double> v = {0.0, 0.5, 1.0};
+  std::vector<double> values(12), slopes(12);
+  ASSERT_TRUE(TabulateModes(model.basis, v, values, slopes).ok());
+  ModalResidual r;
+  r.modes = 4;
+  std::vector<Vec3> x(3), s(3);
+  const auto run = [&](auto change) {
+    ModalResidualJob job;
+    job.length = kL;
+    job.bending_stiffness = kEI;
+    job.residual = &r;
+    job.samples = v;
+    job.mode_values = values;
+    job.mode_slopes = slopes;
+    job.displacement = x;
+    job.slope = s;
+    change(job);
+    return ToString(job.Run());
+  };
+  EXPECT_EQ(run([](ModalResidualJob&) {}), "ok");
+  EXPECT_EQ(run([](ModalResidualJob& j) { j.length = 0.0; }).rfind("length", 0), 0u);
+  EXPECT_EQ(run([](ModalResidualJob& j) { j.residual = nullptr; }).rfind("residual", 0), 0u);
+  EXPECT_EQ(run([](ModalResidualJob& j) { j.mode_values = {}; }).rfind("mode_values", 0), 0u);
+  EXPECT_EQ(run([](ModalResidualJob& j) { j.mode_slopes = {}; }).rfind("mode_slopes", 0), 0u);
+  EXPECT_EQ(run([](ModalResidualJob& j) { j.displacement = {}; }).rfind("displacement", 0), 0u);
+  r.coordinates[2].x() = std::nan("");
+  EXPECT_EQ(run([](ModalResidualJob&) {}).rfind("residual[2].coordinates", 0), 0u);
+  r.coordinates[2].x() = 0.0;
+  r.uniform_load.y() = 1e13;
+  EXPECT_EQ(run([](ModalResidualJob&) {}).rfind("residual", 0), 0u);
+  for (const Vec3& out : x) EXPECT_TRUE(out.allFinite());
+}
+
 // Closed-form response of q'' + 2 zeta w q' + w^2 q = w^2 qs from rest (a unit step).
 double StepResponse(double w, double zeta, double t) {
   if (zeta < 1.0) {

@@ -63,7 +63,8 @@ uint32_t wr_rig_triangle_count(const wr_rig* rig);
 wr_status wr_rig_welded_triangles(const wr_rig* rig, uint32_t* indices, size_t capacity);
 
 /* Loads a clip asset (.wclip, made by `wirerig build --clips`): a clip sampled for the runtime
- * (poses, joint angles, dynamics and loads already resolved). Immutable; shareable. */
+ * (poses, joint angles, dynamics and loads already resolved, the wires' inertial motion
+ * recorded). Immutable; shareable. */
 wr_status wr_clip_load_memory(const void* bytes, size_t size, wr_clip** out);
 wr_status wr_clip_load_file(const char* path, wr_clip** out);
 void wr_clip_free(wr_clip* clip); /* null is allowed */

@@ -10,9 +10,9 @@
 namespace wirerig {
 
 // Frames at k / fps for k = 0 .. ceil(duration * fps), the last at the clip's end. Errors name
-// the option or the playback's failure. Wire dynamics (playback.wires) is not in the asset
-// format yet: the clip is sampled with static wires (the keyed loads, the rigid bodies' motion),
-// as the engine replays it; `wirerig build` says so.
+// the option or the playback's failure. With wire dynamics (playback.wires), each wire's motion
+// beyond its static shape is recorded per frame (SampledClip::wires, wire_motion), so the
+// engine replays what the bake shows; between frames it is interpolated linearly.
 Result<SampledClip> SampleClipForRuntime(const RigModel& model, const Clip& clip,
                                          const PlaybackOptions& playback, double fps);
 

@@ -95,6 +95,9 @@ class Playback {
   std::span<const RigidBodyState> bodies() const { return bodies_; }
   // After Evaluate: what each reach target of the clip found (clip_reach.h).
   const ClipReach& reach() const { return reach_; }
+  // The wires with inertia (empty when options.wires.modes is 0); after Evaluate, their
+  // residuals are those of that time.
+  const WireDynamics& wires() const { return wires_; }
   const Clip& clip() const { return *clip_; }
   const RigModel& model() const { return *model_; }
 

@@ -64,6 +64,13 @@ class WireDynamics {
   // Never allocates.
   Status Apply(std::span<PartPose> poses, std::span<const double> residual_scale = {});
 
+  // Wire w's part and model (w < size()).
+  std::size_t part(std::size_t w) const { return wires_[w].part; }
+  const ModalWireModel& model(std::size_t w) const { return wires_[w].model; }
+  // What the last Apply added to each wire's static shape, one per wire (scaled): the numbers
+  // a runtime clip records (runtime/clip_asset.h).
+  std::span<const ModalResidual> residuals() const { return residuals_; }
+
   // The modal states, one per wire (for checkpoints: copy out, copy back in).
   std::span<const ModalWireState> states() const { return states_; }
   void Restore(std::span<const ModalWireState> states);
@@ -84,6 +91,7 @@ class WireDynamics {
   const RigModel* model_ = nullptr;
   std::vector<Wire> wires_;
   std::vector<ModalWireState> states_;
+  std::vector<ModalResidual> residuals_;
   std::vector<Vec3> scratch_;  // q - q_static per mode
 };
 

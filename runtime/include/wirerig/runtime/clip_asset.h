@@ -13,13 +13,14 @@
 #include <string>
 #include <vector>
 
+#include "wirerig/runtime/modal_wire.h"
 #include "wirerig/runtime/rig_evaluation.h"
 #include "wirerig/runtime/status.h"
 
 namespace wirerig {
 
-// 2: parts carry tip couples and large curls.
-inline constexpr std::uint32_t kClipAssetVersion = 2;
+// 2: parts carry tip couples and large curls. 3: wires' motion beyond their static shape.
+inline constexpr std::uint32_t kClipAssetVersion = 3;
 
 enum class ClipLoop : int { kOnce = 0, kLoop = 1, kPingPong = 2 };
 
@@ -54,6 +55,17 @@ struct ProfileKey {
   LoadRange point_loads, line_loads;
 };
 
+// A wire whose motion beyond the static shape of its loads the clip records (the offline
+// playback's wire dynamics, modal_wire.h): enough to rebuild that motion from ModalResiduals.
+struct ClipWire {
+  std::uint32_t part = 0;
+  BoundaryCondition boundary = BoundaryCondition::kCantileverFree;  // the modes' family
+  std::uint32_t modes = 0;                                          // in [1, ModalBasis::kMaxModes]
+  std::uint32_t samples = 0;       // the part's spine samples (v_k = k / (samples - 1)), >= 2
+  double length = 0.0;             // the spine's L, m
+  double bending_stiffness = 0.0;  // its EI, N m^2
+};
+
 struct SampledClip {
   std::string name;
   double duration = 0.0;    // s, > 0
@@ -67,14 +79,21 @@ struct SampledClip {
   std::vector<LineLoad> line_loads;
   std::vector<AxialPointLoad> axial_point_loads;
   std::vector<AxialLineLoad> axial_line_loads;
+  // Wires with inertia, and per frame (frame-major) and wire (in `wires` order) its
+  // ModalResidual: `modes` coordinates (m), then the uniform and the turning load (N/m).
+  std::vector<ClipWire> wires;
+  std::vector<Vec3> wire_motion;
 
   std::size_t frame_count() const { return profile_keys_of_frame.size(); }
+  // Elements of wire_motion per frame: the sum of every wire's modes + 2.
+  std::size_t wire_motion_stride() const;
 };
 
 // Whether a clip is safe to play on a model with `part_count` parts whose profiles `model`
-// names (model may be null: profile indices are then not checked): positive duration and frame
-// rate, one key per part per frame, ranges inside their arrays, finite unit rotations, loads
-// with v in [0, 1], finite numbers.
+// names (model may be null: profile indices and wires' parts are then not checked): positive
+// duration and frame rate, one key per part per frame, ranges inside their arrays, finite unit
+// rotations, loads with v in [0, 1], finite numbers; wires on distinct parts (deformable ones
+// with as many spine samples, given the model) with one residual per frame.
 Status ValidateSampledClip(const SampledClip& clip, const RigModel* model = nullptr);
 
 std::vector<std::uint8_t> SerializeClipAsset(const SampledClip& clip);
@@ -92,16 +111,26 @@ struct ClipPlaybackBuffers {
   std::vector<LineLoad> line_loads;
   std::vector<AxialPointLoad> axial_point_loads;
   std::vector<AxialLineLoad> axial_line_loads;
+  // Per clip wire: its sample parameters and mode tables, and the motion SampleClipJob points
+  // the part's SpineLoads::extra_displacement / extra_slope at.
+  struct Wire {
+    std::vector<double> samples, mode_values, mode_slopes;
+    std::vector<Vec3> displacement, slope;
+  };
+  std::vector<Wire> wires;
   std::span<const ProfileLoads> used_profile_loads() const {
     return {profile_loads.data(), profile_load_count};
   }
 };
+// For a valid clip (ParseClipAsset, ValidateSampledClip); a wire whose modes cannot be built
+// gets no tables, and SampleClipJob refuses the buffers.
 ClipPlaybackBuffers MakeClipPlaybackBuffers(const SampledClip& clip);
 
 // The clip's inputs at playback time `time` (s; mapped by the loop mode like anim's clips):
 // rotations slerped and translations, displacements and tip forces interpolated linearly between
 // the two frames around the time; loads interpolated too where both frames have the same loads
-// (same counts and boundaries), else taken from the nearer frame. Allocates nothing.
+// (same counts and boundaries), else taken from the nearer frame; the wires' residuals
+// interpolated and evaluated (ModalResidualJob) into the buffers. Allocates nothing.
 struct SampleClipJob {
   const SampledClip* clip = nullptr;
   double time = 0.0;

@@ -222,4 +222,41 @@ struct ModalWireEvaluateJob {
   Status Run() const;
 };
 
+// What a moving wire adds to the static closed form of its loads (SpineLoads::
+// extra_displacement / extra_slope), from the few numbers a recorded clip keeps per wire and
+// frame (.wclip): the modal residual sum_n r_n phi_n(v) and the closed forms of the support's
+// inertial loads. Linear in all three: a residual scaled by k gives k times the shape.
+struct ModalResidual {
+  int modes = 0;                                        // how many coordinates are used
+  std::array<Vec3, ModalBasis::kMaxModes> coordinates;  // r_n = q_n - q_n_static, m
+  Vec3 uniform_load = Vec3::Zero();  // N/m over the whole wire, local axes: -rho A a_support
+  Vec3 turning_load = Vec3::Zero();  // N/m at v = 1, falling linearly to 0 at v = 0:
+                                     // -rho A L r_support (TurningAccelerationPerLength)
+  ModalResidual();
+};
+
+struct ModalResidualJob {
+  // The wire: the family of the inertial loads' closed forms (the modes' family is the
+  // tables'), L (m) and EI (N m^2).
+  BoundaryCondition boundary = BoundaryCondition::kCantileverFree;
+  double length = 0.0;
+  double bending_stiffness = 0.0;
+  const ModalResidual* residual = nullptr;
+  // Sample parameters v_i in [0, 1]; tables from TabulateModes for them: phi_n(v_i) and
+  // phi_n'(v_i), samples x residual->modes each (sizes checked, values trusted).
+  std::span<const double> samples;
+  std::span<const double> mode_values;
+  std::span<const double> mode_slopes;
+  // Written (not added to): displacement (m) of samples.size(); slope dX/ds empty or as many.
+  std::span<Vec3> displacement;
+  std::span<Vec3> slope;
+
+  // Names the first invalid input: "boundary", "length", "bending_stiffness", "residual" (null,
+  // modes outside [0, kMaxModes], values not finite or beyond 1e12), "samples", "mode_values",
+  // "mode_slopes", "displacement", "slope".
+  Status Validate() const;
+  // Validates, then writes the outputs. Never allocates; never writes NaN.
+  Status Run() const;
+};
+
 }  // namespace wirerig
