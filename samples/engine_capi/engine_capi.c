@@ -236,6 +236,12 @@ int main(int argc, char** argv) {
                            0.5f * (low[2] + high[2])};
   const float size = fmaxf(high[1] - low[1], fmaxf(high[0] - low[0], high[2] - low[2]));
   const float eye[3] = {target[0] + 0.9f * size, target[1] + 0.25f * size, target[2] + 1.6f * size};
+  /* The camera follows a character that travels (root motion: the octopus jets away): it keeps
+   * its offset from the vertices' mean, eased so that flailing limbs do not shake it. */
+  double rest_mean[3] = {0, 0, 0};
+  for (uint32_t v = 0; v < vertices; ++v)
+    for (int k = 0; k < 3; ++k) rest_mean[k] += rest[kStride * v + k] / vertices;
+  float follow[3] = {0, 0, 0};
 
   GLuint program = glCreateProgram();
   glAttachShader(program, Compile(GL_VERTEX_SHADER, kVertexShader));
@@ -288,6 +294,15 @@ int main(int argc, char** argv) {
                             (a[2] - b[2]) * (a[2] - b[2]));
       if (d > largest_motion) largest_motion = d;
     }
+    double mean[3] = {0, 0, 0};
+    for (uint32_t v = 0; v < vertices; ++v)
+      for (int k = 0; k < 3; ++k) mean[k] += buffer[kStride * v + k] / vertices;
+    float eye_now[3], target_now[3];
+    for (int k = 0; k < 3; ++k) {
+      follow[k] += 0.15f * ((float)(mean[k] - rest_mean[k]) - follow[k]);
+      eye_now[k] = eye[k] + follow[k];
+      target_now[k] = target[k] + follow[k];
+    }
     glBindBuffer(GL_ARRAY_BUFFER, vbo);
     glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof(float) * floats), buffer);
     int w, h;
@@ -296,7 +311,7 @@ int main(int argc, char** argv) {
     glClearColor(0.78f, 0.84f, 0.9f, 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     float view_projection[16];
-    ViewProjection(eye, target, (float)w / (float)(h > 0 ? h : 1), view_projection);
+    ViewProjection(eye_now, target_now, (float)w / (float)(h > 0 ? h : 1), view_projection);
     glUseProgram(program);
     glUniformMatrix4fv(glGetUniformLocation(program, "view_projection"), 1, GL_FALSE,
                        view_projection);
