@@ -29,7 +29,7 @@ if [ "$fuzz_seconds" -gt 0 ]; then
 fi
 
 echo "== build without CGAL (WIRERIG_WITH_CGAL=OFF)"
-"$repo_root/scripts/build.sh" nocgal
+"$repo_root/scripts/build.sh" nocgal wirerig
 "$repo_root/scripts/check_without_cgal.sh" "$repo_root/build-nocgal/cli/wirerig"
 
 if [ ${#fuzz_failed[@]} -gt 0 ]; then

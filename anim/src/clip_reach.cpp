@@ -125,20 +125,7 @@ Status ClipReach::SolveOne(std::size_t j, double t, const SpineLoads& loads, Kep
 
 Status ClipReach::Apply(double t, Solve solve, ClipSample* sample) {
   if (parts_.empty()) return Status::Ok();
-  // Every part's rigid placement x -> rotation x + translation (rest world -> world); parents
-  // come before their children in a rig.
-  for (std::size_t p = 0; p < model_->parts.size(); ++p) {
-    const PartPose& pose = sample->poses[p];
-    const Mat3 r = pose.rotation.toRotationMatrix();
-    const Vec3 root = model_->parts[p].spine_points.front();
-    rotations_[p] = r;
-    translations_[p] = root - r * root + pose.translation;
-    if (const int parent = model_->parts[p].parent; parent >= 0) {
-      translations_[p] =
-          rotations_[std::size_t(parent)] * translations_[p] + translations_[std::size_t(parent)];
-      rotations_[p] = rotations_[std::size_t(parent)] * r;
-    }
-  }
+  ComposePlacements(*model_, sample->poses, rotations_, translations_);
   for (std::size_t j = 0; j < parts_.size(); ++j) {
     const std::size_t p = parts_[j];
     const ReachChannels<Track>& channels = clip_->parts[p].reach;

@@ -168,4 +168,19 @@ void SampleClip(const Clip& clip, double t, ClipSample* sample) {
   }
 }
 
+void ComposePlacements(const RigModel& model, std::span<const PartPose> poses,
+                       std::span<Mat3> rotations, std::span<Vec3> translations) {
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const Mat3 r = poses[p].rotation.toRotationMatrix();
+    const Vec3& root = model.parts[p].spine_points.front();
+    rotations[p] = r;
+    translations[p] = root - r * root + poses[p].translation;
+    if (const int parent = model.parts[p].parent; parent >= 0) {
+      translations[p] =
+          rotations[std::size_t(parent)] * translations[p] + translations[std::size_t(parent)];
+      rotations[p] = rotations[std::size_t(parent)] * r;
+    }
+  }
+}
+
 }  // namespace wirerig

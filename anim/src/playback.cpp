@@ -60,6 +60,22 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
     playback.support_angular_velocity_.assign(model.parts.size(), Vec3::Zero());
     playback.support_angular_acceleration_.assign(model.parts.size(), Vec3::Zero());
     playback.support_rotation_.assign(model.parts.size(), Mat3::Identity());
+    // Wires hanging from parents that move by keys: no ancestor of theirs is a body moved by
+    // forces (whose motion between steps only the bodies know).
+    for (std::size_t w = 0; w < playback.wires_.size(); ++w) {
+      const std::size_t p = playback.wires_.part(w);
+      bool keyed = model.parts[p].parent >= 0;
+      for (int a = model.parts[p].parent; a >= 0 && keyed; a = model.parts[std::size_t(a)].parent)
+        keyed = playback.dynamic_index_[std::size_t(a)] < 0;
+      if (keyed) playback.keyed_supports_.push_back(p);
+    }
+    if (!playback.keyed_supports_.empty()) {
+      playback.support_sample_ = MakeClipSample(clip, model);
+      for (int k = 0; k < 3; ++k) {
+        playback.placement_rotation_[k].resize(model.parts.size());
+        playback.placement_translation_[k].resize(model.parts.size());
+      }
+    }
   }
   if (options.tracking.frequency > 0.0) {
     Result<ArticulatedTracking> tracking = ArticulatedTracking::Make(model, clip, options.tracking);
@@ -152,12 +168,39 @@ Status Playback::StepBodies(double dt) {
                                .rotation.toRotationMatrix();
   }
   SampleClip(*clip_, clock_, &step_sample_);
+  if (!keyed_supports_.empty()) KeyedSupportMotion(clock_);
   if (!reach_.empty()) {
     PoseDynamicParts(&step_sample_);
     if (Status s = reach_.Apply(clock_, ClipReach::Solve::kStep, &step_sample_); !s) return s;
   }
   return wires_.Step(step_sample_, support_acceleration_, support_angular_velocity_,
                      support_angular_acceleration_, support_rotation_, dt);
+}
+
+void Playback::KeyedSupportMotion(double t) {
+  const double h = options_.rigid_step;
+  ComposePlacements(*model_, step_sample_.poses, placement_rotation_[1], placement_translation_[1]);
+  for (int k : {0, 2}) {
+    SampleClip(*clip_, t + double(k - 1) * h, &support_sample_);
+    ComposePlacements(*model_, support_sample_.poses, placement_rotation_[k],
+                      placement_translation_[k]);
+  }
+  // The rotation vector of the turn from placement a to placement b of part q (world axes).
+  const auto turn = [&](int a, int b, std::size_t q) {
+    const Eigen::AngleAxisd aa(placement_rotation_[b][q] * placement_rotation_[a][q].transpose());
+    return Vec3(aa.angle() * aa.axis());
+  };
+  for (const std::size_t p : keyed_supports_) {
+    const auto q = std::size_t(model_->parts[p].parent);
+    const Vec3& root = model_->parts[p].spine_points.front();
+    Vec3 x[3];
+    for (int k = 0; k < 3; ++k)
+      x[k] = placement_rotation_[k][q] * root + placement_translation_[k][q];
+    support_acceleration_[p] = (x[2] - 2.0 * x[1] + x[0]) / (h * h);
+    support_angular_velocity_[p] = (turn(0, 1, q) + turn(1, 2, q)) / (2.0 * h);
+    support_angular_acceleration_[p] = (turn(1, 2, q) - turn(0, 1, q)) / (h * h);
+    support_rotation_[p] = placement_rotation_[1][q];
+  }
 }
 
 void Playback::PoseDynamicParts(ClipSample* sample) const {

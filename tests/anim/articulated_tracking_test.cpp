@@ -21,6 +21,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 using nlohmann::json;
 
@@ -158,5 +159,6 @@ TEST(ArticulatedTracking, BadOptionsAreRefusedNamingTheField) {
             "damping_ratio, gravity)");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

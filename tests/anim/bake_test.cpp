@@ -11,6 +11,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 using testing::Beam;
 
@@ -186,5 +187,6 @@ TEST(Bake, WarnsWhenADeflectionExceedsThePartsLength) {
   EXPECT_EQ(DeflectionWarning(beam, w, 0.25), "");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -16,6 +16,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 std::size_t FindPart(const RigModel& model, const std::string& name) {
   std::size_t p = 0;
@@ -95,5 +96,6 @@ TEST(ChildPose, RotatingAnUpperArmMovesItsArmRigidlyAboutItsRootBeyondTheJointBr
   EXPECT_LT(worst, 0.15);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

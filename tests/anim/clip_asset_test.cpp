@@ -14,6 +14,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 const BuiltScene& SceneNamed(const std::string& relative) {
   static std::map<std::string, BuiltScene> scenes;
@@ -247,5 +248,6 @@ TEST(ClipAsset, CorruptPayloadsNeverCrash) {
   }
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -15,6 +15,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 using testing::Constant;
 using testing::Keys;
@@ -245,11 +246,13 @@ TEST(ClipSampling, EveryFiniteRotationVectorGivesAUnitQuaternion) {
   }
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 // The jointed cylinder's "arm" hangs from "base"; a clip keying its joint angles in degrees.
 RawClip JointClip(const Vec3& first, const Vec3& last) {
@@ -300,5 +303,6 @@ TEST(Clip, RefusesJointAnglesOnTheRootAndOnJointsThatDoNotExist) {
             "parts[0].part: no part of the rig is named \"elbow\" (parts: base, arm)");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

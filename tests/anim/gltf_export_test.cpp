@@ -34,6 +34,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 namespace fs = std::filesystem;
 using Mat4d = Eigen::Matrix4d;
@@ -165,7 +166,7 @@ Scene MakeScene(const BendCase& c) {
 class TempDir {
  public:
   TempDir() {
-    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::string name = "wirerig_gltf_";
     name.append(info->test_suite_name()).append("_").append(info->name());
     std::replace(name.begin(), name.end(), '/', '_');
@@ -509,7 +510,7 @@ struct RoundTrip {
   bool residuals;
 };
 
-class GltfExportRoundTrip : public testing::TestWithParam<RoundTrip> {};
+class GltfExportRoundTrip : public ::testing::TestWithParam<RoundTrip> {};
 
 TEST_P(GltfExportRoundTrip, ReimportsValidatesAndReproducesTheBake) {
   const RoundTrip& param = GetParam();
@@ -593,13 +594,13 @@ TEST_P(GltfExportRoundTrip, ReimportsValidatesAndReproducesTheBake) {
 
 INSTANTIATE_TEST_SUITE_P(
     GltfExport, GltfExportRoundTrip,
-    testing::Values(RoundTrip{"morph_glb", ".glb", GltfAnimationMode::kMorph, false},
-                    RoundTrip{"morph_gltf", ".gltf", GltfAnimationMode::kMorph, false},
-                    RoundTrip{"skin_glb", ".glb", GltfAnimationMode::kSkin, false},
-                    RoundTrip{"skin_gltf", ".gltf", GltfAnimationMode::kSkin, false},
-                    RoundTrip{"skin_residual_glb", ".glb", GltfAnimationMode::kSkin, true},
-                    RoundTrip{"skin_residual_gltf", ".gltf", GltfAnimationMode::kSkin, true}),
-    [](const testing::TestParamInfo<RoundTrip>& p) { return std::string(p.param.name); });
+    ::testing::Values(RoundTrip{"morph_glb", ".glb", GltfAnimationMode::kMorph, false},
+                      RoundTrip{"morph_gltf", ".gltf", GltfAnimationMode::kMorph, false},
+                      RoundTrip{"skin_glb", ".glb", GltfAnimationMode::kSkin, false},
+                      RoundTrip{"skin_gltf", ".gltf", GltfAnimationMode::kSkin, false},
+                      RoundTrip{"skin_residual_glb", ".glb", GltfAnimationMode::kSkin, true},
+                      RoundTrip{"skin_residual_gltf", ".gltf", GltfAnimationMode::kSkin, true}),
+    [](const ::testing::TestParamInfo<RoundTrip>& p) { return std::string(p.param.name); });
 
 // ---------------------------------------------------------------------------------------------
 // Single behaviours.
@@ -879,7 +880,7 @@ struct QuantizedCase {
   GltfAnimationMode mode;
 };
 
-class GltfExportQuantized : public testing::TestWithParam<QuantizedCase> {};
+class GltfExportQuantized : public ::testing::TestWithParam<QuantizedCase> {};
 
 TEST_P(GltfExportQuantized, IsSmallerWithinToleranceAndValid) {
   const QuantizedCase& param = GetParam();
@@ -955,10 +956,10 @@ TEST_P(GltfExportQuantized, IsSmallerWithinToleranceAndValid) {
 
 INSTANTIATE_TEST_SUITE_P(
     GltfExport, GltfExportQuantized,
-    testing::Values(QuantizedCase{"morph_glb", ".glb", GltfAnimationMode::kMorph},
-                    QuantizedCase{"morph_gltf", ".gltf", GltfAnimationMode::kMorph},
-                    QuantizedCase{"skin_residual_glb", ".glb", GltfAnimationMode::kSkin}),
-    [](const testing::TestParamInfo<QuantizedCase>& p) { return std::string(p.param.name); });
+    ::testing::Values(QuantizedCase{"morph_glb", ".glb", GltfAnimationMode::kMorph},
+                      QuantizedCase{"morph_gltf", ".gltf", GltfAnimationMode::kMorph},
+                      QuantizedCase{"skin_residual_glb", ".glb", GltfAnimationMode::kSkin}),
+    [](const ::testing::TestParamInfo<QuantizedCase>& p) { return std::string(p.param.name); });
 
 TEST(GltfExport, QuantizationFallsBackToFloatPerKey) {
   TempDir dir;
@@ -1065,7 +1066,7 @@ struct BadInput {
   void (*spoil)(Scene&, GltfExportOptions&, fs::path&);
 };
 
-class GltfExportRefuses : public testing::TestWithParam<BadInput> {};
+class GltfExportRefuses : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(GltfExportRefuses, NamesTheFieldAndWritesNothing) {
   TempDir dir;
@@ -1083,7 +1084,7 @@ TEST_P(GltfExportRefuses, NamesTheFieldAndWritesNothing) {
 
 INSTANTIATE_TEST_SUITE_P(
     GltfExport, GltfExportRefuses,
-    testing::Values(
+    ::testing::Values(
         BadInput{"Extension", "unsupported extension '.obj'",
                  [](Scene&, GltfExportOptions&, fs::path& out) { out.replace_extension(".obj"); }},
         BadInput{"MissingFolder", "cannot write",
@@ -1136,7 +1137,8 @@ INSTANTIATE_TEST_SUITE_P(
                  }},
         BadInput{"TriangleIndex", "mesh.triangles[0]: vertex index out of range",
                  [](Scene& s, GltfExportOptions&, fs::path&) { s.mesh.triangles[0][1] = 100000; }}),
-    [](const testing::TestParamInfo<BadInput>& p) { return std::string(p.param.name); });
+    [](const ::testing::TestParamInfo<BadInput>& p) { return std::string(p.param.name); });
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -16,6 +16,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 using testing::Constant;
 using testing::Keys;
@@ -208,5 +209,6 @@ TEST(LargeCurl, AReachPutsTheTipOnReachableTargetsAndSaysWhenItCannot) {
   EXPECT_NEAR((tip - beyond).norm(), report.miss, 1e-6 * length);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -42,6 +42,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -868,11 +869,13 @@ TEST(MotionErrors, AnimationsMustExist) {
                 ": holds no animation");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 // Motion files go through Assimp as meshes do: with the scene's import isolation, in a child
 // process, so a file that crashes Assimp ends the child only.
@@ -920,5 +923,6 @@ TEST(MotionIsolation, ACorruptedMotionFileCrashesOnlyTheChild) {
   fs::remove_all(folder);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

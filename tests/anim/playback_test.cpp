@@ -12,6 +12,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 using testing::Constant;
 using testing::Keys;
@@ -290,11 +291,13 @@ TEST(Playback, RefusesBadOptionsByName) {
   EXPECT_FALSE(playback.Evaluate(0.0, wrong, {}).ok());
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 // The viewer's joint sliders: angles set on a part turn it about its joint, exactly as its
 // joint's rotation, on top of the clip, until set back to zero; the root and bad angles are
@@ -376,5 +379,6 @@ TEST(Playback, AnOutputBeyondTheFloatRangeFails) {
   EXPECT_TRUE(fine.Evaluate(0.5, output).ok());
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -17,6 +17,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -252,5 +253,6 @@ TEST(Scene, TheOctopusSampleBuilds) {
   EXPECT_EQ(built.value().FindClip("swim")->duration, 10.0);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

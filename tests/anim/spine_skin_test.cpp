@@ -24,6 +24,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr double kHeight = 1.0;
 constexpr int kRings = 8;
@@ -405,5 +406,6 @@ TEST(SpineSkin, SkinsARiggedCapsuleBentByTheRuntime) {
   }
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

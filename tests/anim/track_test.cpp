@@ -9,6 +9,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 RawScalarTrack Sampled(double (*f)(double), std::initializer_list<double> times,
                        Interpolation interpolation) {
@@ -124,5 +125,6 @@ TEST(Track, InterpolationNamesRoundTrip) {
   EXPECT_FALSE(ParseInterpolation("bezier", &parsed));
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

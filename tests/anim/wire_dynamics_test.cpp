@@ -17,6 +17,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 using testing::Constant;
 using testing::Keys;
@@ -160,6 +161,62 @@ TEST(WireDynamics, AnAcceleratingParentLeavesItsChildTrailingByTheInertialLoad) 
   EXPECT_GT(expected, 1e-3 * length);  // a deflection one can see, not a rounding error
 }
 
+// The same push, keyed instead of simulated: the root's translation keyed as a t^2 / 2 along +X
+// (cubic keys, exact for a quadratic between interior keys). The keyed motion's acceleration is
+// the child's support acceleration, so (damped) it settles at the same rho A a L^4 / 8EI against
+// the push; the same clip with static wires leaves the child straight.
+TEST(WireDynamics, AKeyedParentsAccelerationLeavesItsChildTrailingByTheInertialLoad) {
+  static const testing::TestRig jointed = testing::MakeJointedCylinderRig(SpineKind::kDeformable);
+  const RigModel& model = jointed.model;
+  const PartModel& arm = model.parts[1];
+  ASSERT_EQ(arm.parent, 0);
+  const double mass_per_length = arm.mass.mass / arm.spine_length;
+  const double ei = arm.spine_stiffness.bending, length = arm.spine_length;
+  const double omega =
+      1.875104 * 1.875104 * std::sqrt(ei / (mass_per_length * std::pow(length, 4)));
+  const double duration = 60.0 * 2.0 * std::numbers::pi / omega;
+  const double a = 2e-3 * ei / (mass_per_length * std::pow(length, 3));  // tip ~ L / 4000
+  const double expected = mass_per_length * a * std::pow(length, 4) / (8.0 * ei);
+  RawClip raw;
+  raw.name = "keyed push";
+  raw.duration = duration;
+  RawPartTracks part;
+  part.part = "base";
+  // Keys over the whole clip; the wire is looked at 0.9 of the way, far from the end segments
+  // (whose one-sided tangents are not exact for a quadratic) and after ~50 damped periods.
+  for (int k = 0; k <= 36; ++k) {
+    const double t = duration * k / 36.0;
+    part.channels.translation.keys.push_back(
+        {t, Vec3(0.5 * a * t * t, 0.0, 0.0), Interpolation::kCubic});
+  }
+  raw.parts.push_back(part);
+  Result<Clip> built = BuildClip(raw, model);
+  ASSERT_TRUE(built.ok()) << built.error();
+  const Clip& clip = built.value();
+  const PlaybackOptions options = FineStepsWithWires(duration);
+  Playback playback = Playback::Make(model, clip, options).value();
+  std::vector<Vec3> positions(model.vertices.size());
+  const double t = 0.9 * duration;
+  ASSERT_TRUE(playback.Evaluate(t, positions, {}).ok());
+  const Vec3 tip = playback.workspace().spine_points[1].back() - arm.spine_points.back() -
+                   Vec3(0.5 * a * t * t, 0.0, 0.0);
+  std::printf(
+      "[measure] keyed push: child tip %.6e m against the push (expected %.6e, error "
+      "%.1e)\n",
+      -tip.x(), expected, std::abs(-tip.x() - expected) / expected);
+  EXPECT_NEAR(tip.x(), -expected, 1e-6 * expected);
+  EXPECT_NEAR(tip.z(), 0.0, 1e-6 * expected);
+  EXPECT_GT(expected, 1e-4 * length);
+  // Without wires the keyed push leaves the child straight: the lag is the wires' inertia.
+  PlaybackOptions still = options;
+  still.wires.modes = 0;
+  Playback static_playback = Playback::Make(model, clip, still).value();
+  ASSERT_TRUE(static_playback.Evaluate(t, positions, {}).ok());
+  const Vec3 straight = static_playback.workspace().spine_points[1].back() -
+                        arm.spine_points.back() - Vec3(0.5 * a * t * t, 0.0, 0.0);
+  EXPECT_LT(straight.norm(), 1e-9 * length);
+}
+
 // A rigid root spun up from rest by a constant keyed torque tau about world z (a principal axis
 // of the cylinder, so it turns at the constant alpha = tau / I_zz from Euler's equations, with
 // omega along z) carries a deformable child hanging along -y from the root's lower end, h
@@ -250,5 +307,6 @@ TEST(WireDynamics, StaticWiresWithoutModesAndBadOptionsNamed) {
             "wires: damping_ratio: must be in [0, 100]");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

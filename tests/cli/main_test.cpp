@@ -23,6 +23,7 @@
 
 namespace wirerig::cli {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 namespace fs = std::filesystem;
 using testing::ProcessResult;
@@ -242,5 +243,6 @@ TEST(WirerigSignals, ABakeKilledWhileWritingLeavesNoTemporaryFile) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::cli

@@ -13,6 +13,7 @@
 
 namespace wirerig::cli {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 namespace fs = std::filesystem;
 
@@ -178,5 +179,6 @@ TEST(RigCommandErrors, BrokenDescriptionNamesFileAndField) {
   ExpectFailure(options, description.string() + ": /parts/1/parent: 'c' is not an earlier part");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::cli

@@ -20,6 +20,7 @@
 
 namespace wirerig::cli {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 namespace fs = std::filesystem;
 
@@ -285,5 +286,6 @@ TEST_F(DemoCommand, WritesTheSceneTheGlbAndTheContactSheet) {
   EXPECT_EQ(code, 0) << walk;
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::cli

@@ -13,6 +13,7 @@
 
 namespace wirerig::cli {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 namespace fs = std::filesystem;
 
@@ -261,5 +262,6 @@ TEST(WireCommandFiles, WritesTheOutputFile) {
   EXPECT_EQ(result["bending"].size(), 11u);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::cli

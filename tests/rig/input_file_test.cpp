@@ -11,11 +11,12 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 namespace fs = std::filesystem;
 
 fs::path Scratch(const std::string& name) {
-  const fs::path dir = fs::path(testing::TempDir()) / "wirerig_input_file_test";
+  const fs::path dir = fs::path(::testing::TempDir()) / "wirerig_input_file_test";
   fs::create_directories(dir);
   fs::remove(dir / name);
   return dir / name;
@@ -71,5 +72,6 @@ TEST(InputFile, RefusesAFileOverTheLimitBeforeReadingIt) {
   EXPECT_TRUE(ReadInputFile(path, "scene file (JSON)", 1001).ok());
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -32,11 +32,12 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 namespace fs = std::filesystem;
 
 fs::path WriteFile(const std::string& name, const std::string& contents) {
-  const fs::path path = fs::path(testing::TempDir()) /
+  const fs::path path = fs::path(::testing::TempDir()) /
                         ("wirerig_isolated_" + std::to_string(::getpid()) + "_" + name);
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out << contents;
@@ -270,5 +271,6 @@ TEST(IsolatedImport, CallersCrashHandlerDoesNotRunInTheChild) {
   ExpectError(imported, path, "the importer crashed on this file (Segmentation fault, signal 11)");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

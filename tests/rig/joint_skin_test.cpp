@@ -31,6 +31,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr double kRadius = 0.08;
 
@@ -223,11 +224,13 @@ TEST(JointSkin, BridgeIsTheIdentityAtRestAndACircularArcWhenBent) {
   }
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 // The same limb, bones, blend region and poses under the skinning engines ship. The wire rig
 // meets every target; linear blend (candy-wrapper under twist, folds) and centres of rotation
@@ -261,11 +264,13 @@ TEST(JointSkin, WireRigMeetsTheTargetsWhereLinearBlendAndCentresOfRotationFail) 
   EXPECT_GT(worst[3].folded_edges, 0u);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 // human.zae as its checked-in bone chain, rigid bones.
 struct HumanRig {
@@ -395,5 +400,6 @@ TEST(JointSkin, HumanJointSkinIsSpreadHarmonicallyOverTheSurface) {
   EXPECT_GT(double(harmonic), 0.95 * double(checked)) << harmonic << " of " << checked;
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

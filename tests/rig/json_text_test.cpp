@@ -7,6 +7,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 TEST(PositionInText, CountsLinesAndColumnsFromOne) {
   const std::string text = "ab\ncd\n\nef";
@@ -58,5 +59,6 @@ TEST(ParseJsonText, HugeLiteralIsRefusedWithTrapsHeld) {
             "huge.json: not valid JSON: line 1, column 2: number overflow parsing '1e999'");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -14,6 +14,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 TEST(LoosePieces, ASeparateSphereRidesRigidlyOnTheLimbItSitsOn) {
   Mesh mesh = MakeCapsule(0.1, 1.0, 32, 40, 8);
@@ -75,5 +76,6 @@ TEST(LoosePieces, ASeparateSphereRidesRigidlyOnTheLimbItSitsOn) {
   EXPECT_GT(body_change, 1e-4);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -28,6 +28,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 namespace fs = std::filesystem;
 
@@ -44,7 +45,7 @@ fs::path Asset(const std::string& relative) { return fs::path(WIRERIG_ASSET_DIR)
 
 // A scratch file in the test's temporary folder.
 fs::path WriteFile(const std::string& name, const std::string& contents) {
-  const fs::path path = fs::path(testing::TempDir()) / ("wirerig_mesh_import_" + name);
+  const fs::path path = fs::path(::testing::TempDir()) / ("wirerig_mesh_import_" + name);
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out << contents;
   return path;
@@ -610,7 +611,7 @@ struct BadFile {
 
 void PrintTo(const BadFile& bad, std::ostream* os) { *os << bad.file; }
 
-class MeshImportInvalidFile : public testing::TestWithParam<BadFile> {};
+class MeshImportInvalidFile : public ::testing::TestWithParam<BadFile> {};
 
 TEST_P(MeshImportInvalidFile, FailsWithClearMessage) {
   const fs::path path = Asset("assimp/invalid/" + GetParam().file);
@@ -625,7 +626,7 @@ TEST_P(MeshImportInvalidFile, FailsWithClearMessage) {
   EXPECT_LT(seconds, 2.0);
 }
 
-std::string BadFileName(const testing::TestParamInfo<BadFile>& info) {
+std::string BadFileName(const ::testing::TestParamInfo<BadFile>& info) {
   std::string name = info.param.file;
   for (char& c : name) {
     if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
@@ -635,15 +636,15 @@ std::string BadFileName(const testing::TestParamInfo<BadFile>& info) {
 
 INSTANTIATE_TEST_SUITE_P(
     AssimpInvalid, MeshImportInvalidFile,
-    testing::Values(BadFile{"empty.3ds", "file is empty"}, BadFile{"empty.ase", "file is empty"},
-                    BadFile{"empty.lwo", "file is empty"},
-                    BadFile{"empty.md5mesh", "file is empty"},
-                    BadFile{"empty.obj", "file is empty"}, BadFile{"empty.off", "file is empty"},
-                    BadFile{"empty.ply", "file is empty"}, BadFile{"empty.raw", "file is empty"},
-                    BadFile{"empty.smd", "file is empty"}, BadFile{"empty.x", "file is empty"},
-                    BadFile{"emptyIrrMesh.xml", "IRRMESH: Unable to read a mesh"},
-                    BadFile{"malformed.obj", "Invalid face index"},
-                    BadFile{"readme.txt", "unknown or unsupported file format"}),
+    ::testing::Values(BadFile{"empty.3ds", "file is empty"}, BadFile{"empty.ase", "file is empty"},
+                      BadFile{"empty.lwo", "file is empty"},
+                      BadFile{"empty.md5mesh", "file is empty"},
+                      BadFile{"empty.obj", "file is empty"}, BadFile{"empty.off", "file is empty"},
+                      BadFile{"empty.ply", "file is empty"}, BadFile{"empty.raw", "file is empty"},
+                      BadFile{"empty.smd", "file is empty"}, BadFile{"empty.x", "file is empty"},
+                      BadFile{"emptyIrrMesh.xml", "IRRMESH: Unable to read a mesh"},
+                      BadFile{"malformed.obj", "Invalid face index"},
+                      BadFile{"readme.txt", "unknown or unsupported file format"}),
     BadFileName);
 
 // Claims 353535235358 vertices: refused from the header, before Assimp reserves terabytes.
@@ -702,17 +703,17 @@ void ExpectError(const Result<ImportedMesh>& imported, const fs::path& path,
 }
 
 TEST(MeshImportInvalid, MissingFile) {
-  const fs::path path = fs::path(testing::TempDir()) / "wirerig_no_such_mesh.obj";
+  const fs::path path = fs::path(::testing::TempDir()) / "wirerig_no_such_mesh.obj";
   ExpectError(ImportMesh(path), path, "no such file");
 }
 
 TEST(MeshImportInvalid, Directory) {
-  const fs::path path = testing::TempDir();
+  const fs::path path = ::testing::TempDir();
   ExpectError(ImportMesh(path), path, "is a directory");
 }
 
 TEST(MeshImportInvalid, NotARegularFile) {
-  const fs::path path = fs::path(testing::TempDir()) / "wirerig_mesh_import_fifo.obj";
+  const fs::path path = fs::path(::testing::TempDir()) / "wirerig_mesh_import_fifo.obj";
   fs::remove(path);
   ASSERT_EQ(mkfifo(path.c_str(), 0600), 0);
   ExpectError(ImportMesh(path), path, "not a regular file");  // and does not block reading it
@@ -836,5 +837,6 @@ TEST(UpAxis, ToStringAndParseRoundTrip) {
   EXPECT_EQ(parsed, UpAxis::kZ);  // untouched on failure
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

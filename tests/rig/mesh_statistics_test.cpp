@@ -12,6 +12,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 Mesh MakeMesh(std::vector<Vec3> positions, std::vector<Triangle> triangles) {
   Mesh mesh;
@@ -231,5 +232,6 @@ TEST(ComputeBounds, UsesWeldedPositionsWhenWelded) {
   EXPECT_DOUBLE_EQ(bounds.Diagonal(), Vec3(5, 7, 13).norm());
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -10,6 +10,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 double Area(const Mesh& mesh) {
   double area = 0.0;
@@ -61,5 +62,6 @@ TEST(MeshSubdivision, ZeroLevelsIsTheSameMesh) {
   EXPECT_EQ(same.welded_positions.size(), mesh.welded_positions.size());
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

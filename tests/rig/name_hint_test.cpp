@@ -8,6 +8,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 TEST(EditDistance, CountsInsertionsDeletionsAndSubstitutions) {
   EXPECT_EQ(EditDistance("", ""), 0u);
@@ -43,5 +44,6 @@ TEST(NameHint, ListsAtMostTwentyNames) {
   EXPECT_EQ(hint.find("p20"), std::string::npos) << hint;
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

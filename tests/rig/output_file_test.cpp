@@ -13,12 +13,13 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 namespace fs = std::filesystem;
 
 fs::path Scratch() {
   const fs::path dir =
-      fs::path(testing::TempDir()) / ("wirerig_output_file_" + std::to_string(::getpid()));
+      fs::path(::testing::TempDir()) / ("wirerig_output_file_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir;
 }
@@ -79,5 +80,6 @@ TEST(CheckOutputFile, RefusesAnUnwritableFolder) {
             (dir / "x.png").string() + ": the folder " + dir.string() + " is not writable");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -19,6 +19,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr double kPi = std::numbers::pi;
 
@@ -111,7 +112,7 @@ TEST(ProceduralMeshTest, Cylinder) {
   const double r = 0.7, h = 1.9;
   for (const Segments s : {Segments{3, 1}, Segments{8, 2}, Segments{32, 5}, Segments{100, 1}}) {
     const Mesh mesh = MakeCylinder(r, h, s.radial, s.height);
-    SCOPED_TRACE(testing::Message() << s.radial << " x " << s.height);
+    SCOPED_TRACE(::testing::Message() << s.radial << " x " << s.height);
     EXPECT_EQ(mesh.positions.size(), std::size_t(s.radial * (s.height + 1) + 2));
     EXPECT_EQ(mesh.triangles.size(), std::size_t(2 * s.radial * (s.height + 1)));
     EXPECT_EQ(CheckTopology(mesh, "cylinder"), 2);
@@ -143,7 +144,7 @@ TEST(ProceduralMeshTest, ConeFrustumAndPointedCones) {
   for (const auto& [r0, r1] :
        {std::pair{0.9, 0.4}, std::pair{0.3, 0.8}, std::pair{0.9, 0.0}, std::pair{0.0, 0.6}}) {
     for (const Segments s : {Segments{3, 1}, Segments{12, 3}, Segments{48, 4}}) {
-      SCOPED_TRACE(testing::Message()
+      SCOPED_TRACE(::testing::Message()
                    << "r0 " << r0 << " r1 " << r1 << ", " << s.radial << " x " << s.height);
       const Mesh mesh = MakeCone(r0, r1, h, s.radial, s.height);
       const bool pointed = r0 == 0.0 || r1 == 0.0;
@@ -172,7 +173,7 @@ TEST(ProceduralMeshTest, Torus) {
   const double major = 1.2, minor = 0.3;
   for (const Segments s : {Segments{3, 3}, Segments{16, 8}, Segments{64, 24}}) {
     const int rings = s.radial, tube = s.height;
-    SCOPED_TRACE(testing::Message() << rings << " x " << tube);
+    SCOPED_TRACE(::testing::Message() << rings << " x " << tube);
     const Mesh mesh = MakeTorus(major, minor, rings, tube);
     EXPECT_EQ(mesh.positions.size(), std::size_t(rings * tube));
     EXPECT_EQ(mesh.triangles.size(), std::size_t(2 * rings * tube));
@@ -201,8 +202,8 @@ TEST(ProceduralMeshTest, Capsule) {
   for (const double h : {0.0, 1.1}) {
     for (const auto& [s, cap_rings] : {std::pair{Segments{3, 1}, 1}, std::pair{Segments{12, 2}, 3},
                                        std::pair{Segments{40, 3}, 10}}) {
-      SCOPED_TRACE(testing::Message() << "h " << h << ", " << s.radial << " x " << s.height
-                                      << ", cap rings " << cap_rings);
+      SCOPED_TRACE(::testing::Message() << "h " << h << ", " << s.radial << " x " << s.height
+                                        << ", cap rings " << cap_rings);
       const Mesh mesh = MakeCapsule(r, h, s.radial, s.height, cap_rings);
       const int body = h > 0.0 ? s.height : 0;
       const int rings = 2 * (cap_rings - 1) + body + 1;
@@ -265,5 +266,6 @@ TEST(ProceduralMeshTest, SegmentCountsAreClampedToMinimums) {
   EXPECT_EQ(CheckTopology(capsule, "capsule"), 2);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

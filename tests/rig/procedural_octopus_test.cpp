@@ -12,6 +12,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 TEST(ProceduralOctopus, PiecesAreClosedAndOutwardFacing) {
   const ProceduralRigSource octopus = MakeOctopus().value();
@@ -97,5 +98,6 @@ TEST(ProceduralOctopus, RefusesBadParametersByName) {
   EXPECT_EQ(MakeOctopus(p).error(), "mantle_radius: must be positive (m)");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

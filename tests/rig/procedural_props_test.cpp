@@ -16,6 +16,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 struct Expected {
   std::string part;
@@ -175,5 +176,6 @@ TEST(ProceduralProps, RefuseBadParametersByName) {
   EXPECT_EQ(MakeChair(chair).error(), "points_per_profile: must be in [3, 1024]");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

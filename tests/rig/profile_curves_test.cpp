@@ -20,6 +20,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr double kPi = std::numbers::pi;
 constexpr int kRadial = 4096;
@@ -335,5 +336,6 @@ TEST(ProfileCurves, RaycastFanFindsWhatRaycastFinds) {
   EXPECT_GT(hits_seen, 10000u);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -23,6 +23,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 std::string Asset(const std::string& name) { return std::string(WIRERIG_ASSET_DIR) + "/" + name; }
 
@@ -239,5 +240,6 @@ TEST(RigBuilder, ACentralCurveOutsideTheMeshIsAClearError) {
   EXPECT_NE(built.error().find("is its central curve inside the mesh?"), std::string::npos);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

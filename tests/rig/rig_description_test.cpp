@@ -14,6 +14,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 nlohmann::json Good() {
   return nlohmann::json::parse(R"({
@@ -104,11 +105,13 @@ TEST(RigDescription, CheckedInDescriptionsLoad) {
   EXPECT_EQ(human.value().mesh.filename(), "human.zae");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 TEST(RigDescription, JointsParseWithTypeAxisLimitsAndBlend) {
   nlohmann::json d = Good();
@@ -176,5 +179,6 @@ TEST(RigDescription, TheHumanIsABoneChainWithHingedElbowsAndKnees) {
   EXPECT_EQ(parts["neck"]->parent, "chest");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

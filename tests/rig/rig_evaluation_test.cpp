@@ -29,6 +29,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 struct Scene {
   Mesh mesh;
@@ -380,11 +381,13 @@ TEST(RigEvaluation, InvalidJobsAreRefused) {
   EXPECT_EQ(job.Validate().field, "workspace");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 // Six times the volume the welded triangles enclose.
 double Volume6(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles) {
@@ -480,11 +483,13 @@ TEST(RigEvaluation, AProfileLoadMovesOnlyTheVerticesNextToItsProfile) {
   EXPECT_NEAR(moved.dot(frame.normal), expected, 1e-9 * expected + 1e-15);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 std::vector<PartWarnings> WarningsFor(const Scene& scene, double tip_force) {
   std::vector<PartPose> poses(scene.model.parts.size());
@@ -545,11 +550,13 @@ TEST(RigEvaluation, ConcurrentEvaluationsOfOneModelAgreeWithSequentialOnes) {
   EXPECT_EQ(got_b, expected_b);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 // The human with every part turned, bent and (with volume preservation) stretched, and the
 // chest's profiles loaded: a pose that exercises every stage of the evaluation.
@@ -852,5 +859,6 @@ TEST(ThreadPool, RunsEveryTaskOnceAndReturnsAfterAll) {
   }
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

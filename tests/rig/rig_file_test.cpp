@@ -11,6 +11,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 namespace fs = std::filesystem;
 
@@ -189,5 +190,6 @@ TEST(RigFile, FailedSaveLeavesNothingBehind) {
   EXPECT_FALSE(fs::exists(dir));
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -10,6 +10,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 struct Capsule {
   Mesh mesh;
@@ -67,5 +68,6 @@ TEST(BuildRigModel, RefusesSpineAndCurvePointsFarOutsideButNotNearTheBox) {
   EXPECT_TRUE(BuildRigModel(c.mesh, rig).ok());
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -18,11 +18,12 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 namespace fs = std::filesystem;
 
 fs::path ScratchDir(const std::string& name) {
-  const fs::path dir = fs::path(testing::TempDir()) / ("wirerig_temp_files_test_" + name);
+  const fs::path dir = fs::path(::testing::TempDir()) / ("wirerig_temp_files_test_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -92,5 +93,6 @@ void ExpectSignalRemoves(int signal_number) {
 TEST(TemporaryFiles, SigtermRemovesRegisteredFilesAndStillKills) { ExpectSignalRemoves(SIGTERM); }
 TEST(TemporaryFiles, SigintRemovesRegisteredFilesAndStillKills) { ExpectSignalRemoves(SIGINT); }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

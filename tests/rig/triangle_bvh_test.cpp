@@ -22,6 +22,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kFar = std::numeric_limits<double>::max();
@@ -820,5 +821,6 @@ TEST(WindingNumberTest, RobustAtVerticesAndDegenerateTriangles) {
   EXPECT_TRUE(std::isfinite(Winding(capsule, capsule.welded_positions[0])));
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -21,6 +21,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 // A cylinder (r = 0.1 m, 1 m along +Y) without its two end caps: open at both ends.
 Mesh OpenTube() {
@@ -163,5 +164,6 @@ TEST(WatertightProxy, TestwusonRigsFromItsWrapWithTheSkeletonIgnored) {
   EXPECT_EQ(unwrapped_misses, through_holes);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -16,11 +16,12 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 namespace fs = std::filesystem;
 
 fs::path ScratchDir() {
-  const fs::path dir = fs::path(testing::TempDir()) / "wirerig_wire_problem_test";
+  const fs::path dir = fs::path(::testing::TempDir()) / "wirerig_wire_problem_test";
   fs::create_directories(dir);
   return dir;
 }
@@ -157,5 +158,6 @@ TEST(WireProblem, LinearLineLoadsAreReadSolvedAndNamedInErrors) {
   EXPECT_FALSE(ParseWireProblem(unknown).ok());
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

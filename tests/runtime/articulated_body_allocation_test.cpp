@@ -16,6 +16,7 @@ using wirerig::testing::g_allocations;
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 TEST(ArticulatedNoAllocation, CountingAllocatorSeesAllocations) {
   const long before = g_allocations;
@@ -93,5 +94,6 @@ TEST(ArticulatedNoAllocation, StepsWithBothIntegratorsAndEveryForce) {
   }
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -35,6 +35,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;
@@ -1288,5 +1289,6 @@ TEST(ArticulatedStepJob, ValidateRefusesEachMissingOrInvalidInput) {
   }
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -9,6 +9,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 struct AxialResult {
   std::vector<double> x, n;
@@ -145,7 +146,7 @@ TEST(AxialJobDegenerate, BeyondTheLastLoadTheWireTranslatesRigidly) {
   EXPECT_EQ(r.x[2], r.x[0]);
 }
 
-class AxialJobValidation : public testing::Test {
+class AxialJobValidation : public ::testing::Test {
  protected:
   std::vector<AxialPointLoad> p{{0.5, 1.0}};
   std::vector<AxialLineLoad> q{{0.1, 0.3, 1.0}};
@@ -207,5 +208,6 @@ TEST_F(AxialJobValidation, EachInvalidInputIsNamed) {
   ExpectRefused("samples");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -12,6 +12,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 // A job that owns its buffers: samples at v_i = i/(n-1), all three outputs.
 struct BendingCase {
@@ -530,7 +531,7 @@ TEST(BendingJobDegenerate, EndDisplacementsAloneGiveTheHomogeneousSolution) {
 // ---------------------------------------------------------------------------------------
 // Validation: one test per kind of invalid input; each mutates one input of a valid job.
 
-class BendingJobValidation : public testing::Test {
+class BendingJobValidation : public ::testing::Test {
  protected:
   std::array<PointLoad, 1> point_loads{{{0.5, Vec3(0, -1, 0)}}};
   std::array<LineLoad, 1> line_loads{{{0.2, 0.4, Vec3(0, -1, 0)}}};
@@ -697,5 +698,6 @@ TEST(BendingJobNames, RoundTripAndUnknownNames) {
   EXPECT_FALSE(ParseBendingMode("fourier", &mode));
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -25,6 +25,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 using ::wirerig::testing::FdBeamProblem;
 using ::wirerig::testing::FdBeamSolution;
@@ -639,5 +640,6 @@ TEST(BendingReference, LinearLoadsOnEveryFamilyMatchFiniteDifferences) {
   ::testing::Test::RecordProperty("worst_relative_difference", text.str());
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -14,6 +14,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr std::array kFamilies = {BoundaryCondition::kSimplySupported, BoundaryCondition::kClamped,
                                   BoundaryCondition::kCantileverFree,
@@ -200,5 +201,6 @@ TEST(BendingSeries, SlopeAndCurvatureAreDerivativesOfTheSeries) {
   }
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -18,6 +18,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kL = 1.2;   // m
@@ -222,5 +223,6 @@ TEST(CorotationalWireIkJob, ValidateNamesTheFirstBadField) {
   }
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -16,6 +16,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 using testing::ExactElasticaTip;
 using testing::ShootTipForceElastica;
@@ -520,5 +521,6 @@ TEST(CorotationalWireJob, ValidateNamesTheFirstBadField) {
   EXPECT_TRUE(job.Run().ok());
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

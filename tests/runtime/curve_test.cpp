@@ -14,6 +14,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr double kPi = std::numbers::pi;
 
@@ -371,7 +372,7 @@ TEST(Curve, ClosedPolylineFramesMeetAtTheSeam) {
 // ---------------------------------------------------------------------------------------------
 // Invalid input: refused with a reason, output untouched.
 
-class CurveBuildRefuses : public testing::Test {
+class CurveBuildRefuses : public ::testing::Test {
  protected:
   void SetUp() override {
     ASSERT_TRUE(Curve::Build(original_points_, false, CurveInterpolation::kLinear, &out_).ok());
@@ -511,5 +512,6 @@ TEST(Curve, DefaultConstructedCurveIsSafeToQuery) {
   for (const Vec3& p : samples) EXPECT_TRUE(IsFinite(p));
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -9,6 +9,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 TEST(Section, StripIsBhAndBh3Over12WithPlateModulus) {
   const Section s = StripSection(0.05, 0.002);
@@ -85,5 +86,6 @@ TEST(Material, DampingRatiosAreLightForMetalsAndHeavierForTissues) {
             FindMaterialPreset("soft_tissue")->damping_ratio);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

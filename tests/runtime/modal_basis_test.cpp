@@ -15,6 +15,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr BoundaryCondition kFamilies[] = {
     BoundaryCondition::kSimplySupported, BoundaryCondition::kClamped,
@@ -352,5 +353,6 @@ TEST(ModalBasis, EvaluateModeGivesValueAndSlopeTogether) {
   }
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

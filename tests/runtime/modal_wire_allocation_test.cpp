@@ -12,6 +12,7 @@ using wirerig::testing::g_allocations;
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 TEST(ModalWireNoAllocation, CountingAllocatorSeesAllocations) {
   const long before = g_allocations;
@@ -91,5 +92,6 @@ TEST(ModalWireNoAllocation, BuildStepAndEvaluateWithEveryOption) {
   }
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -16,6 +16,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr BoundaryCondition kFamilies[] = {
     BoundaryCondition::kSimplySupported, BoundaryCondition::kClamped,
@@ -951,5 +952,6 @@ TEST(ModalWireValidate, InvalidInputsAreNamed) {
   EXPECT_EQ(eval_field([&](E& e) { e.loads.linear_line_loads = beyond; }), "linear_line_loads");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

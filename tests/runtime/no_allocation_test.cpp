@@ -26,6 +26,7 @@ using wirerig::testing::g_allocations;
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 // Where the test's allocations go, so the optimiser cannot elide the new/delete pair.
 std::vector<int>* volatile g_sink = nullptr;
@@ -273,5 +274,6 @@ TEST(NoAllocation, RigidBodyStepsWithBothIntegrators) {
   }
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -14,6 +14,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 RigAsset LimbAsset() {
   const Mesh mesh = MakeCapsule(0.08, 1.0, 24, 40, 4);
@@ -176,5 +177,6 @@ TEST(RigAsset, CorruptPayloadsNeverCrash) {
   EXPECT_GT(parsed, 0) << "some corruptions (a changed real) should still parse";
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

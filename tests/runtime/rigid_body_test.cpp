@@ -21,6 +21,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr std::array kIntegrators = {RigidIntegrator::kRk4, RigidIntegrator::kMomentum};
 
@@ -261,7 +262,7 @@ TEST(RigidMassProperties, ShellNeedNotBeClosedOrOutward) {
 }
 
 // Refusals: each names the field, and leaves *out untouched.
-class RigidMassPropertiesValidation : public testing::Test {
+class RigidMassPropertiesValidation : public ::testing::Test {
  protected:
   Mesh box = Box(Vec3(1.0, 2.0, 3.0));
   MassProperties out;
@@ -430,7 +431,7 @@ TEST(RigidMotion, ConstantTorqueAboutAPrincipalAxisFromRest) {
   const double t = n * dt;
   for (RigidIntegrator integrator : kIntegrators)
     for (int k = 0; k < 3; ++k) {
-      SCOPED_TRACE(testing::Message() << Name(integrator) << " axis " << k);
+      SCOPED_TRACE(::testing::Message() << Name(integrator) << " axis " << k);
       const Vec3 e = Vec3::Unit(k);
       RigidBodyState s;
       ASSERT_TRUE(Simulate(integrator, 1.0, moments, dt, n, &s, [&](double) {
@@ -511,10 +512,10 @@ Drift TorqueFreeDrift(RigidIntegrator integrator, double dt) {
 TEST(RigidTorqueFree, MomentumFormConservesMomentumAndDriftsInEnergyAtSecondOrder) {
   const Drift coarse = TorqueFreeDrift(RigidIntegrator::kMomentum, 0.01);
   const Drift fine = TorqueFreeDrift(RigidIntegrator::kMomentum, 0.001);
-  RecordProperty("L_drift_dt_0.01", testing::PrintToString(coarse.momentum));
-  RecordProperty("L_drift_dt_0.001", testing::PrintToString(fine.momentum));
-  RecordProperty("E_drift_dt_0.01", testing::PrintToString(coarse.energy));
-  RecordProperty("E_drift_dt_0.001", testing::PrintToString(fine.energy));
+  RecordProperty("L_drift_dt_0.01", ::testing::PrintToString(coarse.momentum));
+  RecordProperty("L_drift_dt_0.001", ::testing::PrintToString(fine.momentum));
+  RecordProperty("E_drift_dt_0.01", ::testing::PrintToString(coarse.energy));
+  RecordProperty("E_drift_dt_0.001", ::testing::PrintToString(fine.energy));
   // L is conserved up to the round-off of the L -> omega_b -> L round trip of each step
   // (the state stores omega_b): measured 1.1e-13 (1e4 steps) and 1.0e-12 (1e5 steps).
   EXPECT_LT(coarse.momentum, 1e-12);
@@ -530,10 +531,10 @@ TEST(RigidTorqueFree, MomentumFormConservesMomentumAndDriftsInEnergyAtSecondOrde
 TEST(RigidTorqueFree, Rk4DriftsAtFourthOrder) {
   const Drift coarse = TorqueFreeDrift(RigidIntegrator::kRk4, 0.01);
   const Drift fine = TorqueFreeDrift(RigidIntegrator::kRk4, 0.001);
-  RecordProperty("L_drift_dt_0.01", testing::PrintToString(coarse.momentum));
-  RecordProperty("L_drift_dt_0.001", testing::PrintToString(fine.momentum));
-  RecordProperty("E_drift_dt_0.01", testing::PrintToString(coarse.energy));
-  RecordProperty("E_drift_dt_0.001", testing::PrintToString(fine.energy));
+  RecordProperty("L_drift_dt_0.01", ::testing::PrintToString(coarse.momentum));
+  RecordProperty("L_drift_dt_0.001", ::testing::PrintToString(fine.momentum));
+  RecordProperty("E_drift_dt_0.01", ::testing::PrintToString(coarse.energy));
+  RecordProperty("E_drift_dt_0.001", ::testing::PrintToString(fine.energy));
   // Table: L 1.4e-10 / 2.1e-14, energy 6.9e-12 / 3.2e-14 (measured, largest along the run:
   // L 1.7e-10 / 4.3e-14, energy 7.4e-12 / 4.8e-14).
   EXPECT_LT(coarse.momentum, 1.4e-9);
@@ -571,7 +572,7 @@ TEST(RigidTorqueFree, AxisymmetricBodyPrecessesInTheBodyFrame) {
       const Vec3 expected(a * std::cos(precession * t), a * std::sin(precession * t), w3);
       error = std::max(error, (s.angular_velocity - expected).norm());
     }
-    RecordProperty(std::string("error_") + Name(integrator), testing::PrintToString(error));
+    RecordProperty(std::string("error_") + Name(integrator), ::testing::PrintToString(error));
     // Measured 1.3e-6 (momentum form) and 1e-13 (RK4).
     EXPECT_LT(error, integrator == RigidIntegrator::kRk4 ? 1e-11 : 1e-4);
     EXPECT_LT((AngularMomentumWorld(s, moments) - l0).norm(), 1e-12);
@@ -619,7 +620,7 @@ TEST(RigidStepJob, CoarseStepsOfAFastSpinNeverGoNonFinite) {
   }
 }
 
-class RigidStepJobValidation : public testing::Test {
+class RigidStepJobValidation : public ::testing::Test {
  protected:
   RigidBodyState state;
   RigidBodyStepJob job;
@@ -756,5 +757,6 @@ TEST_F(RigidStepJobValidation, Rk4RefusesAStepItsStagesCouldBlowUpMomentumFormTa
   EXPECT_TRUE(job.Validate().ok()) << ToString(job.Validate());
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -20,6 +20,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr double kPi = std::numbers::pi;
 
@@ -335,7 +336,7 @@ TEST(SkinBinding, SpineAxisVertexUsesTheFirstWirePointsPlane) {
   for (int k : {0, 1, 2}) bulged.points_i[k] *= 1.3;
   for (const Vec3& p : {Vec3(rest.spine_i + 0.4 * (rest.spine_j - rest.spine_i)), rest.spine_i,
                         rest.spine_j, Vec3(rest.spine_i + 1.3 * (rest.spine_j - rest.spine_i))}) {
-    SCOPED_TRACE(testing::Message() << "p = " << p.transpose());
+    SCOPED_TRACE(::testing::Message() << "p = " << p.transpose());
     const PairBinding binding = Bind(rest, p);
     EXPECT_EQ(binding.flags, kBindingPlaneDegenerate);
     // The plane holds w_i[0] and the hits are on its side.
@@ -521,5 +522,6 @@ TEST(SkinBinding, InvalidInputIsRefusedWithTheFieldNamed) {
   EXPECT_TRUE(BindToWirePair(p, wi, wj, ci, cj, &out).ok());
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -15,6 +15,7 @@ using wirerig::testing::g_allocations;
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 TEST(WireNoAllocation, CountingAllocatorSeesAllocations) {
   const long before = g_allocations;
@@ -99,5 +100,6 @@ TEST(WireNoAllocation, CorotationalWireIk) {
   EXPECT_EQ(g_allocations - before, 0);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

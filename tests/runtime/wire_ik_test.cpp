@@ -13,6 +13,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr double kL = 2.0;    // m
 constexpr double kEI = 20.0;  // N m^2
@@ -301,5 +302,6 @@ TEST(WireIkJob, ValidateNamesTheFirstBadField) {
   }
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

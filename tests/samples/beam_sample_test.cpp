@@ -14,6 +14,7 @@
 
 namespace wirerig::samples {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr const char* kScene = "beam/beam.scene.json";
 constexpr double kEI = 2.0e9 * 2.0e-5;  // the scene's E and I
@@ -101,5 +102,6 @@ TEST(BeamSample, RefusesAnUnknownSupport) {
       << SceneError(scene);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::samples

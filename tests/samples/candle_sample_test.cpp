@@ -15,6 +15,7 @@
 
 namespace wirerig::samples {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr const char* kScene = "candle/candle.scene.json";
 constexpr double kE = 2.0e6, kA = 0.005;  // the scene's wax and section
@@ -156,5 +157,6 @@ TEST(CandleSample, RefusesAHeldPointOffTheWire) {
       << SceneError(scene);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::samples

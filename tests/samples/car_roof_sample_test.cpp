@@ -10,6 +10,7 @@
 
 namespace wirerig::samples {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr char kScene[] = "car_roof/car_roof.scene.json";
 constexpr double kLoad = 800.0;  // N/m, along world -Y at the clip's end (t = 2 s)
@@ -59,5 +60,6 @@ TEST(CarRoofSample, RefusesTooManySubdivisionLevels) {
   EXPECT_EQ(SceneError(scene), "/mesh/subdivide: must be a whole number of levels in [0, 4]");
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::samples

@@ -16,6 +16,7 @@
 
 namespace wirerig::samples {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr const char* kScene = "chair/chair.scene.json";
 constexpr double kLegEI = 10.0e9 * 1.1e-7;   // wood, the scene's leg section
@@ -143,5 +144,6 @@ TEST(ChairSample, RefusesAPartTheChairDoesNotHave) {
       << SceneError(scene);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::samples

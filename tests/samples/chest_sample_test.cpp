@@ -15,6 +15,7 @@
 
 namespace wirerig::chest {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr int kWires = 7;
 
@@ -271,5 +272,6 @@ TEST_F(ChestPlate, FitAndEvaluationRefuseBadInput) {
   EXPECT_EQ(std::string(bad.Run().field), "samples");  // BendingJob's own check
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::chest

@@ -30,6 +30,7 @@
 
 namespace wirerig::samples {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 // A rigid motion x -> rotation x + offset.
 struct Motion {
@@ -282,5 +283,6 @@ TEST(HumanSamples, SkinHoldsOnEveryFrame) {
   }
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::samples

@@ -16,6 +16,7 @@
 
 namespace wirerig::samples {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr const char* kScene = "lamp_post/lamp_post.scene.json";
 // The scene's loads (world -X, N/m) and the profiles of the "some" groups.
@@ -117,5 +118,6 @@ TEST(LampPostSample, RefusesAProfileThePostDoesNotHave) {
       << SceneError(scene);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::samples

@@ -23,6 +23,7 @@
 
 namespace wirerig::samples {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr double kFrame = 1.0 / 20.0;  // s
 constexpr double kSettle = 1.0;        // s: the body lowers onto its arms (make_octopus.py)
@@ -101,5 +102,6 @@ TEST(OctopusCrawl, WalksAlongTheGroundOnPlantedArms) {
       worst_ground, worst_stretch);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::samples

@@ -23,6 +23,7 @@
 
 namespace wirerig::samples {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr double kFrame = 1.0 / 10.0;  // s
 
@@ -97,5 +98,6 @@ TEST(OctopusSample, TravelsOverABodySizeAndItsArmsStrokeAndTrail) {
       worst_stretch);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::samples

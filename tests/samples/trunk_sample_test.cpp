@@ -13,6 +13,7 @@
 
 namespace wirerig::samples {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr const char* kScene = "trunk/trunk.scene.json";
 constexpr double kEI = 10.0e9 * 1.6e-4;  // wood's E and the scene's I
@@ -92,5 +93,6 @@ TEST(TrunkSample, RefusesBadShapesAndBoundaries) {
   EXPECT_NE(SceneError(scene).find("/clips/0"), std::string::npos) << SceneError(scene);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::samples

@@ -20,6 +20,7 @@
 
 namespace wirerig::samples {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 constexpr double kFrame = 1.0 / 30.0;  // s
 
@@ -105,5 +106,6 @@ TEST(WalkSample, TravelsWithFeetPlantedAndTheSkinWhole) {
   }
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::samples

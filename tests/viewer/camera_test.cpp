@@ -6,6 +6,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 TEST(Camera, YawZeroLooksFromPlusZ) {
   Camera camera;
@@ -143,5 +144,6 @@ TEST(RenderFrame, ColorMapEndsAndClamping) {
   EXPECT_TRUE(EvaluateColorMap(ColorMap::kCoolWarm, std::nanf("")).allFinite());
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -10,6 +10,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 using testing::ScopedNoFpTraps;
 
@@ -115,5 +116,6 @@ TEST(Headless, ContactSheetTilesFramesWithLabels) {
   EXPECT_FALSE(none);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

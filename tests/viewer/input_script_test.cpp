@@ -4,6 +4,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 TEST(InputScript, ParsesEveryEvent) {
   const char* text =
@@ -82,5 +83,6 @@ TEST(InputScript, MissingFileIsNamed) {
   EXPECT_NE(events.error().find("/nonexistent/drag.input"), std::string::npos);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

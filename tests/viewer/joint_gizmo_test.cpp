@@ -23,6 +23,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 using testing::ScopedNoFpTraps;
 
@@ -385,5 +386,6 @@ TEST(SceneViewerGizmo, ScriptedDragOnTheRingTurnsTheJoint) {
   EXPECT_GT(std::stod(printed.substr(at + 16)), 0.3) << printed;
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -6,6 +6,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 class PickingTest : public ::testing::Test {
  protected:
@@ -95,5 +96,6 @@ TEST_F(PickingTest, EmptyAndDegenerateInputsMiss) {
   EXPECT_TRUE(PointAtParameter(dot, 0.5f).isApprox(Vec3f::Zero()));
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

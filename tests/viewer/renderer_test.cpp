@@ -15,6 +15,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 using testing::LyingCapsule;
 using testing::OwnedMesh;
@@ -245,5 +246,6 @@ TEST_F(RendererTest, EmptyFrameRendersBackgroundAndGround) {
   EXPECT_EQ(headless_->renderer().stats().vertices, 0);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

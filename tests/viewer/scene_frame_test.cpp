@@ -8,6 +8,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 TEST(SceneFrame, BendingMomentColoursFollowFTimesTheLeverArm) {
   const nlohmann::json document = nlohmann::json::parse(R"({
@@ -53,5 +54,6 @@ TEST(SceneFrame, BendingMomentColoursFollowFTimesTheLeverArm) {
   EXPECT_TRUE(picture.frame().meshes[0].scalars.empty());
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

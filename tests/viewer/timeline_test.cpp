@@ -4,6 +4,7 @@
 
 namespace wirerig {
 namespace {
+namespace WIRERIG_TEST_FILE {
 
 TEST(Timeline, PausedTimeDoesNotMove) {
   Timeline t;
@@ -59,5 +60,6 @@ TEST(Timeline, ZeroDurationNeverMoves) {
   EXPECT_EQ(t.time, 0.0);
 }
 
+}  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -3,6 +3,8 @@
 // `profile_loads` point into the sample's own buffers and stay valid until the next call.
 #pragma once
 
+#include <span>
+
 #include <vector>
 
 #include "wirerig/anim/clip.h"
@@ -34,5 +36,11 @@ ClipSample MakeClipSample(const Clip& clip, const RigModel& model);
 //  * pose: rotation exp(axis-angle), translation.
 // Rigid parts' poses are left to the caller (Playback sets them from their bodies).
 void SampleClip(const Clip& clip, double t, ClipSample* sample);
+
+// Every part's rigid placement for `poses` (each relative to its parent, as the rig composes
+// them; parents come before their children): rest world point x -> rotations[p] x +
+// translations[p] in the world. The spans hold one element per part of `model`.
+void ComposePlacements(const RigModel& model, std::span<const PartPose> poses,
+                       std::span<Mat3> rotations, std::span<Vec3> translations);
 
 }  // namespace wirerig

@@ -116,20 +116,28 @@ class Playback {
   void ApplyInteractiveLoad();
   // Poses the dynamic rigid parts of `sample` from their bodies (keeping the sampled loads).
   void PoseDynamicParts(ClipSample* sample) const;
+  // The support motion of wires whose parents move by keys (not by dynamics), at clip time t
+  // (step_sample_ holds the poses there): central differences of the parent's placement over
+  // one rigid step.
+  void KeyedSupportMotion(double t);
 
   const RigModel* model_ = nullptr;
   const Clip* clip_ = nullptr;
   PlaybackOptions options_;
   RigWorkspace workspace_;
   ClipSample sample_;
-  std::vector<std::size_t> dynamic_parts_;          // rigid parts the clip drives by forces
-  std::vector<RigidPartBody> dynamic_bodies_;       // their bodies, same order
-  std::vector<RigidBodyState> bodies_;              // per part, at the current time
-  std::vector<RigidBodyState> checkpoints_;         // #checkpoints x #dynamic parts
-  WireDynamics wires_;                              // the deformable spines with inertia
-  std::vector<ModalWireState> wire_checkpoints_;    // #checkpoints x #wires
-  ClipReach reach_;                                 // the clip's reach targets (wire IK)
-  std::vector<double> wire_scale_;                  // per part: its wire's residual's scale
+  std::vector<std::size_t> dynamic_parts_;        // rigid parts the clip drives by forces
+  std::vector<RigidPartBody> dynamic_bodies_;     // their bodies, same order
+  std::vector<RigidBodyState> bodies_;            // per part, at the current time
+  std::vector<RigidBodyState> checkpoints_;       // #checkpoints x #dynamic parts
+  WireDynamics wires_;                            // the deformable spines with inertia
+  std::vector<ModalWireState> wire_checkpoints_;  // #checkpoints x #wires
+  ClipReach reach_;                               // the clip's reach targets (wire IK)
+  std::vector<double> wire_scale_;                // per part: its wire's residual's scale
+  std::vector<std::size_t> keyed_supports_;       // wire parts whose parents move by keys alone
+  ClipSample support_sample_;                     // the clip one step before and after
+  std::vector<Mat3> placement_rotation_[3];       // per part, at t - h, t, t + h
+  std::vector<Vec3> placement_translation_[3];
   std::vector<ClipReach::Kept> reach_checkpoints_;  // #checkpoints x #reaches
   std::size_t checkpoint_count_ = 0;
   std::size_t checkpoints_done_ = 0;

@@ -5,7 +5,7 @@
 // part's mass (its enclosed volume times its material's density) over its spine length, the
 // options' damping ratio and mode count, and the boundary family its clip starts with. Each
 // fixed step takes the clip's loads at the step's end and the motion of the part's support
-// (its parent, when the parent is a rigid body moved by dynamics): the acceleration a of the
+// (its parent, a rigid body moved by dynamics or a part moved by keys): the acceleration a of the
 // attachment point, and the parent's angular velocity omega and angular acceleration alpha,
 // and advances every mode exactly. What the evaluation adds to the static closed form is the
 // modal residual sum (q_n - q_n_static) phi_n and the static shape of the support's inertial
@@ -13,9 +13,13 @@
 // -rho A s [alpha x t + (omega . t) omega] (lateral parts, s from the attachment; modal_wire.h
 // "Turning supports").
 //
+// A parent moved by keys (no ancestor of it a body moved by forces) gives its support motion by
+// central differences of its placement over one rigid step (Playback::KeyedSupportMotion; with
+// articulated tracking, the keyed targets' motion, not the tracked bodies').
+//
 // Limits: a family change during the clip keeps the first family's modes (the static part
-// follows the clip exactly; the residual is projected on the old modes); a keyed (not
-// simulated) parent motion gives no support motion; the support's motion is taken in the local
+// follows the clip exactly; the residual is projected on the old modes); a keyed part below a
+// body moved by forces gives no support motion; the support's motion is taken in the local
 // axes of the spine's middle frame and the spine as straight along that frame's tangent (a
 // curved spine's lever arms are its chord's); the child's own joint rotation relative to its
 // parent adds no inertial load; the turning support's axial (centrifugal) load and the Coriolis
