@@ -56,26 +56,52 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
       return Error{"reach: " + ToString(s)};
     if (Status s = playback.wires_.Reset(playback.step_sample_); !s)
       return Error{"wires: " + ToString(s)};
-    playback.support_acceleration_.assign(model.parts.size(), Vec3::Zero());
-    playback.support_angular_velocity_.assign(model.parts.size(), Vec3::Zero());
-    playback.support_angular_acceleration_.assign(model.parts.size(), Vec3::Zero());
-    playback.support_rotation_.assign(model.parts.size(), Mat3::Identity());
-    // Wires hanging from parents that move by keys: no ancestor of theirs is a body moved by
-    // forces (whose motion between steps only the bodies know).
-    for (std::size_t w = 0; w < playback.wires_.size(); ++w) {
-      const std::size_t p = playback.wires_.part(w);
-      bool keyed = model.parts[p].parent >= 0;
-      for (int a = model.parts[p].parent; a >= 0 && keyed; a = model.parts[std::size_t(a)].parent)
+  }
+  Result<ProfileDynamics> profiles =
+      ProfileDynamics::Make(model, options.profile_wires, options.rigid_step);
+  if (!profiles) return Error{"profile_wires: " + profiles.error()};
+  playback.profiles_ = std::move(profiles).value();
+  if (!playback.wires_.empty() || !playback.profiles_.empty()) {
+    // Whose rigid motion the wires need: the parents of spine wires, the parts of profile
+    // wires; of those, the ones moved by keys alone (no ancestor, nor itself, a body moved by
+    // forces) get theirs by differencing their placements.
+    std::vector<bool> needed(model.parts.size(), false);
+    for (std::size_t w = 0; w < playback.wires_.size(); ++w)
+      if (const int parent = model.parts[playback.wires_.part(w)].parent; parent >= 0)
+        needed[std::size_t(parent)] = true;
+    for (std::size_t p = 0; p < model.parts.size(); ++p)
+      if (!model.parts[p].profiles.empty() && model.parts[p].mass.mass > 0.0 &&
+          !playback.profiles_.empty())
+        needed[p] = true;
+    for (std::size_t p = 0; p < model.parts.size(); ++p) {
+      bool keyed = needed[p];
+      for (int a = int(p); a >= 0 && keyed; a = model.parts[std::size_t(a)].parent)
         keyed = playback.dynamic_index_[std::size_t(a)] < 0;
-      if (keyed) playback.keyed_supports_.push_back(p);
+      if (keyed) playback.keyed_parts_.push_back(p);
     }
-    if (!playback.keyed_supports_.empty()) {
+    if (!playback.keyed_parts_.empty()) {
       playback.support_sample_ = MakeClipSample(clip, model);
       for (int k = 0; k < 3; ++k) {
         playback.placement_rotation_[k].resize(model.parts.size());
         playback.placement_translation_[k].resize(model.parts.size());
       }
     }
+    playback.part_motion_.assign(model.parts.size(), RigidMotion{});
+    playback.own_motion_.assign(model.parts.size(), false);
+    for (const std::size_t p : playback.dynamic_parts_) playback.own_motion_[p] = true;
+    for (const std::size_t p : playback.keyed_parts_) playback.own_motion_[p] = true;
+    playback.velocity_before_.assign(playback.dynamic_parts_.size(), Vec3::Zero());
+    playback.angular_velocity_before_.assign(playback.dynamic_parts_.size(), Vec3::Zero());
+    if (playback.step_sample_.poses.empty()) {
+      playback.step_sample_ = MakeClipSample(clip, model);
+      SampleClip(clip, 0.0, &playback.step_sample_);
+    }
+    playback.support_acceleration_.assign(model.parts.size(), Vec3::Zero());
+    playback.support_angular_velocity_.assign(model.parts.size(), Vec3::Zero());
+    playback.support_angular_acceleration_.assign(model.parts.size(), Vec3::Zero());
+    playback.support_rotation_.assign(model.parts.size(), Mat3::Identity());
+    playback.combined_profiles_.reserve(playback.sample_.profile_loads.size() + 1 +
+                                        playback.profiles_.size());
   }
   if (options.tracking.frequency > 0.0) {
     Result<ArticulatedTracking> tracking = ArticulatedTracking::Make(model, clip, options.tracking);
@@ -96,6 +122,9 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
     const std::span<const ModalWireState> wire_states = playback.wires_.states();
     playback.wire_checkpoints_.resize(count * wire_states.size());
     std::copy(wire_states.begin(), wire_states.end(), playback.wire_checkpoints_.begin());
+    const std::span<const ModalWireState> profile_states = playback.profiles_.states();
+    playback.profile_checkpoints_.resize(count * profile_states.size());
+    std::copy(profile_states.begin(), profile_states.end(), playback.profile_checkpoints_.begin());
     const std::span<const ClipReach::Kept> kept = playback.reach_.kept();
     playback.reach_checkpoints_.resize(count * kept.size());
     std::copy(kept.begin(), kept.end(), playback.reach_checkpoints_.begin());
@@ -116,16 +145,12 @@ Vec3 Playback::BodyAngularVelocity(std::size_t d) const {
 }
 
 Status Playback::StepBodies(double dt) {
-  // The wires' supports: their parents' motion over the step. Before it, the accelerations
-  // hold the parent's reference velocity and angular velocity (world) until they are
-  // differenced after it.
-  if (!wires_.empty())
-    for (std::size_t p = 0; p < model_->parts.size(); ++p) {
-      const int parent = model_->parts[p].parent;
-      const bool moving = parent >= 0 && dynamic_index_[std::size_t(parent)] >= 0;
-      const auto d = moving ? std::size_t(dynamic_index_[std::size_t(parent)]) : 0;
-      support_acceleration_[p] = moving ? bodies_[std::size_t(parent)].velocity : Vec3::Zero();
-      support_angular_acceleration_[p] = moving ? BodyAngularVelocity(d) : Vec3::Zero();
+  const bool wired = !wires_.empty() || !profiles_.empty();
+  // The bodies' velocities before the step, for their accelerations over it.
+  if (wired)
+    for (std::size_t d = 0; d < dynamic_parts_.size(); ++d) {
+      velocity_before_[d] = bodies_[dynamic_parts_[d]].velocity;
+      angular_velocity_before_[d] = BodyAngularVelocity(d);
     }
   for (std::size_t d = 0; d < dynamic_parts_.size(); ++d) {
     const std::size_t p = dynamic_parts_[d];
@@ -145,30 +170,24 @@ Status Playback::StepBodies(double dt) {
     if (Status s = step.Run(); !s) return s;
   }
   clock_ += dt;
-  if (wires_.empty()) return Status::Ok();
-  for (std::size_t p = 0; p < model_->parts.size(); ++p) {
-    const int parent = model_->parts[p].parent;
-    if (parent < 0 || dynamic_index_[std::size_t(parent)] < 0) continue;
-    const auto d = std::size_t(dynamic_index_[std::size_t(parent)]);
-    // The attachment point's acceleration at the step's end, a_ref + alpha x r + omega x
-    // (omega x r), r its offset from the body's reference: the rigid-body formula with omega and
-    // r at the step's end (the frame the wire's loads are taken in). Differencing the point's
-    // velocities instead would tilt its centripetal part by half the step's turn, a lateral
-    // error of omega^3 r dt / 2.
-    const Vec3 omega = BodyAngularVelocity(d);
-    const Vec3 alpha = (omega - support_angular_acceleration_[p]) / dt;
-    const Vec3 r = BodyPointOffset(d, model_->parts[p].spine_points.front());
-    support_acceleration_[p] =
-        (bodies_[std::size_t(parent)].velocity - support_acceleration_[p]) / dt + alpha.cross(r) +
-        omega.cross(omega.cross(r));
-    support_angular_velocity_[p] = omega;
-    support_angular_acceleration_[p] = alpha;
-    support_rotation_[p] = PoseOfRigidPart(dynamic_bodies_[d], model_->parts[std::size_t(parent)],
-                                           bodies_[std::size_t(parent)])
-                               .rotation.toRotationMatrix();
-  }
+  if (!wired) return Status::Ok();
   SampleClip(*clip_, clock_, &step_sample_);
-  if (!keyed_supports_.empty()) KeyedSupportMotion(clock_);
+  PartMotions(dt);
+  // The spine wires' supports: their parents' motion at their roots.
+  for (std::size_t w = 0; w < wires_.size(); ++w) {
+    const std::size_t p = wires_.part(w);
+    const int parent = model_->parts[p].parent;
+    if (parent < 0) continue;
+    const RigidMotion& m = part_motion_[std::size_t(parent)];
+    const Vec3 r = m.rotation * (model_->parts[p].spine_points.front() -
+                                 model_->parts[std::size_t(parent)].spine_points.front());
+    support_acceleration_[p] = PointAcceleration(m, r);
+    support_angular_velocity_[p] = m.angular_velocity;
+    support_angular_acceleration_[p] = m.angular_acceleration;
+    support_rotation_[p] = m.rotation;
+  }
+  if (Status s = profiles_.Step(part_motion_, dt); !s) return s;
+  if (wires_.empty()) return Status::Ok();
   if (!reach_.empty()) {
     PoseDynamicParts(&step_sample_);
     if (Status s = reach_.Apply(clock_, ClipReach::Solve::kStep, &step_sample_); !s) return s;
@@ -177,29 +196,60 @@ Status Playback::StepBodies(double dt) {
                      support_angular_acceleration_, support_rotation_, dt);
 }
 
-void Playback::KeyedSupportMotion(double t) {
+void Playback::PartMotions(double dt) {
+  // Bodies moved by forces: the acceleration of the part's root point at the step's end,
+  // a_ref + alpha x r + omega x (omega x r) with omega and r at the step's end (differencing
+  // the point's own velocity would tilt the centripetal part by half the step's turn).
+  for (std::size_t d = 0; d < dynamic_parts_.size(); ++d) {
+    const std::size_t p = dynamic_parts_[d];
+    RigidMotion& m = part_motion_[p];
+    m.angular_velocity = BodyAngularVelocity(d);
+    m.angular_acceleration = (m.angular_velocity - angular_velocity_before_[d]) / dt;
+    const Vec3 r = BodyPointOffset(d, model_->parts[p].spine_points.front());
+    const Vec3 a_ref = (bodies_[p].velocity - velocity_before_[d]) / dt;
+    m.acceleration = a_ref + m.angular_acceleration.cross(r) +
+                     m.angular_velocity.cross(m.angular_velocity.cross(r));
+    m.rotation = PoseOfRigidPart(dynamic_bodies_[d], model_->parts[p], bodies_[p])
+                     .rotation.toRotationMatrix();
+  }
+  if (!keyed_parts_.empty()) KeyedPartMotions();
+  // The rest follow their parents rigidly (their own joint motion and bending left out).
+  for (std::size_t p = 0; p < model_->parts.size(); ++p) {
+    const int parent = model_->parts[p].parent;
+    if (own_motion_[p] || parent < 0) continue;
+    const RigidMotion& from = part_motion_[std::size_t(parent)];
+    RigidMotion& m = part_motion_[p];
+    m = from;
+    m.acceleration = PointAcceleration(
+        from, from.rotation * (model_->parts[p].spine_points.front() -
+                               model_->parts[std::size_t(parent)].spine_points.front()));
+  }
+}
+
+void Playback::KeyedPartMotions() {
+  // Parts moved by keys: central differences of their placements over one rigid step h.
   const double h = options_.rigid_step;
   ComposePlacements(*model_, step_sample_.poses, placement_rotation_[1], placement_translation_[1]);
   for (int k : {0, 2}) {
-    SampleClip(*clip_, t + double(k - 1) * h, &support_sample_);
+    SampleClip(*clip_, clock_ + double(k - 1) * h, &support_sample_);
     ComposePlacements(*model_, support_sample_.poses, placement_rotation_[k],
                       placement_translation_[k]);
   }
-  // The rotation vector of the turn from placement a to placement b of part q (world axes).
-  const auto turn = [&](int a, int b, std::size_t q) {
-    const Eigen::AngleAxisd aa(placement_rotation_[b][q] * placement_rotation_[a][q].transpose());
+  // The rotation vector of the turn from placement a to placement b of part p (world axes).
+  const auto turn = [&](int a, int b, std::size_t p) {
+    const Eigen::AngleAxisd aa(placement_rotation_[b][p] * placement_rotation_[a][p].transpose());
     return Vec3(aa.angle() * aa.axis());
   };
-  for (const std::size_t p : keyed_supports_) {
-    const auto q = std::size_t(model_->parts[p].parent);
+  for (const std::size_t p : keyed_parts_) {
     const Vec3& root = model_->parts[p].spine_points.front();
     Vec3 x[3];
     for (int k = 0; k < 3; ++k)
-      x[k] = placement_rotation_[k][q] * root + placement_translation_[k][q];
-    support_acceleration_[p] = (x[2] - 2.0 * x[1] + x[0]) / (h * h);
-    support_angular_velocity_[p] = (turn(0, 1, q) + turn(1, 2, q)) / (2.0 * h);
-    support_angular_acceleration_[p] = (turn(1, 2, q) - turn(0, 1, q)) / (h * h);
-    support_rotation_[p] = placement_rotation_[1][q];
+      x[k] = placement_rotation_[k][p] * root + placement_translation_[k][p];
+    RigidMotion& m = part_motion_[p];
+    m.acceleration = (x[2] - 2.0 * x[1] + x[0]) / (h * h);
+    m.angular_velocity = (turn(0, 1, p) + turn(1, 2, p)) / (2.0 * h);
+    m.angular_acceleration = (turn(1, 2, p) - turn(0, 1, p)) / (h * h);
+    m.rotation = placement_rotation_[1][p];
   }
 }
 
@@ -216,6 +266,7 @@ void Playback::PoseDynamicParts(ClipSample* sample) const {
 // the missing checkpoints on the way), then whole steps, then one partial step to land on t.
 Status Playback::AdvanceBodies(double t) {
   const std::size_t parts = dynamic_parts_.size(), wires = wires_.size();
+  const std::size_t profiles = profiles_.size();
   const std::size_t reaches = reach_.kept().size();
   const double h = options_.rigid_step;
   const double span = h * static_cast<double>(options_.checkpoint_interval);
@@ -227,6 +278,8 @@ Status Playback::AdvanceBodies(double t) {
     for (std::size_t d = 0; d < parts; ++d)
       bodies_[dynamic_parts_[d]] = checkpoints_[c * parts + d];
     wires_.Restore(std::span<const ModalWireState>(wire_checkpoints_).subspan(c * wires, wires));
+    profiles_.Restore(
+        std::span<const ModalWireState>(profile_checkpoints_).subspan(c * profiles, profiles));
     reach_.Restore(
         std::span<const ClipReach::Kept>(reach_checkpoints_).subspan(c * reaches, reaches));
     clock_ = static_cast<double>(c) * span;
@@ -247,6 +300,9 @@ Status Playback::AdvanceBodies(double t) {
       const std::span<const ModalWireState> states = wires_.states();
       std::copy(states.begin(), states.end(),
                 wire_checkpoints_.begin() + std::ptrdiff_t(c * wires));
+      const std::span<const ModalWireState> profile_states = profiles_.states();
+      std::copy(profile_states.begin(), profile_states.end(),
+                profile_checkpoints_.begin() + std::ptrdiff_t(c * profiles));
       const std::span<const ClipReach::Kept> kept = reach_.kept();
       std::copy(kept.begin(), kept.end(), reach_checkpoints_.begin() + std::ptrdiff_t(c * reaches));
       checkpoints_done_ = c + 1;
@@ -400,6 +456,12 @@ Status Playback::Run(double t, EvaluateRigJob& job) {
   if (interactive_) {
     ApplyInteractiveLoad();
     if (interactive_->profile >= 0) profile_loads = interactive_profiles_;
+  }
+  if (!profiles_.empty()) {
+    // The profile wires' motion as loads of their own, after the clip's (capacity reserved).
+    combined_profiles_.assign(profile_loads.begin(), profile_loads.end());
+    if (Status s = profiles_.Apply(&combined_profiles_); !s) return s;
+    profile_loads = combined_profiles_;
   }
   job.model = model_;
   job.poses = sample_.poses;

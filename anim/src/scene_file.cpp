@@ -214,9 +214,21 @@ TrackingOptions ReadTracking(const JsonObject& o) {
   return tracking;
 }
 
+// "wires" or "profile_wires": {"modes": N (default 8; 0 off), "damping_ratio": z}.
+WireDynamicsOptions ReadWireDynamics(const JsonObject& o, WireDynamicsOptions out) {
+  o.RejectUnknownKeys({"modes", "damping_ratio"});
+  out.modes = o.Integer("modes", ModalBasis::kDefaultModes);
+  if (!(out.modes >= 0 && out.modes <= ModalBasis::kMaxModes))
+    throw FieldError(o.PathOf("modes"), "must be in [0, 32] (0: static wires)");
+  out.damping_ratio = o.Number("damping_ratio", out.damping_ratio);
+  if (!(std::isfinite(out.damping_ratio) && out.damping_ratio >= 0.0 && out.damping_ratio <= 100.0))
+    throw FieldError(o.PathOf("damping_ratio"), "must be in [0, 100]");
+  return out;
+}
+
 PlaybackOptions ReadPlayback(const JsonObject& o) {
   o.RejectUnknownKeys({"rigid_step", "integrator", "checkpoint_interval", "gravity",
-                       "preserve_volume", "tracking", "wires"});
+                       "preserve_volume", "tracking", "wires", "profile_wires"});
   PlaybackOptions playback;
   playback.rigid_step = o.Number("rigid_step", playback.rigid_step);
   if (!(std::isfinite(playback.rigid_step) && playback.rigid_step > 0.0 &&
@@ -239,17 +251,10 @@ PlaybackOptions ReadPlayback(const JsonObject& o) {
   if (!IsFinite(playback.gravity)) throw FieldError(o.PathOf("gravity"), "must be finite");
   playback.preserve_volume = o.Bool("preserve_volume", playback.preserve_volume);
   if (o.Has("tracking")) playback.tracking = ReadTracking(o.Object("tracking"));
-  if (o.Has("wires")) {
-    const JsonObject wires = o.Object("wires");
-    wires.RejectUnknownKeys({"modes", "damping_ratio"});
-    playback.wires.modes = wires.Integer("modes", ModalBasis::kDefaultModes);
-    if (!(playback.wires.modes >= 0 && playback.wires.modes <= ModalBasis::kMaxModes))
-      throw FieldError(wires.PathOf("modes"), "must be in [0, 32] (0: static wires)");
-    playback.wires.damping_ratio = wires.Number("damping_ratio", playback.wires.damping_ratio);
-    if (!(std::isfinite(playback.wires.damping_ratio) && playback.wires.damping_ratio >= 0.0 &&
-          playback.wires.damping_ratio <= 100.0))
-      throw FieldError(wires.PathOf("damping_ratio"), "must be in [0, 100]");
-  }
+  if (o.Has("wires")) playback.wires = ReadWireDynamics(o.Object("wires"), playback.wires);
+  if (o.Has("profile_wires"))
+    playback.profile_wires =
+        ReadWireDynamics(o.Object("profile_wires"), {0, playback.profile_wires.damping_ratio});
   return playback;
 }
 
@@ -266,6 +271,9 @@ json PlaybackToJson(const PlaybackOptions& p) {
                        {"gravity", {t.gravity.x(), t.gravity.y(), t.gravity.z()}}};
   if (p.wires.modes > 0)
     out["wires"] = {{"modes", p.wires.modes}, {"damping_ratio", p.wires.damping_ratio}};
+  if (p.profile_wires.modes > 0)
+    out["profile_wires"] = {{"modes", p.profile_wires.modes},
+                            {"damping_ratio", p.profile_wires.damping_ratio}};
   return out;
 }
 

@@ -242,6 +242,16 @@ Status EvaluateRigJob::Validate() const {
       return Status::Invalid("profile_loads", "names a profile the model does not have");
     if (!(loads.from >= 0.0 && loads.to <= 1.0 && loads.from < loads.to))
       return Status::Invalid("profile_loads", "needs 0 <= from < to <= 1");
+    if (!loads.extra_displacement.empty()) {
+      const std::size_t points =
+          model->parts[loads.part].profiles[loads.profile].local_points.size();
+      if (loads.from != 0.0 || loads.to != 1.0 || loads.extra_displacement.size() != points)
+        return Status::Invalid("profile_loads",
+                               "extra_displacement needs the whole profile, one per point");
+      for (const Vec3& x : loads.extra_displacement)
+        if (!x.allFinite())
+          return Status::Invalid("profile_loads", "extra_displacement must be finite");
+    }
   }
   return Status::Ok();
 }
@@ -415,6 +425,9 @@ Status EvaluateRigJob::Run() const {
     Vec3 origin;
     const Mat3 axes = FrameAxes(InterpolateSpine(
         w.spine_points[loads.part], w.spine_frames[loads.part], profile.spine_v, &origin));
+    // The whole profile (from 0 to 1) has its points in order as the stretch's samples.
+    for (std::size_t q = 0; q < loads.extra_displacement.size(); ++q)
+      w.profile_displacement[q] += loads.extra_displacement[q];
     std::size_t k = 0;
     for (std::size_t q = 0; q <= (profile.closed ? m : m - 1) && k < count; ++q) {
       const double u = double(q) / segments;

@@ -322,8 +322,14 @@ TEST(RigEvaluation, BendingAnArmAndBulgingTheChestKeepTheMeshSound) {
     // Uniform q on a clamped stretch: peak q L^4 / 384 EI = 1 cm.
     const double q_load = 0.01 * 384.0 * profile.stiffness.bending / std::pow(length, 4);
     pushes.push_back({{{0.0, 1.0, Vec3(q_load, 0, 0)}}});
-    bulges.push_back(
-        {std::uint32_t(torso), p, 0.0, stretch, BoundaryCondition::kClamped, {}, pushes.back()});
+    bulges.push_back({std::uint32_t(torso),
+                      p,
+                      0.0,
+                      stretch,
+                      BoundaryCondition::kClamped,
+                      {},
+                      pushes.back(),
+                      {}});
   }
   RigWorkspace workspace = MakeRigWorkspace(human.model);
   std::vector<Vec3> positions(human.model.vertices.size()), normals(positions.size());
@@ -442,7 +448,7 @@ TEST(RigEvaluation, AProfileLoadMovesOnlyTheVerticesNextToItsProfile) {
   const double force = 1e-4 * profile.stiffness.bending;
   const std::array<PointLoad, 1> push{{{0.5, Vec3(force, 0, 0)}}};
   const std::array<ProfileLoads, 1> loads{
-      {{0, loaded, 0.0, 0.25, BoundaryCondition::kClamped, push, {}}}};
+      {{0, loaded, 0.0, 0.25, BoundaryCondition::kClamped, push, {}, {}}}};
   std::vector<PartPose> poses(1);
   const std::vector<Vec3> rest = Evaluate(capsule, poses);
   RigWorkspace workspace = MakeRigWorkspace(capsule.model);
@@ -591,7 +597,8 @@ BusyPose MakeBusyPose(const Scene& scene) {
   for (std::uint32_t p = 1; p + 1 < first.profiles.size(); p += 2) {
     const double q = 1e-3 * first.profiles[p].stiffness.bending;
     b.pushes.push_back({{{0.0, 1.0, Vec3(q, 0, 0)}}});
-    b.profile_loads.push_back({0, p, 0.1, 0.6, BoundaryCondition::kClamped, {}, b.pushes.back()});
+    b.profile_loads.push_back(
+        {0, p, 0.1, 0.6, BoundaryCondition::kClamped, {}, b.pushes.back(), {}});
   }
   return b;
 }

@@ -19,6 +19,7 @@
 #include "wirerig/anim/clip.h"
 #include "wirerig/anim/clip_reach.h"
 #include "wirerig/anim/clip_sampling.h"
+#include "wirerig/anim/profile_dynamics.h"
 #include "wirerig/anim/rigid_part.h"
 #include "wirerig/anim/wire_dynamics.h"
 #include "wirerig/rig/result.h"
@@ -48,6 +49,9 @@ struct PlaybackOptions {
   // Inertia for the deformable spines (wire_dynamics.h) when wires.modes > 0, integrated with
   // the rigid bodies at rigid_step.
   WireDynamicsOptions wires;
+  // Inertia for the profile wires (profile_dynamics.h: the skin jiggles) when
+  // profile_wires.modes > 0.
+  WireDynamicsOptions profile_wires;
 };
 
 class Playback {
@@ -98,6 +102,7 @@ class Playback {
   // The wires with inertia (empty when options.wires.modes is 0); after Evaluate, their
   // residuals are those of that time.
   const WireDynamics& wires() const { return wires_; }
+  const ProfileDynamics& profile_wires() const { return profiles_; }
   const Clip& clip() const { return *clip_; }
   const RigModel& model() const { return *model_; }
 
@@ -107,7 +112,9 @@ class Playback {
   Status Run(double t, EvaluateRigJob& job);
   Status AdvanceBodies(double local_time);
   Status StepBodies(double dt);
-  bool HasDynamics() const { return !dynamic_parts_.empty() || !wires_.empty(); }
+  bool HasDynamics() const {
+    return !dynamic_parts_.empty() || !wires_.empty() || !profiles_.empty();
+  }
   // The offset (world) of the rest point `rest` of dynamic part d's body from the body's
   // reference point (its state's position), now.
   Vec3 BodyPointOffset(std::size_t d, const Vec3& rest) const;
@@ -116,27 +123,35 @@ class Playback {
   void ApplyInteractiveLoad();
   // Poses the dynamic rigid parts of `sample` from their bodies (keeping the sampled loads).
   void PoseDynamicParts(ClipSample* sample) const;
-  // The support motion of wires whose parents move by keys (not by dynamics), at clip time t
-  // (step_sample_ holds the poses there): central differences of the parent's placement over
-  // one rigid step.
-  void KeyedSupportMotion(double t);
+  // part_motion_ at the step's end (clock_; step_sample_ holds the clip there) for the bodies
+  // moved by forces (their velocities' change over the step dt) and the parts moved by keys
+  // (central differences of their placements over one rigid step).
+  void PartMotions(double dt);
+  void KeyedPartMotions();
 
   const RigModel* model_ = nullptr;
   const Clip* clip_ = nullptr;
   PlaybackOptions options_;
   RigWorkspace workspace_;
   ClipSample sample_;
-  std::vector<std::size_t> dynamic_parts_;        // rigid parts the clip drives by forces
-  std::vector<RigidPartBody> dynamic_bodies_;     // their bodies, same order
-  std::vector<RigidBodyState> bodies_;            // per part, at the current time
-  std::vector<RigidBodyState> checkpoints_;       // #checkpoints x #dynamic parts
-  WireDynamics wires_;                            // the deformable spines with inertia
-  std::vector<ModalWireState> wire_checkpoints_;  // #checkpoints x #wires
-  ClipReach reach_;                               // the clip's reach targets (wire IK)
-  std::vector<double> wire_scale_;                // per part: its wire's residual's scale
-  std::vector<std::size_t> keyed_supports_;       // wire parts whose parents move by keys alone
-  ClipSample support_sample_;                     // the clip one step before and after
-  std::vector<Mat3> placement_rotation_[3];       // per part, at t - h, t, t + h
+  std::vector<std::size_t> dynamic_parts_;           // rigid parts the clip drives by forces
+  std::vector<RigidPartBody> dynamic_bodies_;        // their bodies, same order
+  std::vector<RigidBodyState> bodies_;               // per part, at the current time
+  std::vector<RigidBodyState> checkpoints_;          // #checkpoints x #dynamic parts
+  WireDynamics wires_;                               // the deformable spines with inertia
+  std::vector<ModalWireState> wire_checkpoints_;     // #checkpoints x #wires
+  ClipReach reach_;                                  // the clip's reach targets (wire IK)
+  std::vector<double> wire_scale_;                   // per part: its wire's residual's scale
+  ProfileDynamics profiles_;                         // the profile wires with inertia
+  std::vector<ModalWireState> profile_checkpoints_;  // #checkpoints x #profile wires
+  std::vector<ProfileLoads> combined_profiles_;      // the clip's and the profile wires'
+  std::vector<RigidMotion> part_motion_;             // per part, at the last step's end
+  std::vector<Vec3> velocity_before_;                // per dynamic part, before the step
+  std::vector<Vec3> angular_velocity_before_;
+  std::vector<std::size_t> keyed_parts_;     // parts whose motion is wanted, moved by keys alone
+  std::vector<bool> own_motion_;             // per part: dynamic or keyed (else its parent's)
+  ClipSample support_sample_;                // the clip one step before and after
+  std::vector<Mat3> placement_rotation_[3];  // per part, at t - h, t, t + h
   std::vector<Vec3> placement_translation_[3];
   std::vector<ClipReach::Kept> reach_checkpoints_;  // #checkpoints x #reaches
   std::size_t checkpoint_count_ = 0;

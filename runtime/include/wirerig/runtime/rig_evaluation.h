@@ -74,6 +74,10 @@ struct ProfileLoads {
   BoundaryCondition boundary = BoundaryCondition::kClamped;
   std::span<const PointLoad> point_loads;
   std::span<const LineLoad> line_loads;
+  // Added to the closed-form bending (m, the same frame axes): a profile wire's motion beyond
+  // its static shape (modal dynamics). Empty, or with from = 0 and to = 1 one per profile point
+  // (point q at v = q / m for a closed profile of m points, q / (m - 1) for an open one).
+  std::span<const Vec3> extra_displacement;
 };
 
 struct PartPose {
