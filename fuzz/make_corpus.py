@@ -143,8 +143,10 @@ def scene(name, kind, loop):
                 "mesh": {"procedural": "cylinder", "parameters": {
                     "radius": 0.1, "height": 1.0, "radial_segments": 8, "height_segments": 6}},
                 "rig": {"description": {"parts": PARTS}}, "default_kind": kind, "clips": [clip]}
-    if kind == "deformable":  # wires with inertia: the .wclip records their motion
-        document["playback"] = {"wires": {"modes": 3, "damping_ratio": 0.2}}
+    if kind == "deformable":  # wires and flesh with inertia: the .wclip records their motion
+        document["playback"] = {"wires": {"modes": 3, "damping_ratio": 0.2},
+                                "profile_wires": {"modes": 2, "damping_ratio": 0.3,
+                                                  "frequency": 3.0}}
     return document
 
 

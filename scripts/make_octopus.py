@@ -61,6 +61,10 @@ REACH_KEYS = [(5.8, 0.0, 1.5), (6.4, 1.0, 1.5), (7.1, 1.0, 3.0), (7.9, 1.0, 2.0)
 ARM_MATERIAL = "cartilage"  # the arms' spines: muscular hydrostats, stiffer than soft tissue
 WIRE_MODES = 8       # the arms have inertia: they trail, lag and swing (playback.wires)
 WIRE_DAMPING = 0.15
+# The mantle's flesh jiggles on each jet pulse (profile wires with inertia): a loop of 1 m
+# perimeter swings at MANTLE_FLESH_HZ, smaller ones faster.
+MANTLE_FLESH_HZ = 1.5
+MANTLE_FLESH_DAMPING = 0.2
 KEYS_PER_STROKE = 8  # cubic keys per stroke for the arms' loads
 JET_KEYS = 6         # linear keys over each jet pulse
 
@@ -273,7 +277,9 @@ def scene():
       "parts": dict([("mantle", {"kind": "rigid"})] +
                     [(f"tentacle_{i}", {"spine": {"material": ARM_MATERIAL}}) for i in range(ARMS)]),
       "playback": {"preserve_volume": True,
-                   "wires": {"modes": WIRE_MODES, "damping_ratio": WIRE_DAMPING}},
+                   "wires": {"modes": WIRE_MODES, "damping_ratio": WIRE_DAMPING},
+                   "profile_wires": {"modes": 4, "damping_ratio": MANTLE_FLESH_DAMPING,
+                                     "frequency": MANTLE_FLESH_HZ, "parts": ["mantle"]}},
       "clips": [{
           "name": "swim",
           "duration": DURATION,

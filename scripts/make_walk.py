@@ -36,6 +36,13 @@ ELBOW = (62.0, 14.0)  # degrees: mean and swing of the elbows' flexion
 KEYS_PER_CYCLE = 20
 TRACKING_HZ = 8.0       # the joints' PD tracking: natural frequency
 TRACKING_DAMPING = 0.7  # and damping ratio (below 1: overshoot, follow-through)
+# The flesh of the trunk, thighs, shins and upper arms jiggles on the steps (profile wires with
+# inertia): a loop of 1 m perimeter swings at FLESH_HZ, smaller ones faster. Hands, feet, neck
+# and head are left out: their loops wrap thin features (fingers, toes) or bone.
+FLESH_HZ = 3.0
+FLESH_DAMPING = 0.3
+FLESH_PARTS = ["pelvis", "spine_1", "spine_2", "chest", "upper_arm_l", "upper_arm_r",
+               "thigh_l", "thigh_r", "shin_l", "shin_r"]
 
 
 def load_parts():
@@ -174,7 +181,9 @@ def main():
         # the limbs lag and follow through. No gravity: with no ground contact in the model, it
         # would sag the stance leg through the floor (the ground carries the body's weight).
         "playback": {"tracking": {"frequency": TRACKING_HZ, "damping_ratio": TRACKING_DAMPING,
-                                  "gravity": [0.0, 0.0, 0.0]}},
+                                  "gravity": [0.0, 0.0, 0.0]},
+                     "profile_wires": {"modes": 4, "damping_ratio": FLESH_DAMPING,
+                                       "frequency": FLESH_HZ, "parts": FLESH_PARTS}},
         "camera": {"target": [0.0, 0.85, 0.0], "yaw": 1.2, "pitch": 0.12, "distance": 3.2,
                    "fov": 0.7, "follow": "pelvis"},
         "clips": [{

@@ -48,6 +48,9 @@ Result<SampledClip> SampleClipForRuntime(const RigModel& model, const Clip& clip
                          std::uint32_t(model.parts[wires.part(w)].spine_points.size()), m.length,
                          m.bending_stiffness});
   }
+  const ProfileDynamics& profile_wires = player.profile_wires();
+  for (std::size_t w = 0; w < profile_wires.size(); ++w)
+    out.profile_wires.push_back(profile_wires.Recorded(w));
   const auto frames = std::size_t(std::ceil(clip.duration * fps - 1e-9)) + 1;
   std::vector<Vec3> positions(model.vertices.size());
   for (std::size_t k = 0; k < frames; ++k) {
@@ -88,6 +91,11 @@ Result<SampledClip> SampleClipForRuntime(const RigModel& model, const Clip& clip
                              r.coordinates.begin() + r.modes);
       out.wire_motion.push_back(r.uniform_load);
       out.wire_motion.push_back(r.turning_load);
+    }
+    for (const ModalResidual& r : profile_wires.residuals()) {
+      out.profile_wire_motion.insert(out.profile_wire_motion.end(), r.coordinates.begin(),
+                                     r.coordinates.begin() + r.modes);
+      out.profile_wire_motion.push_back(r.uniform_load);
     }
   }
   if (Status s = ValidateSampledClip(out, &model); !s)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "wirerig/runtime/spine_interpolation.h"
@@ -19,6 +20,53 @@ double Perimeter(const ProfileModel& profile) {
   return length;
 }
 
+// 0 at x <= 0, 1 at x >= 1, smooth between.
+double SmoothStep(double x) {
+  const double c = std::clamp(x, 0.0, 1.0);
+  return c * c * (3.0 - 2.0 * c);
+}
+
+// A loop's weight at u along its part's loops (u in [0, 1]): full over the middle half.
+double JointFade(double u) { return SmoothStep(u / 0.25) * SmoothStep((1.0 - u) / 0.25); }
+
+// Every part's loops' rest points, world axes: [part][profile][point].
+std::vector<std::vector<std::vector<Vec3>>> RestLoopPoints(const RigModel& model) {
+  std::vector<std::vector<std::vector<Vec3>>> out(model.parts.size());
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const PartModel& part = model.parts[p];
+    for (const ProfileModel& profile : part.profiles) {
+      Vec3 origin;
+      const Mat3 axes = FrameAxes(
+          InterpolateSpine(part.spine_points, part.spine_frames, profile.spine_v, &origin));
+      std::vector<Vec3>& points = out[p].emplace_back();
+      for (const Vec3& x : profile.local_points) points.push_back(origin + axes * x);
+    }
+  }
+  return out;
+}
+
+// The weights of loop i of part p's points: the loop's JointFade times, per point, smoothstep of
+// its distance to the nearest loop point of another part over `radius` (no motion where another
+// part's skin lies against this one: a tentacle's root on a mantle's side, an arm by a chest).
+std::vector<double> PointWeights(const RigModel& model,
+                                 const std::vector<std::vector<std::vector<Vec3>>>& rest,
+                                 std::size_t p, std::size_t i, double radius) {
+  const std::vector<ProfileModel>& profiles = model.parts[p].profiles;
+  const double first = profiles.front().spine_v, last = profiles.back().spine_v;
+  const double along =
+      last > first ? JointFade((profiles[i].spine_v - first) / (last - first)) : 1.0;
+  std::vector<double> out;
+  for (const Vec3& x : rest[p][i]) {
+    double nearest = radius;
+    for (std::size_t o = 0; o < rest.size(); ++o)
+      if (o != p)
+        for (const std::vector<Vec3>& loop : rest[o])
+          for (const Vec3& y : loop) nearest = std::min(nearest, (x - y).norm());
+    out.push_back(along * SmoothStep(nearest / radius));
+  }
+  return out;
+}
+
 }  // namespace
 
 Vec3 PointAcceleration(const RigidMotion& motion, const Vec3& offset) {
@@ -27,21 +75,35 @@ Vec3 PointAcceleration(const RigidMotion& motion, const Vec3& offset) {
 }
 
 Result<ProfileDynamics> ProfileDynamics::Make(const RigModel& model,
-                                              const WireDynamicsOptions& options, double step) {
+                                              const ProfileWireOptions& options, double step) {
   if (!(options.modes >= 0 && options.modes <= ModalBasis::kMaxModes))
     return Error{"modes: must be in [0, " + std::to_string(ModalBasis::kMaxModes) + "]"};
   if (!(std::isfinite(options.damping_ratio) && options.damping_ratio >= 0.0 &&
         options.damping_ratio <= ModalWireModel::kMaxDampingRatio))
     return Error{"damping_ratio: must be in [0, 100]"};
+  if (!(std::isfinite(options.frequency) && options.frequency > 0.0 && options.frequency <= 1000.0))
+    return Error{"frequency: must be in (0, 1000] Hz"};
+  if (!(std::isfinite(options.limit) && options.limit > 0.0 && options.limit <= 1.0))
+    return Error{"limit: must be in (0, 1] (of a loop's mean radius)"};
+  std::vector<bool> chosen(model.parts.size(), options.parts.empty());
+  for (std::size_t i = 0; i < options.parts.size(); ++i) {
+    const auto named = std::find_if(model.parts.begin(), model.parts.end(),
+                                    [&](const PartModel& p) { return p.name == options.parts[i]; });
+    if (named == model.parts.end())
+      return Error{"parts[" + std::to_string(i) + "]: the rig has no part named \"" +
+                   options.parts[i] + "\""};
+    chosen[std::size_t(named - model.parts.begin())] = true;
+  }
   ProfileDynamics out;
   out.model_ = &model;
   if (options.modes == 0) return out;
   ModalBasis basis;
   if (Status s = BuildModalBasis(BoundaryCondition::kClamped, options.modes, &basis); !s)
     return Error{ToString(s)};
+  const std::vector<std::vector<std::vector<Vec3>>> rest = RestLoopPoints(model);
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     const PartModel& part = model.parts[p];
-    if (!(part.mass.mass > 0.0)) continue;
+    if (!chosen[p] || !(part.mass.mass > 0.0)) continue;
     double total = 0.0;
     for (const ProfileModel& profile : part.profiles) total += Perimeter(profile);
     if (!(total > 0.0)) continue;
@@ -50,14 +112,16 @@ Result<ProfileDynamics> ProfileDynamics::Make(const RigModel& model,
       const ProfileModel& profile = part.profiles[i];
       const std::size_t m = profile.local_points.size();
       const double length = Perimeter(profile);
-      if (m < 2 || !(length > 0.0) || !(profile.stiffness.bending > 0.0)) continue;
+      if (m < 2 || !(length > 0.0)) continue;
       Wire wire;
       wire.part = p;
       wire.profile = i;
       wire.model.basis = basis;
       wire.model.length = length;
-      wire.model.bending_stiffness = profile.stiffness.bending;
       wire.model.mass_per_length = part.mass.mass / total;
+      const double omega = 2.0 * std::numbers::pi * options.frequency / length;  // L in m
+      wire.model.bending_stiffness = wire.model.mass_per_length * std::pow(length, 4) * omega *
+                                     omega / std::pow(basis.beta[0], 4);
       wire.model.damping_ratio = options.damping_ratio;
       if (Status s = PrecomputeModalStep(wire.model, step, &wire.table); !s)
         return Error{where + "profile " + std::to_string(i) + ": " + ToString(s)};
@@ -75,10 +139,16 @@ Result<ProfileDynamics> ProfileDynamics::Make(const RigModel& model,
       if (Status s = TabulateModes(basis, wire.samples, wire.mode_values, wire.mode_slopes); !s)
         return Error{where + ToString(s)};
       wire.displacement.resize(m);
+      double radius = 0.0;
+      for (const Vec3& x : profile.local_points) radius += x.norm() / double(m);
+      radius = std::max(radius, 1e-9);
+      wire.reach = options.limit * radius;
+      wire.weights = PointWeights(model, rest, p, i, radius);
       out.wires_.push_back(std::move(wire));
     }
   }
   out.states_.resize(out.wires_.size());
+  out.residuals_.resize(out.wires_.size());
   out.Reset();
   return out;
 }
@@ -114,7 +184,7 @@ Status ProfileDynamics::Apply(std::vector<ProfileLoads>* out) {
   for (std::size_t w = 0; w < wires_.size(); ++w) {
     Wire& wire = wires_[w];
     const ModalWireState& state = states_[w];
-    ModalResidual r;
+    ModalResidual& r = residuals_[w];
     r.modes = wire.model.basis.modes;
     for (int n = 0; n < r.modes; ++n) r.coordinates[n] = state.q[n] - state.q_static[n];
     r.uniform_load = -wire.model.mass_per_length * wire.support_acceleration;
@@ -127,6 +197,7 @@ Status ProfileDynamics::Apply(std::vector<ProfileLoads>* out) {
     job.mode_values = wire.mode_values;
     job.displacement = wire.displacement;
     if (Status s = job.Run(); !s) return s;
+    EaseLoopMotion(wire.weights, wire.reach, wire.displacement);
     ProfileLoads loads;
     loads.part = std::uint32_t(wire.part);
     loads.profile = std::uint32_t(wire.profile);
@@ -135,6 +206,19 @@ Status ProfileDynamics::Apply(std::vector<ProfileLoads>* out) {
     out->push_back(loads);
   }
   return Status::Ok();
+}
+
+ClipProfileWire ProfileDynamics::Recorded(std::size_t w) const {
+  const Wire& wire = wires_[w];
+  const ProfileModel& profile = model_->parts[wire.part].profiles[wire.profile];
+  return {std::uint32_t(wire.part),
+          std::uint32_t(wire.profile),
+          std::uint32_t(wire.model.basis.modes),
+          profile.closed,
+          wire.model.length,
+          wire.model.bending_stiffness,
+          wire.reach,
+          wire.weights};
 }
 
 void ProfileDynamics::Restore(std::span<const ModalWireState> states) {

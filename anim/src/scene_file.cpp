@@ -214,15 +214,44 @@ TrackingOptions ReadTracking(const JsonObject& o) {
   return tracking;
 }
 
-// "wires" or "profile_wires": {"modes": N (default 8; 0 off), "damping_ratio": z}.
-WireDynamicsOptions ReadWireDynamics(const JsonObject& o, WireDynamicsOptions out) {
-  o.RejectUnknownKeys({"modes", "damping_ratio"});
+// "modes" (default 8; 0 off) and "damping_ratio" of "wires" or "profile_wires".
+template <class Options>
+Options ReadModes(const JsonObject& o, Options out) {
   out.modes = o.Integer("modes", ModalBasis::kDefaultModes);
   if (!(out.modes >= 0 && out.modes <= ModalBasis::kMaxModes))
     throw FieldError(o.PathOf("modes"), "must be in [0, 32] (0: static wires)");
   out.damping_ratio = o.Number("damping_ratio", out.damping_ratio);
   if (!(std::isfinite(out.damping_ratio) && out.damping_ratio >= 0.0 && out.damping_ratio <= 100.0))
     throw FieldError(o.PathOf("damping_ratio"), "must be in [0, 100]");
+  return out;
+}
+
+// "wires": {"modes": N, "damping_ratio": z}.
+WireDynamicsOptions ReadWireDynamics(const JsonObject& o, const WireDynamicsOptions& defaults) {
+  o.RejectUnknownKeys({"modes", "damping_ratio"});
+  return ReadModes(o, defaults);
+}
+
+// "profile_wires": {"modes": N, "damping_ratio": z, "frequency": Hz, "limit": fraction,
+// "parts": [names]}.
+ProfileWireOptions ReadProfileWires(const JsonObject& o, const ProfileWireOptions& defaults) {
+  o.RejectUnknownKeys({"modes", "damping_ratio", "frequency", "limit", "parts"});
+  ProfileWireOptions out = ReadModes(o, defaults);
+  out.frequency = o.Number("frequency", out.frequency);
+  if (!(std::isfinite(out.frequency) && out.frequency > 0.0 && out.frequency <= 1000.0))
+    throw FieldError(o.PathOf("frequency"), "must be in (0, 1000] Hz");
+  out.limit = o.Number("limit", out.limit);
+  if (!(std::isfinite(out.limit) && out.limit > 0.0 && out.limit <= 1.0))
+    throw FieldError(o.PathOf("limit"), "must be in (0, 1] (of a loop's mean radius)");
+  if (o.Has("parts")) {
+    const json& names = RequireArray(o.Required("parts"), o.PathOf("parts"));
+    for (std::size_t i = 0; i < ArraySize(names); ++i) {
+      const json& name = ArrayElement(names, i);
+      if (!name.is_string())
+        throw FieldError(o.PathOf("parts") + "/" + std::to_string(i), "must be a part's name");
+      out.parts.push_back(name.get<std::string>());
+    }
+  }
   return out;
 }
 
@@ -253,8 +282,7 @@ PlaybackOptions ReadPlayback(const JsonObject& o) {
   if (o.Has("tracking")) playback.tracking = ReadTracking(o.Object("tracking"));
   if (o.Has("wires")) playback.wires = ReadWireDynamics(o.Object("wires"), playback.wires);
   if (o.Has("profile_wires"))
-    playback.profile_wires =
-        ReadWireDynamics(o.Object("profile_wires"), {0, playback.profile_wires.damping_ratio});
+    playback.profile_wires = ReadProfileWires(o.Object("profile_wires"), playback.profile_wires);
   return playback;
 }
 
@@ -273,7 +301,10 @@ json PlaybackToJson(const PlaybackOptions& p) {
     out["wires"] = {{"modes", p.wires.modes}, {"damping_ratio", p.wires.damping_ratio}};
   if (p.profile_wires.modes > 0)
     out["profile_wires"] = {{"modes", p.profile_wires.modes},
-                            {"damping_ratio", p.profile_wires.damping_ratio}};
+                            {"damping_ratio", p.profile_wires.damping_ratio},
+                            {"frequency", p.profile_wires.frequency},
+                            {"limit", p.profile_wires.limit}};
+  if (!p.profile_wires.parts.empty()) out["profile_wires"]["parts"] = p.profile_wires.parts;
   return out;
 }
 

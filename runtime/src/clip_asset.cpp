@@ -107,6 +107,54 @@ Status ValidateWires(const SampledClip& c, const RigModel* model) {
   return Status::Ok();
 }
 
+Status ValidateProfileWires(const SampledClip& c, const RigModel* model) {
+  for (std::size_t i = 0; i < c.profile_wires.size(); ++i) {
+    const ClipProfileWire& w = c.profile_wires[i];
+    const int index = int(i);
+    if (w.part >= c.part_count)
+      return Status::InvalidElement("profile_wires", index, "part", "must name a part");
+    for (std::size_t j = 0; j < i; ++j)
+      if (c.profile_wires[j].part == w.part && c.profile_wires[j].profile == w.profile)
+        return Status::InvalidElement("profile_wires", index, "profile",
+                                      "must name a profile no other profile wire does");
+    if (w.modes < 1 || w.modes > std::uint32_t(ModalBasis::kMaxModes))
+      return Status::InvalidElement("profile_wires", index, "modes", "must lie in [1, 32]");
+    if (w.weights.size() < 2 || w.weights.size() > 65536)
+      return Status::InvalidElement("profile_wires", index, "weights",
+                                    "need one per profile point, 2 to 65536");
+    for (const double weight : w.weights)
+      if (!(weight >= 0.0 && weight <= 1.0))
+        return Status::InvalidElement("profile_wires", index, "weights", "must lie in [0, 1]");
+    if (!(Finite(w.length) && w.length > 0.0) ||
+        !(Finite(w.bending_stiffness) && w.bending_stiffness > 0.0) ||
+        !(Finite(w.reach) && w.reach > 0.0))
+      return Status::InvalidElement("profile_wires", index, "",
+                                    "length, bending_stiffness and reach must be finite and "
+                                    "positive");
+    const double compliance = std::pow(w.length, 4) / w.bending_stiffness;
+    if (!(std::isfinite(compliance) && compliance <= 1e138))
+      return Status::InvalidElement("profile_wires", index, "bending_stiffness",
+                                    "too small for the length (L^4 / EI above 1e138)");
+    if (model != nullptr) {
+      const PartModel& part = model->parts[w.part];
+      if (w.profile >= part.profiles.size() ||
+          part.profiles[w.profile].local_points.size() != w.weights.size() ||
+          part.profiles[w.profile].closed != w.closed)
+        return Status::InvalidElement("profile_wires", index, "profile",
+                                      "is not a profile of the part with as many points");
+    }
+  }
+  if (c.profile_wire_motion.size() != c.frame_count() * c.profile_wire_motion_stride())
+    return Status::Invalid("profile_wire_motion",
+                           "needs every profile wire's residual at every "
+                           "frame");
+  for (std::size_t i = 0; i < c.profile_wire_motion.size(); ++i)
+    if (!Finite(c.profile_wire_motion[i]))
+      return Status::InvalidElement("profile_wire_motion", int(i), "",
+                                    "must be finite, at most 1e12");
+  return Status::Ok();
+}
+
 // The largest count of a range over the part keys (per part) and profile keys, for buffers.
 template <class Key, class Member>
 std::uint32_t MostOf(const std::vector<Key>& keys, Member member) {
@@ -215,12 +263,19 @@ Status ValidateSampledClip(const SampledClip& c, const RigModel* model) {
                                     "range past the end of the loads");
   }
   if (Status s = ValidateWires(c, model); !s) return s;
+  if (Status s = ValidateProfileWires(c, model); !s) return s;
   return ValidateLoads(c);
 }
 
 std::size_t SampledClip::wire_motion_stride() const {
   std::size_t stride = 0;
   for (const ClipWire& w : wires) stride += std::size_t(w.modes) + 2;
+  return stride;
+}
+
+std::size_t SampledClip::profile_wire_motion_stride() const {
+  std::size_t stride = 0;
+  for (const ClipProfileWire& w : profile_wires) stride += std::size_t(w.modes) + 1;
   return stride;
 }
 
@@ -253,6 +308,15 @@ std::vector<std::uint8_t> SerializeClipAsset(const SampledClip& c) {
   }
   w.Count(c.wire_motion.size());
   for (const Vec3& x : c.wire_motion) w.V3(x);
+  w.Count(c.profile_wires.size());
+  for (const ClipProfileWire& wire : c.profile_wires) {
+    w.U32(wire.part), w.U32(wire.profile), w.U32(wire.modes), w.U8(wire.closed ? 1 : 0);
+    w.F64(wire.length), w.F64(wire.bending_stiffness), w.F64(wire.reach);
+    w.Count(wire.weights.size());
+    for (const double weight : wire.weights) w.F64(weight);
+  }
+  w.Count(c.profile_wire_motion.size());
+  for (const Vec3& x : c.profile_wire_motion) w.V3(x);
   return Envelope(kMagic, kClipAssetVersion, w.bytes());
 }
 
@@ -294,6 +358,15 @@ Status ParseClipAsset(std::span<const std::uint8_t> bytes, SampledClip* out) {
   }
   c.wire_motion.resize(r.Count(24));
   for (Vec3& x : c.wire_motion) x = r.V3();
+  c.profile_wires.resize(r.Count(41));
+  for (ClipProfileWire& wire : c.profile_wires) {
+    wire.part = r.U32(), wire.profile = r.U32(), wire.modes = r.U32(), wire.closed = r.U8() != 0;
+    wire.length = r.F64(), wire.bending_stiffness = r.F64(), wire.reach = r.F64();
+    wire.weights.resize(r.Count(8));
+    for (double& weight : wire.weights) weight = r.F64();
+  }
+  c.profile_wire_motion.resize(r.Count(24));
+  for (Vec3& x : c.profile_wire_motion) x = r.V3();
   if (!r.ok()) return Status::Invalid("payload", "ends before its contents do");
   if (r.left() != 0) return Status::Invalid("payload", "has bytes after its contents");
   if (Status s = ValidateSampledClip(c); !s) return s;
@@ -306,7 +379,7 @@ ClipPlaybackBuffers MakeClipPlaybackBuffers(const SampledClip& c) {
   b.poses.resize(c.part_count);
   std::uint32_t profiles = 0;
   for (const LoadRange& r : c.profile_keys_of_frame) profiles = std::max(profiles, r.count);
-  b.profile_loads.resize(profiles);
+  b.profile_loads.resize(profiles + c.profile_wires.size());
   // Each part's and profile's loads get their own stretch of the buffers, as long as the most
   // that part (or profile key) ever carries.
   const std::size_t slots = c.part_count + profiles;
@@ -336,8 +409,66 @@ ClipPlaybackBuffers MakeClipPlaybackBuffers(const SampledClip& c) {
     out.displacement.resize(wire.samples);
     out.slope.resize(wire.samples);
   }
+  b.profile_wires.resize(c.profile_wires.size());
+  for (std::size_t i = 0; i < c.profile_wires.size(); ++i) {
+    const ClipProfileWire& wire = c.profile_wires[i];
+    ClipPlaybackBuffers::ProfileWire& out = b.profile_wires[i];
+    ModalBasis basis;
+    if (!BuildModalBasis(BoundaryCondition::kClamped, int(wire.modes), &basis)) continue;
+    const std::size_t m = wire.weights.size();
+    const double segments = double(wire.closed ? m : m - 1);
+    out.samples.resize(m);
+    for (std::size_t q = 0; q < m; ++q) out.samples[q] = double(q) / segments;
+    out.mode_values.resize(m * wire.modes);
+    std::vector<double> slopes(out.mode_values.size());
+    if (!TabulateModes(basis, out.samples, out.mode_values, slopes)) {
+      out = {};
+      continue;
+    }
+    out.displacement.resize(m);
+  }
   return b;
 }
+
+namespace {
+
+// The profile wires' motion between frames f0 and f1 (fraction f), each appended as a
+// whole-loop ProfileLoads after the clip's own.
+Status SampleProfileWires(const SampledClip& c, std::size_t f0, std::size_t f1, double f,
+                          ClipPlaybackBuffers* buffers) {
+  ClipPlaybackBuffers& b = *buffers;
+  const std::size_t stride = c.profile_wire_motion_stride();
+  std::size_t offset = 0;
+  for (std::size_t i = 0; i < c.profile_wires.size(); ++i) {
+    const ClipProfileWire& wire = c.profile_wires[i];
+    const Vec3* a = c.profile_wire_motion.data() + f0 * stride + offset;
+    const Vec3* e = c.profile_wire_motion.data() + f1 * stride + offset;
+    offset += std::size_t(wire.modes) + 1;
+    ModalResidual r;
+    r.modes = int(wire.modes);
+    for (std::uint32_t n = 0; n < wire.modes; ++n) r.coordinates[n] = a[n] + f * (e[n] - a[n]);
+    r.uniform_load = a[wire.modes] + f * (e[wire.modes] - a[wire.modes]);
+    ClipPlaybackBuffers::ProfileWire& out = b.profile_wires[i];
+    ModalResidualJob job;
+    job.boundary = BoundaryCondition::kClamped;
+    job.length = wire.length;
+    job.bending_stiffness = wire.bending_stiffness;
+    job.residual = &r;
+    job.samples = out.samples;
+    job.mode_values = out.mode_values;
+    job.displacement = out.displacement;
+    if (Status s = job.Run(); !s) return s;
+    EaseLoopMotion(wire.weights, wire.reach, out.displacement);
+    ProfileLoads& loads = b.profile_loads[b.profile_load_count++];
+    loads = ProfileLoads{};
+    loads.part = wire.part, loads.profile = wire.profile;
+    loads.boundary = BoundaryCondition::kClamped;
+    loads.extra_displacement = out.displacement;
+  }
+  return Status::Ok();
+}
+
+}  // namespace
 
 Status SampleClipJob::Validate() const {
   if (clip == nullptr) return Status::Invalid("clip", "is required");
@@ -349,6 +480,11 @@ Status SampleClipJob::Validate() const {
     return Status::Invalid("buffers", "were made for another clip");
   for (std::size_t i = 0; i < clip->wires.size(); ++i)
     if (buffers->wires[i].displacement.size() != clip->wires[i].samples)
+      return Status::Invalid("buffers", "were made for another clip (or a wire's modes failed)");
+  if (buffers->profile_wires.size() != clip->profile_wires.size())
+    return Status::Invalid("buffers", "were made for another clip");
+  for (std::size_t i = 0; i < clip->profile_wires.size(); ++i)
+    if (buffers->profile_wires[i].displacement.size() != clip->profile_wires[i].weights.size())
       return Status::Invalid("buffers", "were made for another clip (or a wire's modes failed)");
   return Status::Ok();
 }
@@ -363,8 +499,10 @@ Status SampleClipJob::Run() const {
   const std::size_t f0 = std::min(std::size_t(x), last), f1 = std::min(f0 + 1, last);
   const double f = x - double(f0);
   const std::size_t parts = c.part_count;
-  const std::size_t point_stride = b.point_loads.size() / (parts + b.profile_loads.size());
-  const std::size_t line_stride = b.line_loads.size() / (parts + b.profile_loads.size());
+  // Load slots: one per part and per profile key (the profile wires' entries carry no loads).
+  const std::size_t slots = parts + b.profile_loads.size() - c.profile_wires.size();
+  const std::size_t point_stride = b.point_loads.size() / slots;
+  const std::size_t line_stride = b.line_loads.size() / slots;
   const std::size_t axial_point_stride = b.axial_point_loads.size() / parts;
   const std::size_t axial_line_stride = b.axial_line_loads.size() / parts;
   for (std::size_t p = 0; p < parts; ++p) {
@@ -441,6 +579,7 @@ Status SampleClipJob::Run() const {
     const ProfileKey& e = paired ? c.profile_keys[ke.first + i] : a;
     ProfileLoads& out = b.profile_loads[i];
     out.part = a.part, out.profile = a.profile, out.boundary = a.boundary;
+    out.extra_displacement = {};
     out.from = a.from + g * (e.from - a.from), out.to = a.to + g * (e.to - a.to);
     const std::size_t slot = parts + i;
     out.point_loads = Blend(c.point_loads, a.point_loads, e.point_loads, g, true, LerpOf<PointLoad>,
@@ -448,7 +587,7 @@ Status SampleClipJob::Run() const {
     out.line_loads = Blend(c.line_loads, a.line_loads, e.line_loads, g, true, LerpOf<LineLoad>,
                            b.line_loads.data() + slot * line_stride);
   }
-  return Status::Ok();
+  return SampleProfileWires(c, f0, f1, f, &b);
 }
 
 }  // namespace wirerig

@@ -257,4 +257,13 @@ Status ModalResidualJob::Run() const {
   return Status::Ok();
 }
 
+void EaseLoopMotion(std::span<const double> weights, double reach, std::span<Vec3> displacement) {
+  for (std::size_t q = 0; q < displacement.size(); ++q) {
+    Vec3& d = displacement[q];
+    d *= weights[q];
+    const double n = d.norm();
+    if (n > 1e-12 * reach) d *= reach * std::tanh(n / reach) / n;
+  }
+}
+
 }  // namespace wirerig

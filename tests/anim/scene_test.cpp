@@ -29,7 +29,8 @@ json CylinderScene() {
     "rig": {"description": {"parts": [{"name": "beam", "central_curve": [[0, 0, 0], [0, 1, 0]],
                                        "profile_count": 8, "points_per_profile": 16}]}},
     "parts": {"beam": {"kind": "deformable", "spine": {"material": "steel"}}},
-    "playback": {"rigid_step": 0.005, "integrator": "momentum", "gravity": [0, -9.81, 0]},
+    "playback": {"rigid_step": 0.005, "integrator": "momentum", "gravity": [0, -9.81, 0],
+                 "profile_wires": {"modes": 4, "damping_ratio": 0.2, "frequency": 2.5}},
     "clips": [{"name": "push", "duration": 2, "loop": "ping_pong", "parts": [
       {"part": "beam", "boundary": [{"time": 0, "boundary": "cantilever_free"},
                                     {"time": 1, "boundary": "cantilever_guided"}],
@@ -64,6 +65,10 @@ TEST(Scene, ParsesEveryField) {
             FindMaterialPreset("steel")->youngs_modulus);
   EXPECT_EQ(scene.playback.integrator, RigidIntegrator::kMomentum);
   EXPECT_EQ(scene.playback.gravity, Vec3(0, -9.81, 0));
+  EXPECT_EQ(scene.playback.profile_wires.modes, 4);
+  EXPECT_EQ(scene.playback.profile_wires.damping_ratio, 0.2);
+  EXPECT_EQ(scene.playback.profile_wires.frequency, 2.5);
+  EXPECT_EQ(scene.playback.wires.modes, 0);  // spines stay static unless asked
   ASSERT_EQ(scene.clips.size(), 1u);
   const RawClip& clip = scene.clips[0];
   EXPECT_EQ(clip.loop, LoopMode::kPingPong);
@@ -111,6 +116,13 @@ TEST(Scene, ErrorsNameTheFieldByJsonPointer) {
   d = CylinderScene();
   d["playback"]["rigid_step"] = 0;
   EXPECT_EQ(ParseError(d), "/playback/rigid_step: must be in (0, 1] s");
+  d = CylinderScene();
+  d["playback"]["profile_wires"]["frequency"] = 0;
+  EXPECT_EQ(ParseError(d), "/playback/profile_wires/frequency: must be in (0, 1000] Hz");
+  d = CylinderScene();
+  d["playback"]["profile_wires"]["stiffness"] = 1;
+  EXPECT_EQ(ParseError(d).rfind("/playback/profile_wires/stiffness: unknown field", 0), 0u)
+      << ParseError(d);
   d = CylinderScene();
   d["camera"]["pitch"] = 2;
   EXPECT_EQ(ParseError(d), "/camera/pitch: must lie within (-pi/2, pi/2)");

@@ -51,7 +51,7 @@ struct PlaybackOptions {
   WireDynamicsOptions wires;
   // Inertia for the profile wires (profile_dynamics.h: the skin jiggles) when
   // profile_wires.modes > 0.
-  WireDynamicsOptions profile_wires;
+  ProfileWireOptions profile_wires;
 };
 
 class Playback {

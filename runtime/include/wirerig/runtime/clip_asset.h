@@ -20,7 +20,8 @@
 namespace wirerig {
 
 // 2: parts carry tip couples and large curls. 3: wires' motion beyond their static shape.
-inline constexpr std::uint32_t kClipAssetVersion = 3;
+// 4: profile wires' motion (the skin's flesh).
+inline constexpr std::uint32_t kClipAssetVersion = 4;
 
 enum class ClipLoop : int { kOnce = 0, kLoop = 1, kPingPong = 2 };
 
@@ -66,6 +67,20 @@ struct ClipWire {
   double bending_stiffness = 0.0;  // its EI, N m^2
 };
 
+// A profile wire whose motion the clip records (the offline playback's profile_wires): the whole
+// loop of profile `profile` of part `part` as a clamped wire over its points (v_q = q / points
+// closed, q / (points - 1) open), its motion eased by EaseLoopMotion(weights, reach).
+struct ClipProfileWire {
+  std::uint32_t part = 0;
+  std::uint32_t profile = 0;
+  std::uint32_t modes = 0;  // in [1, ModalBasis::kMaxModes]
+  bool closed = true;
+  double length = 0.0;             // the loop's perimeter L, m
+  double bending_stiffness = 0.0;  // its EI, N m^2
+  double reach = 0.0;              // m, the most a point moves
+  std::vector<double> weights;     // one per profile point, in [0, 1]
+};
+
 struct SampledClip {
   std::string name;
   double duration = 0.0;    // s, > 0
@@ -83,17 +98,24 @@ struct SampledClip {
   // ModalResidual: `modes` coordinates (m), then the uniform and the turning load (N/m).
   std::vector<ClipWire> wires;
   std::vector<Vec3> wire_motion;
+  // Profile wires, and per frame and profile wire its ModalResidual: `modes` coordinates (m),
+  // then the uniform load (N/m).
+  std::vector<ClipProfileWire> profile_wires;
+  std::vector<Vec3> profile_wire_motion;
 
   std::size_t frame_count() const { return profile_keys_of_frame.size(); }
   // Elements of wire_motion per frame: the sum of every wire's modes + 2.
   std::size_t wire_motion_stride() const;
+  // Elements of profile_wire_motion per frame: the sum of every profile wire's modes + 1.
+  std::size_t profile_wire_motion_stride() const;
 };
 
 // Whether a clip is safe to play on a model with `part_count` parts whose profiles `model`
 // names (model may be null: profile indices and wires' parts are then not checked): positive
 // duration and frame rate, one key per part per frame, ranges inside their arrays, finite unit
 // rotations, loads with v in [0, 1], finite numbers; wires on distinct parts (deformable ones
-// with as many spine samples, given the model) with one residual per frame.
+// with as many spine samples, given the model) with one residual per frame; profile wires on
+// distinct profiles (with as many points and the same closure, given the model), likewise.
 Status ValidateSampledClip(const SampledClip& clip, const RigModel* model = nullptr);
 
 std::vector<std::uint8_t> SerializeClipAsset(const SampledClip& clip);
@@ -118,6 +140,13 @@ struct ClipPlaybackBuffers {
     std::vector<Vec3> displacement, slope;
   };
   std::vector<Wire> wires;
+  // Per clip profile wire: its tables and the motion its ProfileLoads points at (appended after
+  // the clip's own profile loads).
+  struct ProfileWire {
+    std::vector<double> samples, mode_values;
+    std::vector<Vec3> displacement;
+  };
+  std::vector<ProfileWire> profile_wires;
   std::span<const ProfileLoads> used_profile_loads() const {
     return {profile_loads.data(), profile_load_count};
   }
@@ -130,7 +159,8 @@ ClipPlaybackBuffers MakeClipPlaybackBuffers(const SampledClip& clip);
 // rotations slerped and translations, displacements and tip forces interpolated linearly between
 // the two frames around the time; loads interpolated too where both frames have the same loads
 // (same counts and boundaries), else taken from the nearer frame; the wires' residuals
-// interpolated and evaluated (ModalResidualJob) into the buffers. Allocates nothing.
+// interpolated and evaluated (ModalResidualJob) into the buffers, the profile wires' as well
+// (eased by EaseLoopMotion, one whole-loop ProfileLoads each). Allocates nothing.
 struct SampleClipJob {
   const SampledClip* clip = nullptr;
   double time = 0.0;

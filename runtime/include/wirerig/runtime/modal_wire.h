@@ -259,4 +259,10 @@ struct ModalResidualJob {
   Status Run() const;
 };
 
+// A profile wire's motion made safe for the skin (anim's profile_dynamics.h; .wclip replays
+// it): each point's displacement d, times its weight w in [0, 1] (no motion where the part meets
+// another), eased into `reach` (m, > 0): d reach tanh(|d| / reach) / |d|, exact to first order
+// for small motion and never beyond reach. Sizes must match. Never allocates.
+void EaseLoopMotion(std::span<const double> weights, double reach, std::span<Vec3> displacement);
+
 }  // namespace wirerig
