@@ -14,8 +14,6 @@
 //   wirerig_clip_replay_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
-#include <time.h>
-
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -35,18 +33,13 @@ namespace wirerig {
 namespace {
 
 using bench::Check;
+using bench::ThreadSeconds;
 
 constexpr double kFrame = 1.0 / 60.0;  // s
 
 void Fail(const Status& s) {
   std::cerr << ToString(s) << "\n";
   std::exit(1);
-}
-
-double ThreadSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
 // One clip's player: its buffers and an evaluation job writing float engine buffers.

@@ -25,8 +25,6 @@
 //   wirerig_modal_frame_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
-#include <time.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -54,6 +52,7 @@ namespace wirerig {
 namespace {
 
 using bench::Check;
+using bench::ThreadSeconds;
 
 constexpr double kFrame = 1.0 / 60.0;  // s
 constexpr int kModes = 8;
@@ -272,12 +271,6 @@ void BM_Modal(benchmark::State& state, SceneCase c) {
     benchmark::ClobberMemory();
   }
   SetCounters(state, frames);
-}
-
-double ThreadSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
 // Static and modal frames alternately (which goes first alternates too), each timed alone.

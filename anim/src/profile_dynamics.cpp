@@ -32,16 +32,9 @@ double JointFade(double u) { return SmoothStep(u / 0.25) * SmoothStep((1.0 - u) 
 // Every part's loops' rest points, world axes: [part][profile][point].
 std::vector<std::vector<std::vector<Vec3>>> RestLoopPoints(const RigModel& model) {
   std::vector<std::vector<std::vector<Vec3>>> out(model.parts.size());
-  for (std::size_t p = 0; p < model.parts.size(); ++p) {
-    const PartModel& part = model.parts[p];
-    for (const ProfileModel& profile : part.profiles) {
-      Vec3 origin;
-      const Mat3 axes = FrameAxes(
-          InterpolateSpine(part.spine_points, part.spine_frames, profile.spine_v, &origin));
-      std::vector<Vec3>& points = out[p].emplace_back();
-      for (const Vec3& x : profile.local_points) points.push_back(origin + axes * x);
-    }
-  }
+  for (std::size_t p = 0; p < model.parts.size(); ++p)
+    for (std::size_t i = 0; i < model.parts[p].profiles.size(); ++i)
+      out[p].push_back(RestProfilePoints(model.parts[p], i));
   return out;
 }
 
@@ -76,11 +69,8 @@ Vec3 PointAcceleration(const RigidMotion& motion, const Vec3& offset) {
 
 Result<ProfileDynamics> ProfileDynamics::Make(const RigModel& model,
                                               const ProfileWireOptions& options, double step) {
-  if (!(options.modes >= 0 && options.modes <= ModalBasis::kMaxModes))
-    return Error{"modes: must be in [0, " + std::to_string(ModalBasis::kMaxModes) + "]"};
-  if (!(std::isfinite(options.damping_ratio) && options.damping_ratio >= 0.0 &&
-        options.damping_ratio <= ModalWireModel::kMaxDampingRatio))
-    return Error{"damping_ratio: must be in [0, 100]"};
+  if (std::string bad = ModalOptionsError(options.modes, options.damping_ratio); !bad.empty())
+    return Error{bad};
   if (!(std::isfinite(options.frequency) && options.frequency > 0.0 && options.frequency <= 1000.0))
     return Error{"frequency: must be in (0, 1000] Hz"};
   if (!(std::isfinite(options.limit) && options.limit > 0.0 && options.limit <= 1.0))
@@ -188,16 +178,11 @@ Status ProfileDynamics::Apply(std::vector<ProfileLoads>* out) {
     r.modes = wire.model.basis.modes;
     for (int n = 0; n < r.modes; ++n) r.coordinates[n] = state.q[n] - state.q_static[n];
     r.uniform_load = -wire.model.mass_per_length * wire.support_acceleration;
-    ModalResidualJob job;
-    job.boundary = BoundaryCondition::kClamped;
-    job.length = wire.model.length;
-    job.bending_stiffness = wire.model.bending_stiffness;
-    job.residual = &r;
-    job.samples = wire.samples;
-    job.mode_values = wire.mode_values;
-    job.displacement = wire.displacement;
-    if (Status s = job.Run(); !s) return s;
-    EaseLoopMotion(wire.weights, wire.reach, wire.displacement);
+    if (Status s =
+            EvaluateLoopMotion(r, wire.model.length, wire.model.bending_stiffness, wire.samples,
+                               wire.mode_values, wire.weights, wire.reach, wire.displacement);
+        !s)
+      return s;
     ProfileLoads loads;
     loads.part = std::uint32_t(wire.part);
     loads.profile = std::uint32_t(wire.profile);

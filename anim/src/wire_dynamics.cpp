@@ -6,13 +6,19 @@
 
 namespace wirerig {
 
+std::string ModalOptionsError(int modes, double damping_ratio) {
+  if (!(modes >= 0 && modes <= ModalBasis::kMaxModes))
+    return "modes: must be in [0, " + std::to_string(ModalBasis::kMaxModes) + "]";
+  if (!(std::isfinite(damping_ratio) && damping_ratio >= 0.0 &&
+        damping_ratio <= ModalWireModel::kMaxDampingRatio))
+    return "damping_ratio: must be in [0, 100]";
+  return {};
+}
+
 Result<WireDynamics> WireDynamics::Make(const RigModel& model, const Clip& clip,
                                         const WireDynamicsOptions& options, double step) {
-  if (!(options.modes >= 0 && options.modes <= ModalBasis::kMaxModes))
-    return Error{"modes: must be in [0, " + std::to_string(ModalBasis::kMaxModes) + "]"};
-  if (!(std::isfinite(options.damping_ratio) && options.damping_ratio >= 0.0 &&
-        options.damping_ratio <= ModalWireModel::kMaxDampingRatio))
-    return Error{"damping_ratio: must be in [0, 100]"};
+  if (std::string bad = ModalOptionsError(options.modes, options.damping_ratio); !bad.empty())
+    return Error{bad};
   WireDynamics out;
   out.model_ = &model;
   if (options.modes == 0) return out;

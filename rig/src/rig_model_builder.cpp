@@ -317,14 +317,9 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
   std::vector<std::vector<std::vector<Vec3>>> rest_profiles(model.parts.size());
   std::vector<std::vector<Vec3>> rest_origins(model.parts.size());
   for (std::size_t i = 0; i < model.parts.size(); ++i) {
-    const PartModel& part = model.parts[i];
-    for (const ProfileModel& profile : part.profiles) {
+    for (std::size_t k = 0; k < model.parts[i].profiles.size(); ++k) {
       Vec3 origin;
-      const Mat3 axes = FrameAxes(
-          InterpolateSpine(part.spine_points, part.spine_frames, profile.spine_v, &origin));
-      std::vector<Vec3> points;
-      for (const Vec3& q : profile.local_points) points.push_back(origin + axes * q);
-      rest_profiles[i].push_back(std::move(points));
+      rest_profiles[i].push_back(RestProfilePoints(model.parts[i], k, &origin));
       rest_origins[i].push_back(origin);
     }
   }

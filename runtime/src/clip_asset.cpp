@@ -197,6 +197,20 @@ Load LerpOf(const Load& a, const Load& b, double f) {
   return Lerp(a, b, f);
 }
 
+// A wire's residual between two frames' records a and e (modes coordinates, the uniform load,
+// and with `turning` the ramp's end value) at fraction f.
+ModalResidual LerpResidual(const Vec3* a, const Vec3* e, double f, std::uint32_t modes,
+                           bool turning) {
+  ModalResidual r;
+  r.modes = int(modes);
+  for (std::uint32_t n = 0; n <= modes; ++n) {
+    Vec3& out = n < modes ? r.coordinates[n] : r.uniform_load;
+    out = a[n] + f * (e[n] - a[n]);
+  }
+  if (turning) r.turning_load = a[modes + 1] + f * (e[modes + 1] - a[modes + 1]);
+  return r;
+}
+
 }  // namespace
 
 double ClipLocalTime(ClipLoop loop, double duration, double t) {
@@ -444,21 +458,12 @@ Status SampleProfileWires(const SampledClip& c, std::size_t f0, std::size_t f1, 
     const Vec3* a = c.profile_wire_motion.data() + f0 * stride + offset;
     const Vec3* e = c.profile_wire_motion.data() + f1 * stride + offset;
     offset += std::size_t(wire.modes) + 1;
-    ModalResidual r;
-    r.modes = int(wire.modes);
-    for (std::uint32_t n = 0; n < wire.modes; ++n) r.coordinates[n] = a[n] + f * (e[n] - a[n]);
-    r.uniform_load = a[wire.modes] + f * (e[wire.modes] - a[wire.modes]);
+    const ModalResidual r = LerpResidual(a, e, f, wire.modes, false);
     ClipPlaybackBuffers::ProfileWire& out = b.profile_wires[i];
-    ModalResidualJob job;
-    job.boundary = BoundaryCondition::kClamped;
-    job.length = wire.length;
-    job.bending_stiffness = wire.bending_stiffness;
-    job.residual = &r;
-    job.samples = out.samples;
-    job.mode_values = out.mode_values;
-    job.displacement = out.displacement;
-    if (Status s = job.Run(); !s) return s;
-    EaseLoopMotion(wire.weights, wire.reach, out.displacement);
+    if (Status s = EvaluateLoopMotion(r, wire.length, wire.bending_stiffness, out.samples,
+                                      out.mode_values, wire.weights, wire.reach, out.displacement);
+        !s)
+      return s;
     ProfileLoads& loads = b.profile_loads[b.profile_load_count++];
     loads = ProfileLoads{};
     loads.part = wire.part, loads.profile = wire.profile;
@@ -542,11 +547,7 @@ Status SampleClipJob::Run() const {
     const Vec3* a = c.wire_motion.data() + f0 * stride + offset;
     const Vec3* e = c.wire_motion.data() + f1 * stride + offset;
     offset += std::size_t(wire.modes) + 2;
-    ModalResidual r;
-    r.modes = int(wire.modes);
-    for (std::uint32_t n = 0; n < wire.modes; ++n) r.coordinates[n] = a[n] + f * (e[n] - a[n]);
-    r.uniform_load = a[wire.modes] + f * (e[wire.modes] - a[wire.modes]);
-    r.turning_load = a[wire.modes + 1] + f * (e[wire.modes + 1] - a[wire.modes + 1]);
+    const ModalResidual r = LerpResidual(a, e, f, wire.modes, true);
     ClipPlaybackBuffers::Wire& out = b.wires[i];
     SpineLoads& loads = b.poses[wire.part].loads;
     ModalResidualJob job;

@@ -257,13 +257,26 @@ Status ModalResidualJob::Run() const {
   return Status::Ok();
 }
 
-void EaseLoopMotion(std::span<const double> weights, double reach, std::span<Vec3> displacement) {
+Status EvaluateLoopMotion(const ModalResidual& residual, double length, double bending_stiffness,
+                          std::span<const double> samples, std::span<const double> mode_values,
+                          std::span<const double> weights, double reach,
+                          std::span<Vec3> displacement) {
+  ModalResidualJob job;
+  job.boundary = BoundaryCondition::kClamped;
+  job.length = length;
+  job.bending_stiffness = bending_stiffness;
+  job.residual = &residual;
+  job.samples = samples;
+  job.mode_values = mode_values;
+  job.displacement = displacement;
+  if (Status s = job.Run(); !s) return s;
   for (std::size_t q = 0; q < displacement.size(); ++q) {
     Vec3& d = displacement[q];
     d *= weights[q];
     const double n = d.norm();
     if (n > 1e-12 * reach) d *= reach * std::tanh(n / reach) / n;
   }
+  return Status::Ok();
 }
 
 }  // namespace wirerig

@@ -1,5 +1,7 @@
 #include "wirerig/runtime/spine_interpolation.h"
 
+#include "wirerig/runtime/rig_model.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -69,6 +71,18 @@ bool ProfilesCross(std::span<const Vec3> a_points, const Vec3& a_origin, const V
   for (const Vec3& p : b_points)
     if ((p - a_origin).dot(a_normal) < 0.0) return true;
   return false;
+}
+
+std::vector<Vec3> RestProfilePoints(const PartModel& part, std::size_t profile, Vec3* origin) {
+  const ProfileModel& loop = part.profiles[profile];
+  Vec3 point;
+  const Mat3 axes =
+      FrameAxes(InterpolateSpine(part.spine_points, part.spine_frames, loop.spine_v, &point));
+  std::vector<Vec3> out;
+  out.reserve(loop.local_points.size());
+  for (const Vec3& x : loop.local_points) out.push_back(point + axes * x);
+  if (origin != nullptr) *origin = point;
+  return out;
 }
 
 }  // namespace wirerig

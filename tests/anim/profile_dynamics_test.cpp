@@ -43,6 +43,21 @@ double Perimeter(const ProfileModel& profile) {
   return length;
 }
 
+// The base of `model` pushed by a constant force `push` (N) along +X at its centre.
+Clip PushClip(const RigModel& model, double push, double duration) {
+  RawClip raw;
+  raw.name = "push";
+  raw.duration = duration;
+  RawPartTracks part;
+  part.part = "base";
+  RigidForceChannels<RawTrack> force;
+  force.at = model.parts[0].mass.center;
+  force.force = Constant(Vec3(push, 0, 0));
+  part.channels.rigid_forces.push_back(force);
+  raw.parts.push_back(part);
+  return BuildClip(raw, model).value();
+}
+
 // The jointed cylinder's base as a free rigid body pushed along +X at its centre.
 Pushed PushedBase() {
   static const testing::TestRig jointed = testing::MakeJointedCylinderRig(SpineKind::kDeformable);
@@ -56,17 +71,7 @@ Pushed PushedBase() {
   out.period = Perimeter(base.profiles[base.profiles.size() / 2]) / out.frequency;
   const double push = 2.0 * base.mass.mass;  // N: 2 m/s^2
   out.a = push / base.mass.mass;
-  RawClip raw;
-  raw.name = "push";
-  raw.duration = 80.0 * out.period;
-  RawPartTracks part;
-  part.part = "base";
-  RigidForceChannels<RawTrack> force;
-  force.at = base.mass.center;
-  force.force = Constant(Vec3(push, 0, 0));
-  part.channels.rigid_forces.push_back(force);
-  raw.parts.push_back(part);
-  out.clip = BuildClip(raw, out.model).value();
+  out.clip = PushClip(out.model, push, 80.0 * out.period);
   return out;
 }
 
@@ -156,17 +161,7 @@ TEST(ProfileDynamics, APushedBodysLoopsSettleAtTheClampedWiresInertialDeflection
 TEST(ProfileDynamics, AHardShoveNeverMovesTheSkinBeyondItsLimit) {
   Pushed pushed = PushedBase();
   const PartModel& base = pushed.model.parts[0];
-  RawClip raw;
-  raw.name = "shove";
-  raw.duration = 2.0 * pushed.period;
-  RawPartTracks part;
-  part.part = "base";
-  RigidForceChannels<RawTrack> force;
-  force.at = base.mass.center;
-  force.force = Constant(Vec3(500.0 * base.mass.mass, 0, 0));  // 50 g
-  part.channels.rigid_forces.push_back(force);
-  raw.parts.push_back(part);
-  pushed.clip = BuildClip(raw, pushed.model).value();
+  pushed.clip = PushClip(pushed.model, 500.0 * base.mass.mass, 2.0 * pushed.period);  // 50 g
   PlaybackOptions options = WithProfileWires(pushed, 8, 0.1);
   options.profile_wires.limit = 0.1;
   Playback with = Playback::Make(pushed.model, pushed.clip, options).value();

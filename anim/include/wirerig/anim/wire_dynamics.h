@@ -27,6 +27,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include "wirerig/anim/clip_sampling.h"
@@ -40,6 +41,10 @@ struct WireDynamicsOptions {
   int modes = 0;               // bending modes per spine, 0 (off: static wires) to 32
   double damping_ratio = 0.1;  // of every mode, in [0, 100]
 };
+
+// What is wrong with a mode count and damping ratio ("modes: ..." or "damping_ratio: ..."), or
+// empty when both are valid (for the spines' and the profile wires' options alike).
+std::string ModalOptionsError(int modes, double damping_ratio);
 
 class WireDynamics {
  public:

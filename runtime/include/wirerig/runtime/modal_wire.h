@@ -259,10 +259,15 @@ struct ModalResidualJob {
   Status Run() const;
 };
 
-// A profile wire's motion made safe for the skin (anim's profile_dynamics.h; .wclip replays
-// it): each point's displacement d, times its weight w in [0, 1] (no motion where the part meets
-// another), eased into `reach` (m, > 0): d reach tanh(|d| / reach) / |d|, exact to first order
-// for small motion and never beyond reach. Sizes must match. Never allocates.
-void EaseLoopMotion(std::span<const double> weights, double reach, std::span<Vec3> displacement);
+// A profile wire's motion (anim's profile_dynamics.h; .wclip replays it): the residual on the
+// whole loop as a clamped wire of length L (m) and EI (N m^2) at `samples` (ModalResidualJob
+// with the clamped family's mode_values), then each point's displacement d times its weight w in
+// [0, 1] (no motion where the part meets another) and eased into `reach` (m, > 0):
+// d reach tanh(|d| / reach) / |d|, exact to first order for small motion and never beyond reach.
+// weights and displacement have samples.size() elements. Never allocates.
+Status EvaluateLoopMotion(const ModalResidual& residual, double length, double bending_stiffness,
+                          std::span<const double> samples, std::span<const double> mode_values,
+                          std::span<const double> weights, double reach,
+                          std::span<Vec3> displacement);
 
 }  // namespace wirerig

@@ -78,6 +78,11 @@ struct VertexAttachment {
   }
 };
 
+// Profile `profile` of `part` at rest in world axes (its spine frame at spine_v applied to its
+// local points); *origin (if given) gets the spine point there.
+std::vector<Vec3> RestProfilePoints(const PartModel& part, std::size_t profile,
+                                    Vec3* origin = nullptr);
+
 struct RigModel {
   std::vector<PartModel> parts;
   std::vector<VertexAttachment> vertices;  // one per welded mesh vertex
