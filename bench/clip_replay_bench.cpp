@@ -116,3 +116,5 @@ BENCHMARK_CAPTURE(BM_Ratio, octopus, "octopus/octopus.scene.json")->Unit(benchma
 
 }  // namespace
 }  // namespace wirerig
+
+BENCHMARK_MAIN();

@@ -399,6 +399,15 @@ Status EvaluateRigJob::Run() const {
     const ProfileModel& profile = part.profiles[loads.profile];
     std::vector<Vec3>& points = w.profile_points[loads.part][loads.profile];
     const std::size_t m = profile.local_points.size();
+    if (loads.point_loads.empty() && loads.line_loads.empty()) {
+      // Motion alone (a profile wire's, over the whole profile): nothing to solve.
+      if (loads.extra_displacement.empty()) continue;
+      Vec3 origin;
+      const Mat3 axes = FrameAxes(InterpolateSpine(
+          w.spine_points[loads.part], w.spine_frames[loads.part], profile.spine_v, &origin));
+      for (std::size_t q = 0; q < m; ++q) points[q] += axes * loads.extra_displacement[q];
+      continue;
+    }
     const double segments = double(profile.closed ? m : m - 1);
     // The stretch's points (and their parameter on the stretch) and its rest arc length.
     std::size_t count = 0;
