@@ -1,7 +1,6 @@
 #include "bake_command.h"
 #include "option_checks.h"
 
-#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -24,13 +23,6 @@ void DrawProgress(std::ostream& err, std::size_t done, std::size_t total) {
   err << "\r  baking [" << std::string(static_cast<std::size_t>(filled), '#')
       << std::string(static_cast<std::size_t>(kWidth - filled), '.') << "] " << done << "/" << total
       << " keys" << (done == total ? "\n" : "") << std::flush;
-}
-
-// The output is a .glb (the extension matched case-insensitively, as ExportGltf does).
-bool IsGlb(const std::string& output) {
-  std::string extension = std::filesystem::path(output).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension == ".glb";
 }
 
 double Seconds(std::chrono::steady_clock::time_point since) {
@@ -88,22 +80,21 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   export_options.residual_morph_targets = options.residual;
   export_options.quantize = options.quantize;
   export_options.node_name = scene.description.name;
-  // An export a .glb cannot hold is refused with its numbers before anything is baked.
-  if (IsGlb(options.output)) {
+  // An export too large to write is refused with its numbers before anything is baked.
+  {
     std::size_t joints = 0;
     for (const PartModel& part : scene.model.parts) joints += part.spine_points.size();
     const double keys = BakeKeyCount(clip->duration, options.fps);
     const double bytes =
         EstimateGltfBytes(scene.mesh.positions.size(), joints, keys, true, export_options);
-    if (bytes > kMaxGlbBytes) {
-      char message[320];
-      std::snprintf(message, sizeof message,
-                    "%.0f keys (%g s at %g fps) x %zu vertices need at least %.3g GB, more than "
-                    "a .glb holds (%.3g GB); write .gltf, or bake fewer keys (--fps, a shorter "
-                    "clip)",
-                    keys, clip->duration, options.fps, scene.mesh.positions.size(), bytes / 1e9,
-                    kMaxGlbBytes / 1e9);
-      return fail(options.output + ": " + message);
+    if (bytes > kMaxGltfBytes) {
+      const bool morph = export_options.mode == GltfAnimationMode::kMorph || options.residual;
+      char numbers[160];
+      std::snprintf(numbers, sizeof numbers, "%.0f keys (%g s at %g fps) x %zu vertices: ", keys,
+                    clip->duration, options.fps, scene.mesh.positions.size());
+      return fail(options.output + ": " + numbers + GltfTooLargeMessage(bytes) +
+                  "; bake fewer keys (--fps, a shorter clip)" +
+                  (morph ? ", or --mode skin without --residual" : ""));
     }
   }
 
@@ -130,7 +121,7 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   const auto export_start = std::chrono::steady_clock::now();
   Result<GltfExportReport> exported =
       ExportGltf(scene.mesh, bake.value(), export_options, options.output);
-  if (!exported) return fail(options.output + ": " + exported.error());
+  if (!exported) return fail(exported.error());  // it names the file
   const GltfExportReport& report = exported.value();
   char line[256];
   std::snprintf(line, sizeof line,

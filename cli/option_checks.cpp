@@ -43,4 +43,24 @@ CLI::Validator Above(double min) {
   return NumberCheck("> " + Number(min), [min](double x) { return x > min; });
 }
 
+bool ParseImageSize(const std::string& text, int* width, int* height) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x') return false;
+  if (w < 16 || h < 16 || w > 8192 || h > 8192) return false;
+  *width = w;
+  *height = h;
+  return true;
+}
+
+CLI::Validator ImageSize() {
+  return CLI::Validator(
+      [](std::string& input) -> std::string {
+        int w = 0, h = 0;
+        if (ParseImageSize(input, &w, &h)) return {};
+        return std::string("must be ") + kImageSizeRule + " (got \"" + input + "\")";
+      },
+      "WIDTHxHEIGHT");
+}
+
 }  // namespace wirerig::cli

@@ -15,4 +15,9 @@ CLI::Validator AtLeast(double min);
 // A number > min.
 CLI::Validator Above(double min);
 
+// An image size "WIDTHxHEIGHT", each in [16, 8192].
+inline constexpr const char* kImageSizeRule = "WIDTHxHEIGHT, each in [16, 8192], e.g. 1280x720";
+bool ParseImageSize(const std::string& text, int* width, int* height);
+CLI::Validator ImageSize();
+
 }  // namespace wirerig::cli

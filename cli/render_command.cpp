@@ -15,15 +15,6 @@
 namespace wirerig::cli {
 namespace {
 
-bool ParseSize(const std::string& text, Size* size) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x') return false;
-  if (w < 16 || h < 16 || w > 8192 || h > 8192) return false;
-  *size = {w, h};
-  return true;
-}
-
 std::string TimeLabel(double t) {
   char label[32];
   std::snprintf(label, sizeof label, "t = %.2f s", t);
@@ -40,6 +31,7 @@ CLI::App* AddRenderCommand(CLI::App& app, RenderCommandOptions& options) {
       ->check(AtLeast(0))
       ->capture_default_str();
   render->add_option("--size", options.size, "Image (or tile) size, WIDTHxHEIGHT")
+      ->check(ImageSize())
       ->capture_default_str();
   render->add_option("--clip", options.clip, "Clip to play (default: the scene's first)");
   render
@@ -65,8 +57,8 @@ int RunRenderCommand(const RenderCommandOptions& options, std::ostream& out, std
   if (Result<bool> writable = CheckOutputFile(options.output, {".png"}); !writable)
     return fail(writable.error());
   Size size;
-  if (!ParseSize(options.size, &size))
-    return fail("--size: must be WIDTHxHEIGHT, each in [16, 8192], e.g. 1280x720");
+  if (!ParseImageSize(options.size, &size.width, &size.height))
+    return fail(std::string("--size: must be ") + kImageSizeRule);
   Result<BuiltScene> built = LoadAndBuildScene(options.scene, options.import_limits.Isolation());
   if (!built) return fail(built.error());
   const BuiltScene& scene = built.value();

@@ -18,7 +18,9 @@ CLI::App* AddViewCommand(CLI::App& app, ViewCommandOptions& options) {
   CLI::App* view = app.add_subcommand("view", "Open a scene in the viewer (GLFW + OpenGL 3.3)");
   view->add_option("scene", options.scene, "Scene file (JSON)")->required();
   view->add_option("--clip", options.clip, "Clip to play (default: the scene's first)");
-  view->add_option("--size", options.size, "Window size, WIDTHxHEIGHT")->capture_default_str();
+  view->add_option("--size", options.size, "Window size, WIDTHxHEIGHT")
+      ->check(ImageSize())
+      ->capture_default_str();
   view->add_option("--frames", options.frames, "Stop after this many frames (0: run until closed)")
       ->check(AtLeast(0));
   view->add_option("--input", options.input, "Replay an input script (mouse and keys per frame)");
@@ -28,7 +30,7 @@ CLI::App* AddViewCommand(CLI::App& app, ViewCommandOptions& options) {
   return view;
 }
 
-int RunViewCommand(const ViewCommandOptions& options, std::ostream& err) {
+int RunViewCommand(const ViewCommandOptions& options) {
   SceneViewerOptions viewer;
   viewer.scene = options.scene;
   viewer.clip = options.clip;
@@ -43,7 +45,8 @@ int RunViewCommand(const ViewCommandOptions& options, std::ostream& err) {
         viewer.samples.push_back(
             {entry.name, std::filesystem::path(WIRERIG_SAMPLES_DIR) / entry.scene});
   // The application parses its own options; hand them over in its syntax.
-  std::vector<std::string> args = {"wirerig-view", "--size", options.size, "--frames",
+  // The application prints its one error after its name.
+  std::vector<std::string> args = {"wirerig view", "--size", options.size, "--frames",
                                    std::to_string(options.frames)};
   if (!options.input.empty()) args.insert(args.end(), {"--input", options.input});
   if (!options.screenshot.empty()) args.insert(args.end(), {"--screenshot", options.screenshot});
@@ -51,9 +54,7 @@ int RunViewCommand(const ViewCommandOptions& options, std::ostream& err) {
   std::vector<const char*> argv;
   for (const std::string& a : args) argv.push_back(a.c_str());
   SceneViewer app(std::move(viewer));
-  const int code = app.Run(int(argv.size()), argv.data());
-  if (code != 0) err << "wirerig view: " << options.scene << ": the viewer stopped with an error\n";
-  return code;
+  return app.Run(int(argv.size()), argv.data());
 }
 
 }  // namespace wirerig::cli

@@ -26,6 +26,7 @@ struct ViewCommandOptions {
 
 CLI::App* AddViewCommand(CLI::App& app, ViewCommandOptions& options);
 
-int RunViewCommand(const ViewCommandOptions& options, std::ostream& err);
+// Errors go to standard error, once, after "wirerig view: " (the viewer prints them).
+int RunViewCommand(const ViewCommandOptions& options);
 
 }  // namespace wirerig::cli

@@ -9,6 +9,7 @@
 
 #include "wire_table.h"
 #include "wirerig/rig/atomic_file.h"
+#include "wirerig/rig/output_file.h"
 #include "wirerig/rig/wire_problem.h"
 
 namespace wirerig::cli {
@@ -29,6 +30,13 @@ CLI::App* AddWireCommand(CLI::App& app, WireCommandOptions& options) {
 
 int RunWireCommand(const WireCommandOptions& options, std::istream& in, std::ostream& out,
                    std::ostream& err) {
+  // Where the output goes is checked before any work (any extension: JSON or a table).
+  if (!options.output.empty()) {
+    if (Result<bool> writable = CheckOutputFile(options.output, {}); !writable) {
+      err << "wirerig wire: " << writable.error() << "\n";
+      return 1;
+    }
+  }
   const bool from_stdin = options.input == "-";
   const std::string source = from_stdin ? "<stdin>" : options.input;
   // A file is checked before it is opened (a directory or FIFO is refused, never read).

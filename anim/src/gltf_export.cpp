@@ -109,7 +109,17 @@ double EstimateGltfBytes(std::size_t vertex_count, std::size_t joint_count, doub
   const double morph_bytes = morph ? stride * (normals ? 2.0 : 1.0) * double(vertex_count) : 0.0;
   // Per joint: a translation (3 floats) and a rotation (4 floats) per key.
   const double joint_bytes = skin ? 7.0 * sizeof(float) * double(joint_count) : 0.0;
-  return keys * (morph_bytes + joint_bytes);
+  // One morph target per key, and every key weighs all of them: keys^2 floats.
+  const double weight_bytes = morph ? sizeof(float) * keys : 0.0;
+  return keys * (morph_bytes + joint_bytes + weight_bytes);
+}
+
+std::string GltfTooLargeMessage(double bytes) {
+  char message[200];
+  std::snprintf(message, sizeof message,
+                "the export needs at least %.3g GB, more than a glTF buffer may hold (%.3g GB)",
+                bytes / 1e9, kMaxGltfBytes / 1e9);
+  return message;
 }
 
 Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake,
@@ -124,6 +134,14 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
   }
   if (auto problem = gltf::CheckExportInput(mesh, bake, options.mode)) {
     return Error{out.string() + ": " + *problem};
+  }
+  // The size before any buffer is built: a long morph export grows with keys^2 (the weights).
+  std::size_t joints = 0;
+  for (const BakedSpine& spine : bake.spines) joints += spine.SampleCount();
+  if (const double bytes = EstimateGltfBytes(mesh.positions.size(), joints, double(bake.KeyCount()),
+                                             !bake.normals.empty(), options);
+      bytes > kMaxGltfBytes) {
+    return Error{out.string() + ": " + GltfTooLargeMessage(bytes)};
   }
   const fs::path out_dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
   const std::string name =

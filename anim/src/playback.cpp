@@ -384,9 +384,10 @@ void Playback::ApplyInteractiveLoad() {
 
 namespace {
 
-Status NotFloatFinite(std::string_view field, std::size_t vertex) {
+// The reason is the same for both evaluations (render and view draw doubles, bake floats).
+Status BeyondGeometryRange(std::string_view field, std::size_t vertex) {
   return Status::InvalidElement(field, static_cast<int>(vertex), {},
-                                "not finite as a float (the deformation overflowed)");
+                                "not finite, or beyond 1e7 m (the deformation overflowed)");
 }
 
 }  // namespace
@@ -399,10 +400,11 @@ Status Playback::Evaluate(double t, std::span<Vec3> positions, std::span<Vec3> n
   job.warnings = warnings;
   if (Status s = Run(t, job); !s) return s;
   // Every consumer (renderer, export) takes floats: a deformation that overflowed them fails.
-  if (const std::size_t i = detail::FirstNotFloatFinite(positions); i != detail::kAllFinite)
-    return NotFloatFinite("positions", i);
-  if (const std::size_t i = detail::FirstNotFloatFinite(normals); i != detail::kAllFinite)
-    return NotFloatFinite("normals", i);
+  constexpr double kBound = detail::kMaxGeometryCoordinate;
+  if (const std::size_t i = detail::FirstBeyond(positions, kBound); i != detail::kAllFinite)
+    return BeyondGeometryRange("positions", i);
+  if (const std::size_t i = detail::FirstBeyond(normals, kBound); i != detail::kAllFinite)
+    return BeyondGeometryRange("normals", i);
   return Status::Ok();
 }
 
@@ -417,15 +419,15 @@ Status Playback::Evaluate(double t, const FloatOutput& output, std::span<PartWar
   if (Status s = Run(t, job); !s) return s;
   const std::size_t count =
       output.vertex_order.empty() ? model_->vertices.size() : output.vertex_order.size();
-  if (const std::size_t i =
-          detail::FirstNonFiniteFloat3(output.positions, count, output.position_stride);
+  if (const std::size_t i = detail::FirstNonFiniteFloat3(
+          output.positions, count, output.position_stride, detail::kMaxGeometryCoordinate);
       i != detail::kAllFinite)
-    return NotFloatFinite("positions", i);
+    return BeyondGeometryRange("positions", i);
   if (!output.normals.empty()) {
     if (const std::size_t i =
             detail::FirstNonFiniteFloat3(output.normals, count, output.normal_stride);
         i != detail::kAllFinite)
-      return NotFloatFinite("normals", i);
+      return BeyondGeometryRange("normals", i);
   }
   return Status::Ok();
 }

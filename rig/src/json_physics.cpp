@@ -1,6 +1,11 @@
 #include "wirerig/rig/json_physics.h"
 
+#include <string>
+#include <vector>
+
 #include <nlohmann/json.hpp>
+
+#include "wirerig/rig/name_hint.h"
 
 namespace wirerig {
 namespace {
@@ -21,7 +26,12 @@ Material ReadMaterial(const JsonObject& parent, std::string_view key) {
   if (value.is_string()) {
     const std::string name = value.get<std::string>();
     const Material* preset = FindMaterialPreset(name);
-    if (!preset) throw FieldError(parent.PathOf(key), "unknown material preset '" + name + "'");
+    if (!preset) {
+      std::vector<std::string> names;
+      for (const MaterialPreset& known : MaterialPresets()) names.emplace_back(known.name);
+      throw FieldError(parent.PathOf(key),
+                       "unknown material preset '" + name + "'" + NameHint(name, names, "presets"));
+    }
     return *preset;
   }
   const JsonObject m = parent.Object(key);

@@ -1059,6 +1059,35 @@ TEST(GltfExport, ASingleKeyIsAValidAnimation) {
   }
 }
 
+// A morph export weighs every target at every key: keys^2 floats. One triangle over 33,000 keys
+// (1.2 MB of positions) needs 4.36 GB of weights, more than a buffer holds: refused before a
+// buffer is built (it aborted with std::bad_alloc), writing nothing; skinned it is small.
+TEST(GltfExport, RefusesAMorphExportWhoseWeightsOutgrowABuffer) {
+  TempDir dir;
+  Mesh mesh;
+  mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  mesh.triangles = {{0, 1, 2}};
+  constexpr std::size_t kKeys = 33000;
+  BakedAnimation bake;
+  bake.vertex_count = 3;
+  for (std::size_t k = 0; k < kKeys; ++k) {
+    bake.times.push_back(double(k) / 30.0);
+    for (const Vec3& p : mesh.positions) bake.positions.push_back(p.cast<float>());
+  }
+  GltfExportOptions options;
+  EXPECT_GE(EstimateGltfBytes(3, 0, kKeys, false, options), 4.0 * kKeys * kKeys);
+  const fs::path out = dir.path() / "long.glb";
+  const Result<GltfExportReport> report = ExportGltf(mesh, bake, options, out);
+  ASSERT_FALSE(report.ok());
+  EXPECT_NE(report.error().find("long.glb: the export needs at least 4.36 GB, more than a glTF "
+                                "buffer may hold (4.29 GB)"),
+            std::string::npos)
+      << report.error();
+  EXPECT_FALSE(fs::exists(out));
+  options.mode = GltfAnimationMode::kSkin;
+  EXPECT_LT(EstimateGltfBytes(3, 1, kKeys, false, options), 1e7);
+}
+
 // Every refusal names its field and writes nothing.
 struct BadInput {
   const char* name;

@@ -337,46 +337,49 @@ TEST(Playback, InteractiveJointAnglesTurnAPartAboutItsJointAndClear) {
 }
 
 // A tip deflection of 1e45 m (finite in double, beyond float) was drawn by `render` while the
-// export refused it: both outputs of Evaluate fail on it, naming the vertex.
-TEST(Playback, AnOutputBeyondTheFloatRangeFails) {
+// export refused it; at 1e33 m the float evaluation's normals overflowed (bake refused) while
+// the double one's did not (render drew it). Over tip deflections from 1 mm to 1e45 m both
+// evaluations agree: they pass up to the geometry bound (1e7 m) and fail beyond it, naming the
+// vertex, with the same reason.
+TEST(Playback, BothEvaluationsRefuseTheSameOverflowedGeometry) {
   const RigModel& model = Beam().model;
   const PartModel& beam = model.parts[0];
   const double l = beam.spine_length, ei = beam.spine_stiffness.bending;
-  RawClip raw;
-  raw.name = "crush";
-  raw.duration = 1.0;
-  RawPartTracks part;
-  part.part = "beam";
-  PointLoadChannels<RawTrack> load;
-  load.at = Keys({{0.0, 1.0}});
-  load.magnitude = Keys({{0.0, 1e45 * 3.0 * ei / (l * l * l)}});  // N: F L^3 / 3EI = 1e45 m
-  load.direction = Constant(Vec3(1, 0, 0));
-  part.channels.point_loads.push_back(load);
-  raw.parts.push_back(part);
-  const Clip clip = BuildClip(raw, model).value();
-  Playback playback = Playback::Make(model, clip).value();
-  const ScopedFloatingPointHold hold;  // float rounding of 1e45 overflows, by design here
-  std::vector<Vec3> positions(model.vertices.size()), normals(model.vertices.size());
-  const Status doubles = playback.Evaluate(0.5, positions, normals);
-  EXPECT_EQ(doubles.field, "positions");
-  EXPECT_GE(doubles.index, 0);
-  EXPECT_EQ(doubles.reason, "not finite as a float (the deformation overflowed)");
-  std::vector<float> buffer(6 * model.vertices.size());
-  Playback::FloatOutput output;
-  output.positions = buffer;
-  output.position_stride = 6;
-  output.normals = std::span<float>(buffer).subspan(3);
-  output.normal_stride = 6;
-  const Status floats = playback.Evaluate(0.5, output);
-  EXPECT_FALSE(floats.ok());
-  EXPECT_EQ(floats.reason, "not finite as a float (the deformation overflowed)");
-  // The same load at 1e-3 m passes both.
-  load.magnitude = Keys({{0.0, 1e-3 * 3.0 * ei / (l * l * l)}});
-  raw.parts[0].channels.point_loads[0] = load;
-  const Clip mild = BuildClip(raw, model).value();
-  Playback fine = Playback::Make(model, mild).value();
-  EXPECT_TRUE(fine.Evaluate(0.5, positions, normals).ok());
-  EXPECT_TRUE(fine.Evaluate(0.5, output).ok());
+  const ScopedFloatingPointHold hold;  // float rounding of huge values overflows, by design here
+  for (const double tip : {1e-3, 1.0, 1e3, 1e6, 5e6, 2e7, 1e9, 1e12, 1e20, 1e33, 1e45}) {
+    SCOPED_TRACE("tip deflection " + std::to_string(tip) + " m");
+    RawClip raw;
+    raw.name = "crush";
+    raw.duration = 1.0;
+    RawPartTracks part;
+    part.part = "beam";
+    PointLoadChannels<RawTrack> load;
+    load.at = Keys({{0.0, 1.0}});
+    load.magnitude = Keys({{0.0, tip * 3.0 * ei / (l * l * l)}});  // N: F L^3 / 3EI = tip
+    load.direction = Constant(Vec3(1, 0, 0));
+    part.channels.point_loads.push_back(load);
+    raw.parts.push_back(part);
+    const Clip clip = BuildClip(raw, model).value();
+    Playback playback = Playback::Make(model, clip).value();
+    std::vector<Vec3> positions(model.vertices.size()), normals(model.vertices.size());
+    const Status doubles = playback.Evaluate(0.5, positions, normals);
+    std::vector<float> buffer(6 * model.vertices.size());
+    Playback::FloatOutput output;
+    output.positions = buffer;
+    output.position_stride = 6;
+    output.normals = std::span<float>(buffer).subspan(3);
+    output.normal_stride = 6;
+    const Status floats = playback.Evaluate(0.5, output);
+    const bool drawable = tip < 1e7;  // the tip moves by `tip`; the rest of the beam by less
+    EXPECT_EQ(doubles.ok(), drawable) << ToString(doubles);
+    EXPECT_EQ(floats.ok(), drawable) << ToString(floats);
+    if (drawable) continue;
+    EXPECT_EQ(doubles.field, "positions");
+    EXPECT_GE(doubles.index, 0);
+    EXPECT_EQ(doubles.reason, "not finite, or beyond 1e7 m (the deformation overflowed)");
+    EXPECT_EQ(floats.field, "positions");
+    EXPECT_EQ(floats.reason, doubles.reason);
+  }
 }
 
 }  // namespace WIRERIG_TEST_FILE

@@ -58,12 +58,37 @@ TEST(WirerigExitCodes, HelpStatesThePolicyAndExitsZero) {
 }
 
 TEST(WirerigExitCodes, UsageErrorsExitTwo) {
-  ExpectExit(RunWirerig({}), 2, "subcommand");              // was 106
-  ExpectExit(RunWirerig({"frobnicate"}), 2, "subcommand");  // unknown subcommand
-  ExpectExit(RunWirerig({"wire"}), 2, "input");             // missing argument
+  ExpectExit(RunWirerig({}), 2, "subcommand");  // was 106
+  ExpectExit(RunWirerig({"frobnicate"}), 2, "wirerig: unknown command \"frobnicate\" (commands: ");
+  ExpectExit(RunWirerig({"bakee", kOctopus}), 2,
+             "unknown command \"bakee\"; did you mean \"bake\"?");
+  ExpectExit(RunWirerig({"wire"}), 2, "input");  // missing argument
   ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--fps", "abc"}), 2, "--fps");  // 105
   ExpectExit(RunWirerig({"wire", "x.json", "--format", "xml"}), 2, "--format");
+#ifdef WIRERIG_HAS_VIEWER  // render and view exist only with the viewer
+  // An image size out of range is a usage error like any other bad value (it exited 1).
+  for (const char* size : {"0x0", "wide", "16x9000"}) {
+    ExpectExit(
+        RunWirerig({"render", kOctopus, "-o", "x.png", "--size", size}), 2,
+        std::string("--size: must be WIDTHxHEIGHT, each in [16, 8192], e.g. 1280x720 (got \"") +
+            size + "\")");
+    ExpectExit(RunWirerig({"view", kOctopus, "--size", size}), 2, "--size");
+  }
+#endif
 }
+
+#ifdef WIRERIG_HAS_VIEWER
+// A folder given as the scene to view printed three lines (the reason, "the application failed
+// to initialise", "the viewer stopped with an error"): now the reason, once.
+TEST(WirerigExitCodes, ViewSaysWhatFailedOnce) {
+  const fs::path folder = Scratch("a_folder");
+  fs::create_directories(folder);
+  const ProcessResult run = RunWirerig({"view", folder.string(), "--no-window", "--frames", "1"});
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_EQ(run.err,
+            "wirerig view: " + folder.string() + ": is a directory, not a scene file (JSON)\n");
+}
+#endif
 
 TEST(WirerigExitCodes, BadInputExitsOne) {
   ExpectExit(RunWirerig({"wire", Scratch("missing.json").string()}), 1,

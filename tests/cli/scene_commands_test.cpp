@@ -148,51 +148,81 @@ TEST(BakeCommand, AClipTooLargeIsRefusedWithItsNumbersBeforeBaking) {
   const fs::path scene = BeamScene("long.scene.json", 1e5, 1.0);
   BakeCommandOptions options;
   options.scene = scene.string();
-  options.output = Output("long.glb").string();
   options.fps = 1000;
   const auto start = std::chrono::steady_clock::now();
-  CommandRun run = Bake(options);
+  for (const char* name : {"long.glb", "long.gltf"}) {
+    options.output = Output(name).string();
+    CommandRun run = Bake(options);
+    EXPECT_EQ(run.code, 1);
+    EXPECT_NE(run.err.find(std::string(name) + ": 100000001 keys (100000 s at 1000 fps) x "),
+              std::string::npos)
+        << run.err;
+    EXPECT_NE(run.err.find("more than a glTF buffer may hold (4.29 GB); bake fewer keys"),
+              std::string::npos)
+        << run.err;
+    EXPECT_FALSE(fs::exists(options.output));
+  }
+  // Skinned at 10 keys/s, the export (joints only, ~0.9 GB) fits, but the bake would not fit the
+  // memory it may take.
+  options.mode = "skin";
+  options.fps = 10;
+  const CommandRun run = Bake(options);
   EXPECT_EQ(run.code, 1);
-  EXPECT_NE(run.err.find("long.glb: 100000001 keys (100000 s at 1000 fps) x "), std::string::npos)
-      << run.err;
-  EXPECT_NE(run.err.find("more than a .glb holds (4.29 GB); write .gltf"), std::string::npos)
-      << run.err;
-  EXPECT_FALSE(fs::exists(options.output));
-  // As .gltf the export could be written, but the bake would not fit the memory it may take.
-  options.output = Output("long.gltf").string();
-  run = Bake(options);
-  EXPECT_EQ(run.code, 1);
-  EXPECT_NE(run.err.find("the bake would hold 100000001 keys"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("the bake would hold 1000001 keys"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(options.output));
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
 }
 
-// A tip deflection of ~1e45 m: finite in double, infinite in float. `bake` refused it while
-// `render` drew it and exited 0; both now fail with the same check's message.
+// A morph export weighs every target at every key: keys^2 floats. A mesh of a few hundred
+// vertices and a 3,000 s clip (90,001 keys, 32 GB of weights) aborted with std::bad_alloc after
+// the bake, and a 1,000 s one took 44 s and 8 GB; both are refused before baking. Skinned (no
+// morph targets) the same clip fits.
+TEST(BakeCommand, AMorphExportWhoseWeightsOutgrowABufferIsRefusedBeforeBaking) {
+  const fs::path scene = BeamScene("weights.scene.json", 3000.0, 1.0);
+  BakeCommandOptions options;
+  options.scene = scene.string();
+  options.output = Output("weights.glb").string();
+  const auto start = std::chrono::steady_clock::now();
+  const CommandRun run = Bake(options);
+  EXPECT_EQ(run.code, 1);
+  EXPECT_NE(run.err.find("weights.glb: 90001 keys (3000 s at 30 fps) x "), std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("the export needs at least"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("or --mode skin without --residual"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(options.output));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
+}
+
+// A tip deflection of ~1e45 m (beyond float) and one of ~1e33 m (positions finite as floats,
+// but the bake's float normals overflowed while render's double ones did not): `bake` refused
+// them while `render` drew them and exited 0. Both now fail with the same check's message.
 TEST(SceneCommands, BakeAndRenderRefuseGeometryBeyondFloatAlike) {
-  // Steel beam, r = 0.1 m, L = 1 m: EI = 2e11 * pi r^4 / 4 = 1.57e7 N m^2; F = 3 EI d / L^3.
-  const fs::path scene = BeamScene("overflow.scene.json", 1.0, 3.0 * 1.57e7 * 1e45);
-  fedisableexcept(FE_ALL_EXCEPT);  // the float rounding overflows, by design here
-  BakeCommandOptions bake;
-  bake.scene = scene.string();
-  bake.output = Output("overflow.glb").string();
-  const CommandRun baked = Bake(bake);
-  const char* kReason = "positions[";
-  const char* kWhy = "not finite as a float (the deformation overflowed)";
-  EXPECT_EQ(baked.code, 1);
-  EXPECT_NE(baked.err.find(kReason), std::string::npos) << baked.err;
-  EXPECT_NE(baked.err.find(kWhy), std::string::npos) << baked.err;
-  EXPECT_FALSE(fs::exists(bake.output));
-  RenderCommandOptions render;
-  render.scene = scene.string();
-  render.size = "64x64";
-  render.output = Output("overflow.png").string();
-  const CommandRun rendered = Render(render);
-  feenableexcept(FE_DIVBYZERO | FE_INVALID | FE_OVERFLOW);
-  EXPECT_EQ(rendered.code, 1);
-  EXPECT_NE(rendered.err.find(kReason), std::string::npos) << rendered.err;
-  EXPECT_NE(rendered.err.find(kWhy), std::string::npos) << rendered.err;
-  EXPECT_FALSE(fs::exists(render.output));
+  for (const double tip : {1e45, 1e33}) {
+    SCOPED_TRACE("tip deflection " + std::to_string(tip) + " m");
+    // Steel beam, r = 0.1 m, L = 1 m: EI = 2e11 * pi r^4 / 4 = 1.57e7 N m^2; F = 3 EI d / L^3.
+    const fs::path scene = BeamScene("overflow.scene.json", 1.0, 3.0 * 1.57e7 * tip);
+    fedisableexcept(FE_ALL_EXCEPT);  // the float rounding overflows, by design here
+    BakeCommandOptions bake;
+    bake.scene = scene.string();
+    bake.output = Output("overflow.glb").string();
+    const CommandRun baked = Bake(bake);
+    const char* kReason = "positions[";
+    const char* kWhy = "not finite, or beyond 1e7 m (the deformation overflowed)";
+    EXPECT_EQ(baked.code, 1);
+    EXPECT_NE(baked.err.find(kReason), std::string::npos) << baked.err;
+    EXPECT_NE(baked.err.find(kWhy), std::string::npos) << baked.err;
+    EXPECT_FALSE(fs::exists(bake.output));
+    RenderCommandOptions render;
+    render.scene = scene.string();
+    render.size = "64x64";
+    render.output = Output("overflow.png").string();
+    const CommandRun rendered = Render(render);
+    feenableexcept(FE_DIVBYZERO | FE_INVALID | FE_OVERFLOW);
+    EXPECT_EQ(rendered.code, 1);
+    EXPECT_NE(rendered.err.find(kReason), std::string::npos) << rendered.err;
+    EXPECT_NE(rendered.err.find(kWhy), std::string::npos) << rendered.err;
+    EXPECT_FALSE(fs::exists(render.output));
+  }
 }
 
 // Mesa's software rasterizer raises floating-point exceptions inside its own code (context

@@ -161,7 +161,11 @@ TEST(WireCommandErrors, InvalidMaterialAndSection) {
   ExpectError(p, "/material/nu: must lie in (-1, 0.5)");
   p = ValidProblem();
   p["material"] = "cheese";
-  ExpectError(p, "/material: unknown material preset 'cheese'");
+  ExpectError(p,
+              "/material: unknown material preset 'cheese' (presets: rubber, soft_tissue, skin, "
+              "cartilage, wood, aluminium, steel)");
+  p["material"] = "steal";  // a misspelling gets the nearest preset
+  ExpectError(p, "/material: unknown material preset 'steal'; did you mean \"steel\"?");
   p = ValidProblem();
   p["section"] = {{"A", 0.0}, {"I", 1e-8}};
   ExpectError(p, "/section/A: must be positive and finite");
@@ -243,6 +247,19 @@ TEST(WireCommandFiles, ErrorsNameTheFileAndLeaveNoOutput) {
   EXPECT_FALSE(fs::exists(output));
   for (const auto& entry : fs::directory_iterator(dir))
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
+}
+
+// An output in a missing folder was found only after the problem was read and solved: it is
+// refused first, the folder named once, the input not read.
+TEST(WireCommandFiles, AnUnwritableOutputIsRefusedBeforeTheInputIsRead) {
+  WireCommandOptions options{"-", "json", "/nonexistent/deeper/out.json"};
+  std::istringstream in(ValidProblem().dump());
+  std::ostringstream out, err;
+  EXPECT_EQ(RunWireCommand(options, in, out, err), 1);
+  EXPECT_EQ(err.str(),
+            "wirerig wire: /nonexistent/deeper/out.json: the folder /nonexistent does not exist\n");
+  EXPECT_EQ(in.tellg(), 0);  // nothing read, nothing solved
+  EXPECT_TRUE(out.str().empty());
 }
 
 TEST(WireCommandFiles, WritesTheOutputFile) {

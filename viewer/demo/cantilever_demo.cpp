@@ -32,7 +32,7 @@ constexpr std::uint32_t kSpineId = 0;
 
 class CantileverDemo : public Application {
  protected:
-  bool OnInitialize() override {
+  Result<bool> OnInitialize() override {
     const Mesh capsule = MakeCapsule(kRadius, kLength, 48, 40, 10);
     for (const Vec3& p : capsule.positions) rest_.push_back(p.cast<float>());
     triangles_ = capsule.triangles;

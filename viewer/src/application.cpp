@@ -257,7 +257,7 @@ Result<bool> Application::Run(const ApplicationOptions& options) {
     ~ReleaseRenderer() { app->renderer_.reset(); }
   } release_renderer{this};
 
-  if (!OnInitialize()) return Error{"the application failed to initialise (OnInitialize)"};
+  if (Result<bool> initialized = OnInitialize(); !initialized) return initialized;
   frame_ = RenderFrame{};
   OnDisplay(frame_);
   if (!camera_framed_) FrameModel();

@@ -57,17 +57,11 @@ Result<bool> SceneViewer::Open(const SceneDescription& description) {
   return true;
 }
 
-bool SceneViewer::OnInitialize() {
+Result<bool> SceneViewer::OnInitialize() {
   Result<SceneDescription> description = Load(options_.scene);
-  if (!description) {
-    std::fprintf(stderr, "wirerig view: %s\n", description.error().c_str());
-    return false;
-  }
-  if (Result<bool> opened = Open(description.value()); !opened) {
-    std::fprintf(stderr, "wirerig view: %s: %s\n", options_.scene.string().c_str(),
-                 opened.error().c_str());
-    return false;
-  }
+  if (!description) return Error{description.error()};  // it names the file
+  if (Result<bool> opened = Open(description.value()); !opened)
+    return Error{options_.scene.string() + ": " + opened.error()};
   camera() = picture_->InitialCamera(display_size());
   return true;
 }

@@ -88,16 +88,21 @@ struct GltfExportReport {
   double quantization_max_error = 0.0;
 };
 
-// The most bytes a .glb can hold (its lengths are 32-bit).
-inline constexpr double kMaxGlbBytes = 4294967295.0;
+// The most bytes an export may take, either form: a .glb's lengths are 32-bit, and a .gltf's
+// .bin beyond that is more than engines load (and than the export may hold in memory).
+inline constexpr double kMaxGltfBytes = 4294967295.0;
 
 // A lower bound of the bytes ExportGltf writes for `keys` keys of a mesh of `vertex_count`
 // render vertices (normals baked when `normals`) and `joint_count` spine samples: the morph
 // targets' deltas (kMorph, or kSkin with residuals; at the quantized stride when
-// options.quantize) and, in kSkin, the joints' keys. For refusing before baking an export that
-// cannot be written (a .glb over kMaxGlbBytes).
+// options.quantize) and their weights (keys^2 floats), and, in kSkin, the joints' keys. For
+// refusing, before baking, an export that cannot be written (over kMaxGltfBytes); ExportGltf
+// refuses it too.
 double EstimateGltfBytes(std::size_t vertex_count, std::size_t joint_count, double keys,
                          bool normals, const GltfExportOptions& options);
+
+// "the export needs at least N GB, more than a glTF buffer may hold (4.29 GB)".
+std::string GltfTooLargeMessage(double bytes);
 
 // Exports `bake` of `mesh` to `out` (".glb", or ".gltf" plus "<stem>.bin"; the extension is
 // matched case-insensitively). Refuses, naming the field: another extension; a mesh without

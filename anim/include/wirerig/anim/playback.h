@@ -62,8 +62,9 @@ class Playback {
 
   // Positions (and normals, if not empty) of the welded vertices at playback time t (s); the
   // clip's loop mode maps t to clip time. `warnings`, if not empty, gets one entry per part.
-  // Every consumer draws or exports floats: an output that is not finite as a float (a
-  // deformation that overflowed) fails, naming it ("positions[12]: not finite as a float ...").
+  // Every consumer draws or exports floats: an output that is not finite or lies beyond 1e7 m
+  // from the origin (a deformation that overflowed; beyond it float normals can overflow) fails
+  // alike in both evaluations, naming it ("positions[12]: not finite, or beyond 1e7 m ...").
   Status Evaluate(double t, std::span<Vec3> positions, std::span<Vec3> normals,
                   std::span<PartWarnings> warnings = {});
   // The same into float buffers (EvaluateRigJob's float outputs): vertex i's position at

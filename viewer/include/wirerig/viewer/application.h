@@ -2,7 +2,7 @@
 // (GLFW, OpenGL 3.3 core, Dear ImGui) or, with --no-window, a headless EGL context, and runs
 // the loop:
 //
-//   OnInitialize()                  once, with the GL context current; false aborts (exit 1)
+//   OnInitialize()                  once, with the GL context current; an error aborts (exit 1)
 //   per displayed frame:
 //     input (mouse, keys, or the replayed --input script)
 //     OnUpdate(dt)                  zero or more times, at the fixed step dt (simulation time;
@@ -79,7 +79,8 @@ class Application {
   Result<bool> Run(const ApplicationOptions& options);
 
  protected:
-  virtual bool OnInitialize() { return true; }
+  // An error is printed once, after the program name (it should name the file at fault).
+  virtual Result<bool> OnInitialize() { return true; }
   virtual void OnUpdate(double dt) { (void)dt; }
   virtual void OnDisplay(RenderFrame& frame) = 0;
   virtual void OnGui() {}

@@ -55,7 +55,7 @@ class SceneViewer : public Application {
   int selected_part() const { return selected_part_; }
 
  protected:
-  bool OnInitialize() override;
+  Result<bool> OnInitialize() override;
   void OnDisplay(RenderFrame& frame) override;
   void OnGui() override;
   void OnShutdown() override;
