@@ -37,7 +37,8 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
   bake->add_option("-o,--output", options.output, "Output file: .glb, or .gltf (+ .bin)")
       ->required();
   bake->add_option("--mode", options.mode,
-                   "morph: a morph target per key (exact); skin: a joint per spine sample")
+                   "skin: the rig's joints plus a few per deformable part, fitted to the bake, "
+                   "and corrective shapes; morph: a morph target per key (exact, large)")
       ->check(CLI::IsMember({"morph", "skin"}))
       ->capture_default_str();
   bake->add_option("--fps", options.fps, "Keys per second")
@@ -48,6 +49,38 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
                  "skin mode: add residual morph targets so the export matches the bake exactly");
   bake->add_flag("--quantize", options.quantize,
                  "Store morph position (and normal) deltas as shorts (KHR_mesh_quantization)");
+  bake->add_option("--max-joints", options.max_joints, "skin mode: joints per skin at most")
+      ->check(InRange(1, 65535))
+      ->capture_default_str();
+  bake->add_option("--joints-per-part", options.joints_per_part,
+                   "skin mode: joints of a deformable part at most (0: one per spine sample)")
+      ->check(InRange(0, 65535))
+      ->capture_default_str();
+  bake->add_option("--max-correctives", options.max_correctives,
+                   "skin mode: corrective shapes at most (0: none)")
+      ->check(InRange(0, 256))
+      ->capture_default_str();
+  bake->add_option("--corrective-error", options.corrective_error,
+                   "skin mode: correctives are added until the error is below this, m")
+      ->check(Above(0))
+      ->capture_default_str();
+  // Options that do not apply to the chosen mode are refused, not ignored.
+  bake->callback([bake, &options] {
+    if (options.mode == "morph") {
+      for (const char* name : {"--residual", "--max-joints", "--joints-per-part",
+                               "--max-correctives", "--corrective-error"}) {
+        if (bake->count(name) > 0) throw CLI::ValidationError(name, "applies to --mode skin only");
+      }
+    } else if (options.residual &&
+               (bake->count("--max-correctives") > 0 || bake->count("--corrective-error") > 0)) {
+      throw CLI::ValidationError("--residual",
+                                 "carries a target per key: it replaces the corrective shapes");
+    } else if (options.quantize && !options.residual && options.max_correctives == 0) {
+      throw CLI::ValidationError("--quantize",
+                                 "quantizes morph targets: this skin has none (no --residual, "
+                                 "--max-correctives 0)");
+    }
+  });
   AddImportLimitOptions(bake, options.import_limits);
   return bake;
 }
@@ -79,6 +112,10 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
       options.mode == "skin" ? GltfAnimationMode::kSkin : GltfAnimationMode::kMorph;
   export_options.residual_morph_targets = options.residual;
   export_options.quantize = options.quantize;
+  export_options.max_joints = options.max_joints;
+  export_options.max_joints_per_part = options.joints_per_part;
+  export_options.max_correctives = options.max_correctives;
+  export_options.corrective_error = options.corrective_error;
   export_options.node_name = scene.description.name;
   // An export too large to write is refused with its numbers before anything is baked.
   {
@@ -132,9 +169,22 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   out << line;
   if (export_options.mode == GltfAnimationMode::kSkin) {
     std::snprintf(line, sizeof line,
-                  "skin error against the bake: max %.3g m (%.3g of the diagonal), RMS %.3g m\n",
-                  report.skin_max_error, report.skin_max_error_relative, report.skin_rms_error);
+                  "skin: %zu joints, error against the bake max %.3g m (%.3g of the diagonal), "
+                  "RMS %.3g m\n",
+                  report.joint_count, report.skin_max_error, report.skin_max_error_relative,
+                  report.skin_rms_error);
     out << line;
+    if (options.residual) {
+      std::snprintf(line, sizeof line, "residual targets: %zu, error max %.3g m\n",
+                    report.morph_target_count, report.residual_max_error);
+      out << line;
+    } else if (options.max_correctives > 0) {
+      std::snprintf(line, sizeof line,
+                    "correctives: %zu shapes, error against the bake max %.3g m, RMS %.3g m\n",
+                    report.corrective_count, report.corrected_max_error,
+                    report.corrected_rms_error);
+      out << line;
+    }
   }
   for (const std::string& warning : bake.value().warnings) out << "warning: " << warning << "\n";
   for (const std::string& warning : report.warnings) out << "warning: " << warning << "\n";

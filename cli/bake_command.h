@@ -4,6 +4,7 @@
 // output file.
 #pragma once
 
+#include <cstddef>
 #include <iosfwd>
 #include <string>
 
@@ -21,7 +22,11 @@ struct BakeCommandOptions {
   std::string clip;  // empty: the scene's first clip
   bool residual = false;
   bool quantize = false;
-  bool progress = false;  // set by main when stderr is a terminal
+  std::size_t max_joints = 64;       // skin mode: GltfExportOptions::max_joints
+  std::size_t joints_per_part = 8;   // skin mode: GltfExportOptions::max_joints_per_part
+  std::size_t max_correctives = 16;  // skin mode: GltfExportOptions::max_correctives
+  double corrective_error = 1e-3;    // skin mode: GltfExportOptions::corrective_error, m
+  bool progress = false;             // set by main when stderr is a terminal
   ImportLimitOptions import_limits;
 };
 

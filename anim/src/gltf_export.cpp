@@ -9,12 +9,14 @@
 #include <utility>
 
 #include "gltf_buffers.h"
+#include "gltf_correctives.h"
 #include "gltf_input.h"
 #include "gltf_material.h"
 #include "gltf_mesh.h"
 #include "gltf_morph.h"
 #include "gltf_paths.h"
 #include "gltf_skin.h"
+#include "gltf_skin_fit.h"
 #include "gltf_skinning.h"
 #include "gltf_write.h"
 
@@ -68,34 +70,73 @@ gltf::MorphTargetSet ResidualDeltas(gltf::SkinFit fit, std::size_t keys, std::si
 
 // Adds the skeleton, skin and (optionally) residual targets; fills the skin numbers of `report`.
 // Returns the residual targets (none without residuals).
-gltf::MorphTargetsAdded AddSkinMode(tinygltf::Model& model, tinygltf::Animation& animation,
-                                    const Mesh& mesh, const BakedAnimation& bake,
-                                    const gltf::BaseVertices& base, bool residuals,
-                                    const gltf::MorphQuantization& quantization, int mesh_index,
-                                    int time_accessor, GltfExportReport* report) {
-  const gltf::Skeleton skeleton = gltf::BuildSkeleton(bake);
-  const gltf::SkinInfluences influences = gltf::MakeSkinInfluences(bake);
+Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::Animation& animation,
+                                            const Mesh& mesh, const BakedAnimation& bake,
+                                            const gltf::BaseVertices& base,
+                                            const GltfExportOptions& options,
+                                            const gltf::MorphQuantization& quantization,
+                                            int mesh_index, int time_accessor,
+                                            GltfExportReport* report) {
+  gltf::SkinFitOptions fit_options;
+  fit_options.max_joints = options.max_joints;
+  fit_options.max_joints_per_part = options.max_joints_per_part;
+  if (!options.fit_skin) fit_options.iterations = fit_options.weight_rounds = 0;
+  Result<gltf::FittedSkin> fitted = gltf::FitSkeleton(bake, base, fit_options);
+  if (!fitted) return Error{fitted.error()};
+  const gltf::Skeleton& skeleton = fitted.value().skeleton;
+  const gltf::SkinInfluences& influences = fitted.value().influences;
+  const bool residuals = options.residual_morph_targets;
   std::vector<int> roots;
   model.nodes[0].skin = gltf::AddSkeleton(model, animation, skeleton, time_accessor, &roots);
   model.scenes[0].nodes.insert(model.scenes[0].nodes.end(), roots.begin(), roots.end());
   gltf::AddSkinAttributes(model, mesh_index, influences, skeleton.JointCount());
-  gltf::SkinFit fit = gltf::FitSkin(skeleton, influences, base, bake, residuals);
+  const bool correct = !residuals && options.max_correctives > 0;
+  gltf::SkinFit fit = gltf::FitSkin(skeleton, influences, base, bake, residuals || correct);
   report->joint_count = skeleton.JointCount();
   report->skin_max_error = fit.max_error;
   report->skin_rms_error = fit.rms_error;
+  report->corrected_max_error = fit.max_error;
+  report->corrected_rms_error = fit.rms_error;
   const double diagonal = ComputeBounds(mesh).Diagonal();
   if (diagonal > 0.0) {
     report->skin_max_error_relative = fit.max_error / diagonal;
     report->skin_rms_error_relative = fit.rms_error / diagonal;
   }
-  if (!residuals) return {};
-  report->morph_target_count = bake.KeyCount();
-  report->residual_max_error = fit.residual_max_error;
-  // The weights' keys first: the targets are the last (streamed) part of the buffer.
-  gltf::AddKeyWeightsChannel(model, animation, 0, time_accessor, bake.KeyCount());
-  return gltf::AddMorphTargets(model, mesh_index,
-                               ResidualDeltas(std::move(fit), bake.KeyCount(), base.Count()),
-                               quantization);
+  if (residuals) {
+    report->morph_target_count = bake.KeyCount();
+    report->residual_max_error = fit.residual_max_error;
+    // The weights' keys first: the targets are the last (streamed) part of the buffer.
+    gltf::AddKeyWeightsChannel(model, animation, 0, time_accessor, bake.KeyCount());
+    return gltf::AddMorphTargets(model, mesh_index,
+                                 ResidualDeltas(std::move(fit), bake.KeyCount(), base.Count()),
+                                 quantization);
+  }
+  if (!correct || fit.max_error <= options.corrective_error) return gltf::MorphTargetsAdded{};
+  gltf::CorrectiveOptions corrective_options;
+  corrective_options.max_shapes = options.max_correctives;
+  corrective_options.max_error = options.corrective_error;
+  auto correctives = std::make_shared<const gltf::Correctives>(
+      gltf::FitCorrectives(skeleton, influences, base, bake, fit, corrective_options));
+  report->corrective_count = correctives->shape_count;
+  report->morph_target_count = correctives->shape_count;
+  report->corrected_max_error = correctives->max_error;
+  report->corrected_rms_error = correctives->rms_error;
+  if (correctives->shape_count == 0) return gltf::MorphTargetsAdded{};
+  gltf::AddWeightsChannel(model, animation, 0, time_accessor, correctives->weights);
+  gltf::MorphTargetSet set;
+  set.key_count = correctives->shape_count;
+  set.vertex_count = base.Count();
+  set.normals = !correctives->normals.empty();
+  set.name_prefix = "corrective_";
+  set.deltas = [correctives](std::size_t s, std::span<float> positions, std::span<float> normals) {
+    const std::size_t values = positions.size();
+    std::copy_n(correctives->positions.begin() + static_cast<std::ptrdiff_t>(s * values), values,
+                positions.begin());
+    if (normals.empty()) return;
+    std::copy_n(correctives->normals.begin() + static_cast<std::ptrdiff_t>(s * values), values,
+                normals.begin());
+  };
+  return gltf::AddMorphTargets(model, mesh_index, std::move(set), quantization);
 }
 
 }  // namespace
@@ -186,8 +227,11 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
     targets = gltf::AddMorphTargets(model, mesh_index, KeyDeltas(base, bake), quantization);
     report.morph_target_count = bake.KeyCount();
   } else {
-    targets = AddSkinMode(model, animation, mesh, bake, base, options.residual_morph_targets,
-                          quantization, mesh_index, time_accessor, &report);
+    Result<gltf::MorphTargetsAdded> skinned =
+        AddSkinMode(model, animation, mesh, bake, base, options, quantization, mesh_index,
+                    time_accessor, &report);
+    if (!skinned) return Error{out.string() + ": skin: " + skinned.error()};
+    targets = std::move(skinned).value();
   }
   model.animations.push_back(std::move(animation));
   report.quantized_position_targets = targets.quantized_position_targets;

@@ -290,7 +290,7 @@ MorphTargetsAdded AddMorphTargets(tinygltf::Model& model, int mesh_index, MorphT
     if (normals) {
       targets[k]["NORMAL"] = add(stream.NormalBytes(k), stream.NormalsQuantized(k));
     }
-    names.emplace_back("key_" + std::to_string(k));
+    names.emplace_back(set.name_prefix + std::to_string(k));
   }
 
   tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(mesh_index)];
@@ -306,6 +306,11 @@ void AddKeyWeightsChannel(tinygltf::Model& model, tinygltf::Animation& animation
                           int time_accessor, std::size_t key_count) {
   std::vector<float> weights(key_count * key_count, 0.0f);
   for (std::size_t k = 0; k < key_count; ++k) weights[k * key_count + k] = 1.0f;
+  AddWeightsChannel(model, animation, node, time_accessor, weights);
+}
+
+void AddWeightsChannel(tinygltf::Model& model, tinygltf::Animation& animation, int node,
+                       int time_accessor, const std::vector<float>& weights) {
   tinygltf::AnimationSampler sampler;
   sampler.input = time_accessor;
   sampler.output = AddFloatAccessor(model, weights, TINYGLTF_TYPE_SCALAR, 0, false);

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <functional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <tiny_gltf.h>
@@ -24,7 +25,8 @@ using DeltaSource =
     std::function<void(std::size_t key, std::span<float> positions, std::span<float> normals)>;
 
 struct MorphTargetSet {
-  std::size_t key_count = 0;
+  std::size_t key_count = 0;         // targets (one per key in morph mode)
+  std::string name_prefix = "key_";  // target k is named name_prefix + k
   std::size_t vertex_count = 0;
   bool normals = false;
   DeltaSource deltas;
@@ -82,7 +84,7 @@ struct MorphTargetsAdded {
 // Adds `set.key_count` morph targets to every primitive of mesh `mesh_index`, all primitives
 // sharing the same accessors (POSITION with min/max as glTF requires; NORMAL when the set has
 // normals), with views after buffer 0's in-memory data: nothing may be appended to buffer 0
-// afterwards. Sets the mesh's default weights (all 0) and its extras.targetNames ("key_<k>");
+// afterwards. Sets the mesh's default weights (all 0) and its extras.targetNames (name_prefix + k);
 // adds KHR_mesh_quantization to extensionsUsed and extensionsRequired when a key is quantized.
 MorphTargetsAdded AddMorphTargets(tinygltf::Model& model, int mesh_index, MorphTargetSet set,
                                   const MorphQuantization& quantization);
@@ -92,5 +94,9 @@ MorphTargetsAdded AddMorphTargets(tinygltf::Model& model, int mesh_index, MorphT
 // the mesh blends linearly from target k to target k + 1.
 void AddKeyWeightsChannel(tinygltf::Model& model, tinygltf::Animation& animation, int node,
                           int time_accessor, std::size_t key_count);
+
+// The same with any weights: #K x #targets values, key-major.
+void AddWeightsChannel(tinygltf::Model& model, tinygltf::Animation& animation, int node,
+                       int time_accessor, const std::vector<float>& weights);
 
 }  // namespace wirerig::gltf

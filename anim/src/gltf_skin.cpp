@@ -10,19 +10,7 @@
 namespace wirerig::gltf {
 namespace {
 
-// A rigid transform in double.
-struct Rigid {
-  Quat rotation = Quat::Identity();
-  Vec3 translation = Vec3::Zero();
-  Rigid Compose(const Rigid& local) const {
-    return {rotation * local.rotation, translation + rotation * local.translation};
-  }
-  // The transform `local` with Compose(local) == world.
-  Rigid LocalOf(const Rigid& world) const {
-    const Quat inverse = rotation.conjugate();
-    return {inverse * world.rotation, inverse * (world.translation - translation)};
-  }
-};
+using Rigid = RigidTransform;
 
 // Float as stored, and back to double as read (rotation normalized).
 std::pair<Vec3f, Quatf> Store(const Rigid& local) {
@@ -33,7 +21,7 @@ Rigid Load(const Vec3f& t, const Quatf& q) {
 }
 
 // Locals of every joint for world transforms `world` (#J), parents first.
-void StoreLocals(const std::vector<int>& parent, const std::vector<Rigid>& world,
+void StoreLocals(const std::vector<int>& parent, std::span<const Rigid> world,
                  std::vector<Vec3f>* translations, std::vector<Quatf>* rotations) {
   std::vector<Rigid> stored_world(world.size());
   for (std::size_t j = 0; j < world.size(); ++j) {
@@ -48,48 +36,18 @@ void StoreLocals(const std::vector<int>& parent, const std::vector<Rigid>& world
 
 }  // namespace
 
-Skeleton BuildSkeleton(const BakedAnimation& bake) {
+Skeleton MakeSkeleton(std::vector<int> parent, std::vector<std::string> names,
+                      std::span<const RigidTransform> rest, std::span<const RigidTransform> keyed) {
   Skeleton skeleton;
-  std::vector<std::size_t> first_joint;
-  for (std::size_t i = 0; i < bake.spines.size(); ++i) {
-    const BakedSpine& spine = bake.spines[i];
-    first_joint.push_back(skeleton.parent.size());
-    const std::string base = spine.name.empty() ? "spine" + std::to_string(i) : spine.name;
-    for (std::size_t s = 0; s < spine.SampleCount(); ++s) {
-      int parent = static_cast<int>(skeleton.parent.size()) - 1;
-      if (s == 0) {
-        parent = spine.parent < 0
-                     ? -1
-                     : static_cast<int>(first_joint[static_cast<std::size_t>(spine.parent)]) +
-                           spine.parent_joint;
-      }
-      skeleton.parent.push_back(parent);
-      std::string name = base;
-      name.append("_").append(std::to_string(s));
-      skeleton.names.push_back(std::move(name));
-    }
-  }
+  skeleton.parent = std::move(parent);
+  skeleton.names = std::move(names);
   const std::size_t joints = skeleton.JointCount();
-  const std::size_t keys = bake.KeyCount();
-  auto world_at = [&](bool rest, std::size_t k) {
-    std::vector<Rigid> world;
-    world.reserve(joints);
-    for (const BakedSpine& spine : bake.spines) {
-      const std::size_t n = spine.SampleCount();
-      for (std::size_t s = 0; s < n; ++s) {
-        world.push_back(
-            rest ? Rigid{spine.rest_rotations[s].normalized(), spine.rest_points[s]}
-                 : Rigid{spine.rotations[k * n + s].normalized(), spine.points[k * n + s]});
-      }
-    }
-    return world;
-  };
-  StoreLocals(skeleton.parent, world_at(true, 0), &skeleton.rest_translations,
-              &skeleton.rest_rotations);
+  const std::size_t keys = joints == 0 ? 0 : keyed.size() / joints;
+  StoreLocals(skeleton.parent, rest, &skeleton.rest_translations, &skeleton.rest_rotations);
   for (std::size_t k = 0; k < keys; ++k) {
-    StoreLocals(skeleton.parent, world_at(false, k), &skeleton.translations, &skeleton.rotations);
+    StoreLocals(skeleton.parent, keyed.subspan(k * joints, joints), &skeleton.translations,
+                &skeleton.rotations);
   }
-  // Consecutive keys of a joint in the same hemisphere, so that slerp takes the short way.
   for (std::size_t k = 1; k < keys; ++k) {
     for (std::size_t j = 0; j < joints; ++j) {
       const Quatf& previous = skeleton.rotations[(k - 1) * joints + j];
@@ -97,9 +55,9 @@ Skeleton BuildSkeleton(const BakedAnimation& bake) {
       if (previous.dot(q) < 0.0f) q.coeffs() = -q.coeffs();
     }
   }
-  const std::vector<Mat4d> rest =
+  const std::vector<Mat4d> rest_globals =
       JointGlobals(skeleton, skeleton.rest_translations, skeleton.rest_rotations);
-  for (const Mat4d& g : rest) {
+  for (const Mat4d& g : rest_globals) {
     Mat4d inverse = Mat4d::Identity();
     const Mat3 r = g.topLeftCorner<3, 3>().transpose();
     inverse.topLeftCorner<3, 3>() = r;
@@ -109,41 +67,26 @@ Skeleton BuildSkeleton(const BakedAnimation& bake) {
   return skeleton;
 }
 
-SkinInfluences MakeSkinInfluences(const BakedAnimation& bake) {
-  SkinInfluences influences;
-  std::vector<std::pair<double, std::uint32_t>> slots;  // (weight, joint), distinct joints
-  for (std::size_t v = 0; v < bake.vertex_count; ++v) {
-    slots.clear();
-    double sum = 0.0;
-    for (std::size_t c = 0; c < 4; ++c) {
-      const double w = bake.skin_weights[v][static_cast<Eigen::Index>(c)];
-      if (!(w > 0.0)) continue;
-      const std::uint32_t joint = bake.skin_joints[v][c];
-      auto same = std::find_if(slots.begin(), slots.end(),
-                               [&](const auto& slot) { return slot.second == joint; });
-      if (same != slots.end()) {
-        same->first += w;
-      } else {
-        slots.emplace_back(w, joint);
-      }
-      sum += w;
-    }
-    std::sort(slots.begin(), slots.end(),
-              [](const auto& a, const auto& b) { return a.first > b.first; });
-    std::array<float, 4> weights{};
-    float rest = 1.0f;
-    for (std::size_t c = 1; c < slots.size(); ++c) {
-      weights[c] = static_cast<float>(slots[c].first / sum);
-      rest -= weights[c];
-    }
-    weights[0] = rest;
-    for (std::size_t c = 0; c < 4; ++c) {
-      influences.joints.push_back(c < slots.size() ? static_cast<std::uint16_t>(slots[c].second)
-                                                   : std::uint16_t{0});
-      influences.weights.push_back(weights[c]);
-    }
+void AppendInfluences(std::vector<std::pair<std::uint32_t, double>> pairs,
+                      SkinInfluences* influences) {
+  std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) {
+    return a.second != b.second ? a.second > b.second : a.first < b.first;
+  });
+  if (pairs.size() > 4) pairs.resize(4);
+  double sum = 0.0;
+  for (const auto& pair : pairs) sum += pair.second;
+  std::array<float, 4> weights{};
+  float rest = 1.0f;
+  for (std::size_t c = 1; c < pairs.size(); ++c) {
+    weights[c] = static_cast<float>(pairs[c].second / sum);
+    rest -= weights[c];
   }
-  return influences;
+  weights[0] = rest;
+  for (std::size_t c = 0; c < 4; ++c) {
+    influences->joints.push_back(c < pairs.size() ? static_cast<std::uint16_t>(pairs[c].first)
+                                                  : std::uint16_t{0});
+    influences->weights.push_back(weights[c]);
+  }
 }
 
 int AddSkeleton(tinygltf::Model& model, tinygltf::Animation& animation, const Skeleton& skeleton,

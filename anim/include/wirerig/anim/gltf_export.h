@@ -8,13 +8,15 @@
 //    target (POSITION and NORMAL deltas, bake - rest) and the mesh node's `weights` are animated
 //    with weight k = 1 at key k and 0 elsewhere. At the keys the asset reproduces the bake up to
 //    float rounding; between keys positions interpolate linearly.
-//  * kSkin: a joint per spine sample (BakedSpine), chained along each spine; a child spine's first
-//    joint hangs from its parent spine's joint `parent_joint`. Joint nodes are animated with
-//    translation + rotation keys taken from the baked spine frames; vertices are skinned with
-//    BakedAnimation::skin_joints / skin_weights. Linear blend skinning only approximates the
-//    wire deformation: the report gives the error at every key. With residual morph targets the
-//    asset also carries, per key, the delta that makes the skinned mesh match the bake exactly
-//    (up to float rounding) at that key.
+//  * kSkin: a skeleton of few joints: one per rigid part, up to max_joints_per_part spread along
+//    each deformable part, within max_joints; their translation + rotation keys and the
+//    vertices' weights (4 per vertex) are fitted to the bake (a skinning decomposition,
+//    gltf_skin_fit.h). What joints cannot do (a profile's bulge, a stretch) is carried by a few
+//    corrective morph targets (PCA of the skin's residual over the keys) with animated weights,
+//    added until every vertex is within corrective_error of the bake at every key. With
+//    residual morph targets instead, the asset carries per key the delta that makes the skinned
+//    mesh match the bake exactly (up to float rounding) at that key. The report gives the
+//    skin's error and the corrected one at every key.
 //
 // Files are written atomically (temporary file in the same folder, then renamed); on any error
 // no output file is created or left half-written. Morph targets are streamed to the file while
@@ -40,6 +42,18 @@ struct GltfExportOptions {
   GltfAnimationMode mode = GltfAnimationMode::kMorph;
   // kSkin only: add one residual morph target per key (bake minus the skinned reconstruction).
   bool residual_morph_targets = false;
+  // kSkin: the skeleton's budget (joints per skin), and the most joints a deformable part gets
+  // (0: a joint at every spine sample, within max_joints). A rigid part gets one joint.
+  std::size_t max_joints = 64;
+  std::size_t max_joints_per_part = 8;
+  // kSkin: fit the joints' transforms and the weights to the bake (gltf_skin_fit.h); false:
+  // the baked spine frames and the bake's weights (BuildSpineSkin) as they are.
+  bool fit_skin = true;
+  // kSkin without residual targets: corrective blend shapes (PCA of the skin's residual over
+  // all keys, gltf_correctives.h), added until every vertex is within corrective_error (m) of
+  // the bake at every key, at most max_correctives of them (0: none).
+  std::size_t max_correctives = 16;
+  double corrective_error = 1e-3;
   // Name of the mesh node (and mesh); empty: the clip's name, or "mesh" when that is empty.
   std::string node_name;
   // Folder the mesh's MeshMaterial::base_color_texture paths are relative to (the source file's
@@ -64,8 +78,8 @@ struct GltfExportReport {
   std::size_t triangle_count = 0;            // #F
   std::size_t primitive_count = 0;           // one per mesh part with triangles
   std::size_t key_count = 0;                 // #K
-  std::size_t morph_target_count = 0;        // #K in kMorph, #K or 0 in kSkin
-  std::size_t joint_count = 0;               // kSkin: sum of the spines' sample counts
+  std::size_t morph_target_count = 0;        // #K in kMorph; #K, the correctives or 0 in kSkin
+  std::size_t joint_count = 0;               // kSkin: the skeleton's joints
   std::size_t material_count = 0;
   std::size_t texture_count = 0;
   std::vector<std::string> warnings;  // what was left out, and why
@@ -81,6 +95,11 @@ struct GltfExportReport {
   // kSkin with residual morph targets: the same max error once the residuals are applied, m
   // (float residuals; quantized ones add at most quantization_max_error).
   double residual_max_error = 0.0;
+  // kSkin with correctives: their count, and the error once they are applied (m; max over
+  // keys and vertices, RMS over all). With none, the skin's errors.
+  std::size_t corrective_count = 0;
+  double corrected_max_error = 0.0;
+  double corrected_rms_error = 0.0;
   // With options.quantize: the targets stored as shorts, and the bound of their position
   // rounding per vertex, m (sqrt(3) / 2 / 32767 = 2.6e-5 m; 0 when none is quantized).
   std::size_t quantized_position_targets = 0;

@@ -1,0 +1,41 @@
+// Corrective blend shapes for what the skin's joints cannot do (a profile's bulge, a wire's
+// stretch): the residual that makes the skinned mesh exact at every key (SkinFit's residual
+// morph targets, in bind space) compressed by PCA to the few shapes that carry it, with their
+// weights per key as the animation, instead of one target per key.
+//
+// The residuals form a #K x 3#V matrix X; the eigenvectors u_i of X X^T (largest eigenvalue
+// lambda_i first) give shapes X^T u_i / sqrt(lambda_i) and weights u_i sqrt(lambda_i) per key
+// (the SVD of X). Shapes are added until every vertex at every key is within `max_error` of its
+// exact residual (in bind space: the skinning matrix blends rotations, so the skinned error is
+// no larger up to the blend's shrinkage), or `max_shapes` are used. Normal deltas are projected
+// on the same weights (least squares).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "gltf_mesh.h"
+#include "gltf_skinning.h"
+
+namespace wirerig::gltf {
+
+struct CorrectiveOptions {
+  std::size_t max_shapes = 16;
+  double max_error = 1e-3;  // m
+};
+
+struct Correctives {
+  std::size_t shape_count = 0;
+  std::vector<float> positions;  // #S x #V x 3 bind-space deltas
+  std::vector<float> normals;    // #S x #V x 3, or empty
+  std::vector<float> weights;    // #K x #S, key-major
+  double max_error = 0.0;        // m: skinned, shapes applied, against the bake at the keys
+  double rms_error = 0.0;        // m
+};
+
+// `fit` must carry residuals (FitSkin with residuals) for `bake`.
+Correctives FitCorrectives(const Skeleton& skeleton, const SkinInfluences& influences,
+                           const BaseVertices& base, const BakedAnimation& bake, const SkinFit& fit,
+                           const CorrectiveOptions& options);
+
+}  // namespace wirerig::gltf

@@ -1,0 +1,52 @@
+// The skin mode's skeleton: a few joints per part, chosen among its spine samples, and their
+// transforms at every key fitted to the baked vertices (a skinning decomposition in the manner
+// of Dem Bones: the weights held fixed, each joint's rigid transform by weighted least squares
+// with the others held, in turn; rotations from the SVD, so they stay orthonormal).
+//
+// Joints: a part whose spine moves rigidly over the whole bake (every sample keeps its place in
+// the first sample's frame) gets one joint, at its first sample, named after the part; a
+// deformable part gets up to `max_joints_per_part` joints spread evenly over its samples from
+// the first to the last ("arm_0" ... "arm_6"), fewer when the skin's budget `max_joints` would
+// be exceeded (every part keeps at least one). A part's first joint hangs from the joint of its
+// parent part nearest before the attachment; the others from the joint before them.
+//
+// Weights: a vertex's bake weights on spine samples (BakedAnimation::skin_joints / weights),
+// each sample's weight split between the two chosen joints around it in proportion to its
+// place between them (all of it when it is a chosen joint); the 4 largest kept.
+//
+// Fit: every key starts from the baked spine frames at the chosen samples; `iterations` passes
+// update each joint's transform in turn to minimise the squared distance of its vertices'
+// skinned positions to the bake, a step kept only when it lowers that distance. Before that,
+// for `weight_rounds` rounds, the weights are solved with the transforms held
+// (gltf_skin_weights.h; the first round on the baked frames), each round followed by the
+// transform passes with the new weights held.
+#pragma once
+
+#include <cstddef>
+
+#include "gltf_mesh.h"
+#include "gltf_skin.h"
+#include "wirerig/anim/baked_animation.h"
+#include "wirerig/rig/result.h"
+
+namespace wirerig::gltf {
+
+struct SkinFitOptions {
+  std::size_t max_joints = 64;          // per skin
+  std::size_t max_joints_per_part = 8;  // deformable parts; 0: a joint at every spine sample
+  int iterations = 2;                   // fitting passes per key; 0: the baked spine frames
+  int weight_rounds = 2;  // weight solves (gltf_skin_weights.h), each followed by the passes
+};
+
+struct FittedSkin {
+  Skeleton skeleton;
+  SkinInfluences influences;
+};
+
+// `bake` must carry spines and skin weights on their samples (ExportGltf's input check). Fails
+// when the parts alone need more joints than `max_joints` (or, with a joint at every sample,
+// the samples do), giving the counts.
+Result<FittedSkin> FitSkeleton(const BakedAnimation& bake, const BaseVertices& base,
+                               const SkinFitOptions& options);
+
+}  // namespace wirerig::gltf

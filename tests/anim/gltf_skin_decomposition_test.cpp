@@ -1,0 +1,230 @@
+// The skin mode's decomposition (few joints fitted to the bake, weights solved, corrective
+// shapes) against animations whose answer is known: a two-bone elbow made by linear blend
+// skinning with known weights (the decomposition must find the blend the bake's own weights do
+// not have), a bending tube (a deformable part gets a chain of joints within its budget) and a
+// bulge no joint can make (the corrective shapes carry it, as many as its rank).
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "support/test_folder.h"
+#include "wirerig/anim/gltf_export.h"
+#include "wirerig/rig/procedural_mesh.h"
+
+namespace wirerig {
+namespace {
+namespace WIRERIG_TEST_FILE {
+
+namespace fs = std::filesystem;
+
+constexpr double kLength = 1.0;  // the tube along +y, two parts of half the length each
+constexpr int kKeys = 11;
+
+Quat Bend(double angle) { return Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ())); }
+
+// An elbow: the lower part still, the upper part turned about the joint at y = L/2 by up to
+// 90 degrees; each vertex moves by the blend (1 - b) lower + b upper, b = smoothstep over
+// [0.35, 0.65] L. The bake's own weights bind each vertex to its own part only (as a rig's
+// spine skin does), so only a fit of the weights finds the blend.
+struct Elbow {
+  Mesh mesh;
+  BakedAnimation bake;
+};
+
+double Blend(double y) {
+  const double t = std::clamp((y - 0.35) / 0.3, 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+// `bulge`: a swelling of the middle, in the rest pose (before the joints move it), growing
+// and shrinking with the keys: rank one over the keys. `true_weights`: the bake carries the
+// blend itself instead of the own-part weights.
+Elbow MakeElbow(double bulge = 0.0, bool true_weights = false) {
+  Elbow e;
+  e.mesh = MakeCylinder(0.08, kLength, 16, 20);
+  const Vec3 joint(0.0, kLength / 2.0, 0.0);
+  BakedAnimation& bake = e.bake;
+  bake.name = "elbow";
+  bake.vertex_count = e.mesh.positions.size();
+  for (int k = 0; k < kKeys; ++k) {
+    const double s = double(k) / (kKeys - 1);
+    const Quat turn = Bend(s * std::numbers::pi / 2.0);
+    bake.times.push_back(k / 10.0);
+    for (const Vec3& rest : e.mesh.positions) {
+      const Vec3 radial(rest.x(), 0.0, rest.z());
+      const Vec3 p = rest + bulge * std::sin(std::numbers::pi * s * 3.0) *
+                                std::exp(-std::pow((rest.y() - 0.5) / 0.1, 2)) * radial;
+      const double b = Blend(rest.y());
+      const Vec3 moved = (1.0 - b) * p + b * (joint + turn * (p - joint));
+      bake.positions.push_back(moved.cast<float>());
+    }
+  }
+  for (int i = 0; i < 2; ++i) {
+    BakedSpine spine;
+    spine.name = i == 0 ? "lower" : "upper";
+    spine.parent = i - 1;
+    spine.parent_joint = i == 0 ? 0 : 2;
+    for (int s = 0; s < 3; ++s) {
+      spine.rest_points.emplace_back(0.0, kLength / 2.0 * (i + s / 2.0), 0.0);
+      spine.rest_rotations.push_back(Quat::Identity());
+    }
+    for (int k = 0; k < kKeys; ++k) {
+      const Quat turn =
+          i == 0 ? Quat::Identity() : Bend(double(k) / (kKeys - 1) * std::numbers::pi / 2.0);
+      for (const Vec3& rest : spine.rest_points) {
+        spine.points.push_back(i == 0 ? rest : Vec3(joint + turn * (rest - joint)));
+        spine.rotations.push_back(turn);
+      }
+    }
+    bake.spines.push_back(std::move(spine));
+  }
+  for (const Vec3& p : e.mesh.positions) {
+    const std::uint32_t own = p.y() < kLength / 2.0 ? 0u : 3u;
+    const float b = float(Blend(p.y()));
+    bake.skin_joints.push_back(true_weights ? std::array<std::uint32_t, 4>{0, 3, 0, 0}
+                                            : std::array<std::uint32_t, 4>{own, 0, 0, 0});
+    bake.skin_weights.push_back(true_weights ? Vec4f(1.0f - b, b, 0.0f, 0.0f)
+                                             : Vec4f(1.0f, 0.0f, 0.0f, 0.0f));
+  }
+  return e;
+}
+
+GltfExportReport Export(const Elbow& e, const GltfExportOptions& options, const char* name) {
+  testing::TestFolder dir;
+  const Result<GltfExportReport> report = ExportGltf(e.mesh, e.bake, options, dir.path() / name);
+  EXPECT_TRUE(report.ok()) << report.error();
+  return report.ok() ? report.value() : GltfExportReport{};
+}
+
+GltfExportOptions SkinOptions() {
+  GltfExportOptions options;
+  options.mode = GltfAnimationMode::kSkin;
+  options.max_correctives = 0;
+  return options;
+}
+
+// Two rigid parts: a joint each. The bake's weights (own part only) leave the elbow's skin
+// 6 cm off; the decomposition recovers the known blend to float rounding.
+TEST(SkinDecomposition, RecoversAnElbowMadeByLinearBlendSkinning) {
+  const Elbow elbow = MakeElbow();
+  GltfExportOptions options = SkinOptions();
+  options.fit_skin = false;
+  const GltfExportReport unfitted = Export(elbow, options, "unfitted.glb");
+  options.fit_skin = true;
+  const GltfExportReport fitted = Export(elbow, options, "fitted.glb");
+  EXPECT_EQ(unfitted.joint_count, 2u);
+  EXPECT_EQ(fitted.joint_count, 2u);
+  EXPECT_GT(unfitted.skin_max_error, 0.03);
+  EXPECT_LT(fitted.skin_max_error, 1e-5);
+  std::printf("[ measured ] elbow skin error: bake's weights %.3g m, fitted %.3g m\n",
+              unfitted.skin_max_error, fitted.skin_max_error);
+}
+
+// A bend along the whole tube: both parts deform (no rigid part), so each gets a chain of
+// joints, at most max_joints_per_part, and the whole skin at most max_joints; more joints fit
+// the bend better.
+TEST(SkinDecomposition, ADeformablePartGetsAChainWithinItsBudget) {
+  Elbow e = MakeElbow();
+  // Replace the motion by a uniform bend of curvature kappa: each spine sample on the arc.
+  const double max_kappa = std::numbers::pi / 2.0 / kLength;
+  for (BakedSpine& spine : e.bake.spines) {
+    spine.rest_points.clear();
+    spine.rest_rotations.clear();
+    spine.points.clear();
+    spine.rotations.clear();
+  }
+  e.bake.positions.clear();
+  auto on_arc = [](double kappa, double y) {
+    if (kappa == 0.0) return Vec3(0.0, y, 0.0);
+    return Vec3((1.0 - std::cos(kappa * y)) / kappa, std::sin(kappa * y) / kappa, 0.0);
+  };
+  constexpr int kSamples = 9;
+  for (int i = 0; i < 2; ++i) {
+    for (int s = 0; s < kSamples; ++s) {
+      const double y = kLength / 2.0 * (i + double(s) / (kSamples - 1));
+      e.bake.spines[std::size_t(i)].rest_points.push_back(on_arc(0.0, y));
+      e.bake.spines[std::size_t(i)].rest_rotations.push_back(Quat::Identity());
+    }
+    e.bake.spines[std::size_t(i)].parent_joint = i == 0 ? 0 : kSamples - 1;
+  }
+  e.bake.skin_joints.clear();
+  e.bake.skin_weights.clear();
+  for (const Vec3& p : e.mesh.positions) {
+    const double u = std::clamp(p.y() / (kLength / 2.0), 0.0, 2.0) * (kSamples - 1);
+    const auto spine = std::uint32_t(u >= kSamples - 1 ? 1 : 0);
+    const double local = std::min(u - spine * (kSamples - 1), double(kSamples - 1) - 1e-9);
+    const auto s = std::uint32_t(std::floor(local));
+    const float f = float(local - s);
+    const std::uint32_t first = spine * kSamples + s;
+    e.bake.skin_joints.push_back(
+        {first, std::min(first + 1, spine * kSamples + kSamples - 1), 0, 0});
+    e.bake.skin_weights.emplace_back(1.0f - f, f, 0.0f, 0.0f);
+  }
+  for (int k = 0; k < kKeys; ++k) {
+    const double kappa = max_kappa * k / (kKeys - 1);
+    for (int i = 0; i < 2; ++i) {
+      for (int s = 0; s < kSamples; ++s) {
+        const double y = kLength / 2.0 * (i + double(s) / (kSamples - 1));
+        e.bake.spines[std::size_t(i)].points.push_back(on_arc(kappa, y));
+        e.bake.spines[std::size_t(i)].rotations.push_back(Bend(-kappa * y));
+      }
+    }
+    for (const Vec3& p : e.mesh.positions) {
+      const double y = std::clamp(p.y(), 0.0, kLength);
+      const Vec3 moved = on_arc(kappa, y) + Bend(-kappa * y) * Vec3(p.x(), 0.0, p.z());
+      e.bake.positions.push_back(moved.cast<float>());
+    }
+  }
+  double previous = 1e9;
+  for (std::size_t per_part : {2u, 3u, 5u, 9u}) {
+    SCOPED_TRACE(per_part);
+    GltfExportOptions options = SkinOptions();
+    options.max_joints_per_part = per_part;
+    const GltfExportReport report = Export(e, options, "chain.glb");
+    EXPECT_EQ(report.joint_count, 2 * per_part);
+    EXPECT_LT(report.skin_max_error, previous);
+    previous = report.skin_max_error;
+  }
+  EXPECT_LT(previous, 2e-3);  // a joint at every sample
+  // The budget: 6 joints for two parts, 3 each; fewer joints than parts is refused.
+  GltfExportOptions options = SkinOptions();
+  options.max_joints = 6;
+  EXPECT_EQ(Export(e, options, "budget.glb").joint_count, 6u);
+  options.max_joints = 1;
+  testing::TestFolder dir;
+  const Result<GltfExportReport> refused =
+      ExportGltf(e.mesh, e.bake, options, dir.path() / "x.glb");
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().find("the rig's 2 parts need a joint each, more than max_joints (1)"),
+            std::string::npos)
+      << refused.error();
+  EXPECT_FALSE(fs::exists(dir.path() / "x.glb"));
+}
+
+// A swelling no joint makes, of rank one over the keys (a fixed shape times a weight per key),
+// on the elbow's exact skin (its true weights and frames, nothing fitted): one corrective
+// shape carries it to float rounding; without correctives the skin misses it.
+TEST(SkinDecomposition, ACorrectiveShapeCarriesWhatTheJointsCannot) {
+  const Elbow elbow = MakeElbow(/*bulge=*/0.5, /*true_weights=*/true);
+  GltfExportOptions options = SkinOptions();
+  options.fit_skin = false;
+  const GltfExportReport skin_only = Export(elbow, options, "skin.glb");
+  options.max_correctives = 16;
+  options.corrective_error = 1e-5;
+  const GltfExportReport corrected = Export(elbow, options, "corrected.glb");
+  EXPECT_GT(skin_only.skin_max_error, 5e-3);
+  EXPECT_EQ(corrected.corrective_count, 1u);
+  EXPECT_EQ(corrected.morph_target_count, 1u);
+  EXPECT_LT(corrected.corrected_max_error, 1e-5);
+  // A cap on the shapes is kept, and no shape is added where the skin already meets the bound.
+  options.corrective_error = 1.0;
+  EXPECT_EQ(Export(elbow, options, "loose.glb").corrective_count, 0u);
+}
+
+}  // namespace WIRERIG_TEST_FILE
+}  // namespace
+}  // namespace wirerig
