@@ -78,12 +78,13 @@ if [ $need_cgal -eq 1 ]; then
 fi
 ln -sfn /usr/share/assimp/models "$asset_dir/assimp"
 
-# The Khronos glTF validator (npm), pinned by scripts/gltf_validator/package-lock.json; the
-# tests run it through scripts/validate_gltf.mjs.
+# The Khronos glTF validator and three.js (npm), pinned by scripts/gltf_validator/package-lock.json;
+# the tests run them through scripts/validate_gltf.mjs and scripts/three_skinned_positions.mjs.
 validator_dir=$repo_root/.cache/gltf-validator
 if ! cmp -s "$repo_root/scripts/gltf_validator/package-lock.json" "$validator_dir/package-lock.json" ||
-   [ ! -f "$validator_dir/node_modules/gltf-validator/package.json" ]; then
-  echo "setup: installing the glTF validator into $validator_dir"
+   [ ! -f "$validator_dir/node_modules/gltf-validator/package.json" ] ||
+   [ ! -f "$validator_dir/node_modules/three/package.json" ]; then
+  echo "setup: installing the glTF validator and three.js into $validator_dir"
   mkdir -p "$validator_dir"
   cp "$repo_root"/scripts/gltf_validator/package.json "$repo_root"/scripts/gltf_validator/package-lock.json "$validator_dir/"
   (cd "$validator_dir" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
