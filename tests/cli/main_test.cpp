@@ -65,6 +65,15 @@ TEST(WirerigExitCodes, UsageErrorsExitTwo) {
   ExpectExit(RunWirerig({"wire"}), 2, "input");  // missing argument
   ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--fps", "abc"}), 2, "--fps");  // 105
   ExpectExit(RunWirerig({"wire", "x.json", "--format", "xml"}), 2, "--format");
+  // Options that do not apply to the chosen mode are refused, not ignored.
+  ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--mode", "morph", "--max-joints", "8"}),
+             2, "--max-joints: applies to --mode skin only");
+  ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--mode", "skin", "--quantize",
+                         "--max-correctives", "0"}),
+             2, "--quantize: quantizes morph targets: this skin has none");
+  ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--mode", "skin", "--residual",
+                         "--max-correctives", "4"}),
+             2, "--residual: carries a target per key: it replaces the corrective shapes");
 #ifdef WIRERIG_HAS_VIEWER  // render and view exist only with the viewer
   // An image size out of range is a usage error like any other bad value (it exited 1).
   for (const char* size : {"0x0", "wide", "16x9000"}) {
