@@ -127,7 +127,8 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
     if (bytes > kMaxGltfBytes) {
       const bool morph = export_options.mode == GltfAnimationMode::kMorph || options.residual;
       char numbers[160];
-      std::snprintf(numbers, sizeof numbers, "%.0f keys (%g s at %g fps) x %zu vertices: ", keys,
+      std::snprintf(numbers, sizeof numbers,
+                    "%s keys (%g s at %g fps) x %zu vertices: ", KeyCountText(keys).c_str(),
                     clip->duration, options.fps, scene.mesh.positions.size());
       return fail(options.output + ": " + numbers + GltfTooLargeMessage(bytes) +
                   "; bake fewer keys (--fps, a shorter clip)" +

@@ -101,7 +101,14 @@ int main(int argc, char** argv) {
   // missed) says so and exits 1 instead of aborting; outputs are written to a temporary and
   // renamed, so nothing half-written is left.
   try {
-    return run();
+    const int code = run();
+    // Output that could not be written (a full disk, a closed pipe) is a failure, not success.
+    std::cout.flush();
+    if (!std::cout) {
+      std::cerr << "wirerig: cannot write standard output\n";
+      return 1;
+    }
+    return code;
   } catch (const std::bad_alloc&) {
     std::cerr << "wirerig: out of memory (the input asks for more than this machine has)\n";
     return 1;

@@ -12,6 +12,7 @@
 #include "wirerig/rig/atomic_file.h"
 #include "wirerig/rig/input_file.h"
 #include "wirerig/rig/json_fields.h"
+#include "wirerig/rig/output_file.h"
 
 #ifndef WIRERIG_SAMPLES_DIR
 #define WIRERIG_SAMPLES_DIR "samples"
@@ -99,6 +100,11 @@ int RunGalleryCommand(const SamplesCommandOptions& options, std::ostream& out, s
   const fs::path dir = SamplesDir(options);
   const fs::path page =
       options.page.empty() ? dir.parent_path() / "docs" / "gallery.md" : fs::path(options.page);
+  // Where the page goes is checked before any picture is drawn.
+  if (Result<bool> writable = CheckOutputFile(page, {".md"}); !writable) {
+    err << "wirerig gallery: " << writable.error() << "\n";
+    return 1;
+  }
   Result<std::vector<CatalogEntry>> catalog = LoadCatalog((dir / "catalog.json").string());
   if (!catalog) {
     err << "wirerig gallery: " << catalog.error() << "\n";

@@ -1,11 +1,13 @@
 #include "view_command.h"
 #include "option_checks.h"
 
+#include <iostream>
 #include <ostream>
 
 #include <CLI/CLI.hpp>
 
 #include "samples_command.h"
+#include "wirerig/rig/output_file.h"
 #include "wirerig/viewer/scene_viewer.h"
 
 #ifndef WIRERIG_SAMPLES_DIR
@@ -22,15 +24,28 @@ CLI::App* AddViewCommand(CLI::App& app, ViewCommandOptions& options) {
       ->check(ImageSize())
       ->capture_default_str();
   view->add_option("--frames", options.frames, "Stop after this many frames (0: run until closed)")
-      ->check(AtLeast(0));
+      ->check(InRange(0, 1e9));
   view->add_option("--input", options.input, "Replay an input script (mouse and keys per frame)");
   view->add_option("--screenshot", options.screenshot, "Write the last frame to this PNG");
-  view->add_flag("--no-window", options.no_window, "Run headless (EGL), for scripts and tests");
+  view->add_flag("--no-window", options.no_window,
+                 "Run headless (EGL), for scripts and tests; needs --frames");
+  // Headless, nothing can close the view: it must be told when to stop.
+  view->callback([view, &options] {
+    if (options.no_window && options.frames == 0)
+      throw CLI::ValidationError("--no-window", "needs --frames N (N >= 1): nothing can close it");
+  });
   AddImportLimitOptions(view, options.import_limits);
   return view;
 }
 
 int RunViewCommand(const ViewCommandOptions& options) {
+  // Where the screenshot goes is checked before the scene is loaded.
+  if (!options.screenshot.empty()) {
+    if (Result<bool> writable = CheckOutputFile(options.screenshot, {".png"}); !writable) {
+      std::cerr << "wirerig view: " << writable.error() << "\n";
+      return 1;
+    }
+  }
   SceneViewerOptions viewer;
   viewer.scene = options.scene;
   viewer.clip = options.clip;

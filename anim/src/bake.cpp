@@ -62,6 +62,12 @@ double EstimateBakeBytes(const Mesh& mesh, const RigModel& model, double keys,
   return keys * per_key;
 }
 
+std::string KeyCountText(double keys) {
+  char text[32];
+  std::snprintf(text, sizeof text, keys < 1e15 ? "%.0f" : "%.3g", keys);
+  return text;
+}
+
 std::vector<double> BakeKeyTimes(double duration, double fps) {
   std::vector<double> times;
   const auto whole = static_cast<std::size_t>(std::floor(duration * fps + 1e-9));
@@ -84,11 +90,11 @@ Result<BakedAnimation> BakeClip(const Mesh& mesh, const RigModel& model, const C
       !(bytes <= options.max_bytes)) {
     char message[320];
     std::snprintf(message, sizeof message,
-                  "the bake would hold %.0f keys (%g s at %g keys/s) x %zu vertices = %.3g GB, "
+                  "the bake would hold %s keys (%g s at %g keys/s) x %zu vertices = %.3g GB, "
                   "more than the %.3g GB a bake may take; bake a shorter clip or fewer keys per "
                   "second",
-                  key_count, clip.duration, options.fps, mesh.positions.size(), bytes / 1e9,
-                  options.max_bytes / 1e9);
+                  KeyCountText(key_count).c_str(), clip.duration, options.fps,
+                  mesh.positions.size(), bytes / 1e9, options.max_bytes / 1e9);
     return Error{message};
   }
   SpineSkin skin;

@@ -3,6 +3,7 @@
 #include "wirerig/anim/gltf_export.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -156,6 +157,8 @@ double EstimateGltfBytes(std::size_t vertex_count, std::size_t joint_count, doub
 }
 
 std::string GltfTooLargeMessage(double bytes) {
+  if (!std::isfinite(bytes))
+    return "the export needs more bytes than can be counted, more than a glTF buffer may hold";
   char message[200];
   std::snprintf(message, sizeof message,
                 "the export needs at least %.3g GB, more than a glTF buffer may hold (%.3g GB)",

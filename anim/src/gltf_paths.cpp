@@ -20,6 +20,22 @@ std::string PathToUri(const std::filesystem::path& path) {
   return uri;
 }
 
+std::optional<std::string> UriToPath(const std::string& uri) {
+  std::string path;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] != '%') {
+      path.push_back(uri[i]);
+      continue;
+    }
+    if (i + 2 >= uri.size() || !std::isxdigit(static_cast<unsigned char>(uri[i + 1])) ||
+        !std::isxdigit(static_cast<unsigned char>(uri[i + 2])))
+      return std::nullopt;
+    path.push_back(static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
+    i += 2;
+  }
+  return path;
+}
+
 std::string LowerCaseExtension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),

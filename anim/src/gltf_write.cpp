@@ -22,6 +22,7 @@
 #include "gltf_paths.h"
 #include "wirerig/rig/atomic_file.h"
 #include "wirerig/rig/input_file.h"
+#include "wirerig/rig/output_file.h"
 #include "wirerig/rig/temp_files.h"
 
 namespace wirerig::gltf {
@@ -75,6 +76,8 @@ std::uint32_t GetU32(const unsigned char* bytes) {
 Result<fs::path> WriteStreamAtomically(
     const fs::path& path, std::uintmax_t size, const std::function<bool(const ByteSink&)>& produce,
     const std::function<std::optional<std::string>(int)>& check = nullptr) {
+  if (std::optional<std::string> reason = NotARegularTarget(path))
+    return Error{path.string() + ": " + *reason};
   RemoveStaleTemporaryFiles(path);
   const fs::path temp = TemporaryPathFor(path);
   TemporaryFile registered(temp);  // removed if SIGINT or SIGTERM comes before the rename
@@ -239,11 +242,10 @@ std::optional<fs::path> OwnBinOf(const fs::path& out) {
     return std::nullopt;
   const auto uri = (*buffers)[0].find("uri");
   if (uri == (*buffers)[0].end() || !uri->is_string()) return std::nullopt;
-  const std::string name = uri->get<std::string>();
-  if (name.find('/') != std::string::npos || name.find('%') != std::string::npos ||
-      !IsOwnBinName(name, out.stem().string()))
+  const std::optional<std::string> name = UriToPath(uri->get<std::string>());
+  if (!name || name->find('/') != std::string::npos || !IsOwnBinName(*name, out.stem().string()))
     return std::nullopt;
-  return out.parent_path() / name;
+  return out.parent_path() / *name;
 }
 
 // The .gltf and its .bin switch together or not at all: the new .bin goes to a name no file
@@ -279,11 +281,16 @@ Result<std::vector<fs::path>> WriteGltfAndBin(tinygltf::Model model, const Buffe
     files.push_back(bin_path);
   }
   std::error_code ignored;
-  if (Result<fs::path> written = WriteFileAtomically(out, json); !written) {
-    if (buffer_size > 0) fs::remove(bin_path, ignored);
-    return Error{written.error()};
+  {
+    // The switch and keeping the new .bin happen together: a kill between them would leave the
+    // new .gltf referring to a .bin the signal cleanup removed.
+    const SignalsHeld held;
+    if (Result<fs::path> written = WriteFileAtomically(out, json); !written) {
+      if (buffer_size > 0) fs::remove(bin_path, ignored);
+      return Error{written.error()};
+    }
+    new_bin.Keep();
   }
-  new_bin.Keep();
   files.push_back(out);
   if (old_bin && *old_bin != bin_path) fs::remove(*old_bin, ignored);
   if (std::optional<std::string> problem = CheckWritten(out, json.size())) return Error{*problem};

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <system_error>
 
+#include "wirerig/rig/output_file.h"
 #include "wirerig/rig/temp_files.h"
 
 namespace wirerig {
@@ -13,6 +14,8 @@ namespace wirerig {
 Result<std::filesystem::path> WriteFileAtomically(const std::filesystem::path& path,
                                                   std::string_view bytes) {
   namespace fs = std::filesystem;
+  if (std::optional<std::string> reason = NotARegularTarget(path))
+    return Error{path.string() + ": " + *reason};
   RemoveStaleTemporaryFiles(path);
   const fs::path temp = TemporaryPathFor(path);
   TemporaryFile registered(temp);  // removed if SIGINT or SIGTERM comes before the rename

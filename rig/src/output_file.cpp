@@ -24,6 +24,16 @@ Error Fail(const fs::path& path, const std::string& reason) {
 
 }  // namespace
 
+std::optional<std::string> NotARegularTarget(const fs::path& path) {
+  std::error_code error;
+  const fs::file_status status = fs::symlink_status(path, error);
+  if (error || !fs::exists(status) || fs::is_regular_file(status)) return std::nullopt;
+  if (fs::is_symlink(status))
+    return "is a symbolic link: give the file it points to (writing would replace the link)";
+  if (fs::is_directory(status)) return "is a directory, not a file to write";
+  return "is not a regular file (a device, FIFO or socket): writing would replace it";
+}
+
 Result<bool> CheckOutputFile(const fs::path& path,
                              std::initializer_list<std::string_view> extensions) {
   if (path.empty()) return Error{"the output path is empty"};
@@ -44,6 +54,7 @@ Result<bool> CheckOutputFile(const fs::path& path,
   }
   std::error_code error;
   if (fs::is_directory(path, error)) return Fail(path, "is a directory, not a file to write");
+  if (std::optional<std::string> reason = NotARegularTarget(path)) return Fail(path, *reason);
   const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
   if (!fs::exists(folder, error)) {
     // Name the nearest missing folder, once.

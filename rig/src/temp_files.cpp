@@ -113,4 +113,17 @@ void TemporaryFile::Keep() {
   slot_ = -1;
 }
 
+SignalsHeld::SignalsHeld() {
+  static_assert(sizeof(saved_) >= sizeof(sigset_t), "room for a sigset_t");
+  sigset_t held;
+  sigemptyset(&held);
+  sigaddset(&held, SIGINT);
+  sigaddset(&held, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &held, reinterpret_cast<sigset_t*>(saved_));
+}
+
+SignalsHeld::~SignalsHeld() {
+  pthread_sigmask(SIG_SETMASK, reinterpret_cast<const sigset_t*>(saved_), nullptr);
+}
+
 }  // namespace wirerig

@@ -759,6 +759,18 @@ TEST(GltfExport, GltfAndBinSwitchTogetherOrNotAtAll) {
   EXPECT_EQ(FileCount(dir.path()), 2u);
 }
 
+// A name with a space is written percent-encoded in the .gltf ("a%20b.bin"): the old .bin was
+// not recognised as this writer's and every export left one more behind.
+TEST(GltfExport, AnEncodedBinNameIsReplacedToo) {
+  TempDir dir;
+  const Scene scene = MakeScene(BendCase{});
+  const fs::path out = dir.path() / "a b.gltf";
+  for (int i = 0; i < 3; ++i) ASSERT_TRUE(ExportGltf(scene.mesh, scene.bake, {}, out).ok());
+  EXPECT_EQ(FileCount(dir.path()), 2u);
+  EXPECT_EQ(BinUri(out), "a%20b.bin");
+  EXPECT_TRUE(fs::exists(dir.path() / "a b.bin"));
+}
+
 // A .gltf that refers to a .bin this writer did not name keeps it when replaced.
 TEST(GltfExport, ReplacingAForeignGltfKeepsTheBinItReferred) {
   TempDir dir;

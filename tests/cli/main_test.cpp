@@ -99,6 +99,54 @@ TEST(WirerigExitCodes, ViewSaysWhatFailedOnce) {
 }
 #endif
 
+// Output that cannot be written is a failure: `wire` into a full device exited 0.
+TEST(WirerigExitCodes, AnUnwritableStandardOutputExitsOne) {
+  const std::string problem =
+      std::string(WIRERIG_SOURCE_DIR) + "/samples/worked_wire/steel_cantilever.json";
+  testing::WirerigProcess process({"wire", problem}, "/dev/full");
+  const ProcessResult run = process.Wait();
+  ExpectExit(run, 1, "wirerig: cannot write standard output");
+}
+
+#ifdef WIRERIG_HAS_VIEWER
+// Headless, nothing can close the view; frames beyond the bound were a bad-input exit.
+TEST(WirerigExitCodes, ViewNeedsAFrameCountHeadlessAndStatesItsBound) {
+  ExpectExit(RunWirerig({"view", kOctopus, "--no-window"}), 2,
+             "--no-window: needs --frames N (N >= 1)");
+  ExpectExit(RunWirerig({"view", kOctopus, "--no-window", "--frames", "1000000001"}), 2,
+             "--frames: must be in [0, 1e+09]");
+}
+
+// A scene whose evaluation overflows: render and bake refused it, view drew its rest pose and
+// exited 0. It now fails the same way, naming the scene, the time and the vertex.
+TEST(WirerigExitCodes, ViewFailsOnGeometryRenderAndBakeRefuse) {
+  const fs::path scene = Scratch("overflow.scene.json");
+  std::ofstream(scene) << R"({"format": "wirerig.scene", "version": 1, "name": "overflow",
+    "mesh": {"procedural": "cylinder", "parameters": {"radius": 0.1, "height": 1.0}},
+    "rig": {"description": {"parts": [{"name": "beam", "central_curve": [[0, 0, 0], [0, 1, 0]],
+                                       "profile_count": 8, "points_per_profile": 16}]}},
+    "parts": {"beam": {"kind": "deformable", "spine": {"material": "steel"}}},
+    "clips": [{"name": "push", "duration": 1, "parts": [
+      {"part": "beam", "boundary": [{"time": 0, "boundary": "cantilever_free"}],
+       "tip_force": {"keys": [{"time": 0, "value": [1e40, 0, 0]}]}}]}]})";
+  const ProcessResult run = RunWirerig({"view", scene.string(), "--no-window", "--frames", "2"});
+  ExpectExit(run, 1, "wirerig view: " + scene.string() + ": t = ");
+  EXPECT_NE(run.err.find("not finite, or beyond 1e7 m (the deformation overflowed)"),
+            std::string::npos)
+      << run.err;
+}
+
+// Where the gallery page goes is checked before any picture is drawn (it drew for 34 s).
+TEST(WirerigOutputs, GalleryChecksItsPageFirst) {
+  const auto start = std::chrono::steady_clock::now();
+  const fs::path page = Scratch("absent_folder") / "g.md";
+  ExpectExit(
+      RunWirerig({"gallery", "--page", page.string()}), 1,
+      page.string() + ": the folder " + Scratch("absent_folder").string() + " does not exist");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+#endif
+
 TEST(WirerigExitCodes, BadInputExitsOne) {
   ExpectExit(RunWirerig({"wire", Scratch("missing.json").string()}), 1,
              "missing.json: no such file");

@@ -30,7 +30,8 @@ struct ProcessResult {
 class WirerigProcess {
  public:
   // Starts `wirerig args...` with no standard input; its output and errors go to files.
-  explicit WirerigProcess(const std::vector<std::string>& args) {
+  // `stdout_to`: where standard output goes instead of the captured file (e.g. /dev/full).
+  explicit WirerigProcess(const std::vector<std::string>& args, const std::string& stdout_to = {}) {
     const std::string stem =
         (std::filesystem::temp_directory_path() /
          ("wirerig_process_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++)))
@@ -40,7 +41,9 @@ class WirerigProcess {
     pid_ = ::fork();
     if (pid_ == 0) {
       const int null = ::open("/dev/null", O_RDWR);
-      const int out = ::open(out_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+      const int out = stdout_to.empty()
+                          ? ::open(out_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600)
+                          : ::open(stdout_to.c_str(), O_WRONLY);
       const int err = ::open(err_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
       ::dup2(null, 0);
       ::dup2(out, 1);

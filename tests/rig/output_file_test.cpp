@@ -2,6 +2,8 @@
 // written by the check.
 #include "wirerig/rig/output_file.h"
 
+#include "wirerig/rig/atomic_file.h"
+
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -59,6 +61,36 @@ TEST(CheckOutputFile, RefusesADirectoryAndAFileAsFolder) {
     std::fclose(f);
   }
   ExpectRefused(file / "x.png", {".png"}, file.string() + " is not a folder");
+}
+
+// Writing renames a new file over the target: onto a FIFO, a device or a symbolic link that
+// replaced the FIFO, the device (as root, /dev/full was destroyed) or the link. Refused by the
+// check and by the atomic writer itself, naming the file; the target is left as it was.
+TEST(CheckOutputFile, RefusesDevicesFifosAndLinks) {
+  const fs::path fifo = Scratch() / "pipe.json";
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const fs::path target = Scratch() / "real.json";
+  { std::fclose(std::fopen(target.c_str(), "w")); }
+  const fs::path link = Scratch() / "link.json";
+  fs::remove(link);
+  fs::create_symlink(target, link);
+  const char* kDevice =
+      "is not a regular file (a device, FIFO or socket): writing would replace it";
+  ExpectRefused(fifo, {}, kDevice);
+  ExpectRefused("/dev/null", {}, kDevice);  // checked only: nothing is written
+  ExpectRefused(link, {},
+                "is a symbolic link: give the file it points to (writing would replace "
+                "the link)");
+  for (const fs::path& path : {fifo, link}) {
+    const Result<fs::path> written = WriteFileAtomically(path, "{}");
+    ASSERT_FALSE(written.ok()) << path;
+    EXPECT_EQ(written.error().rfind(path.string() + ": is ", 0), 0u) << written.error();
+  }
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_TRUE(fs::is_symlink(link));
+  fs::remove(fifo);
+  fs::remove(link);
 }
 
 TEST(CheckOutputFile, RefusesAnUnwritableFolder) {

@@ -63,7 +63,7 @@ Result<ApplicationOptions> ParseApplicationOptions(int argc, const char* const* 
     if (arg == "--frames") {
       const char* v = value("N");
       if (v == nullptr || !ParseInt(v, &o.frames)) {
-        return Error{"--frames needs a whole number of frames >= 0"};
+        return Error{"--frames needs a whole number of frames in [0, 1000000000]"};
       }
     } else if (arg == "--input") {
       const char* v = value("SCRIPT");
@@ -349,6 +349,7 @@ Result<bool> Application::Run(const ApplicationOptions& options) {
     if (!saved) return Error{saved.error()};
   }
   OnShutdown();
+  if (std::string failure = Failure(); !failure.empty()) return Error{std::move(failure)};
   return true;
 }
 

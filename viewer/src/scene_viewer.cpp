@@ -30,6 +30,7 @@ Result<bool> SceneViewer::Open(const SceneDescription& description) {
   Result<BuiltScene> built = BuildScene(description);
   if (!built) return Error{built.error()};
   auto scene = std::make_unique<BuiltScene>(std::move(built).value());
+  failure_.clear();
   const Clip* clip = scene->FindClip(options_.clip);
   if (!clip && !options_.clip.empty() && !scene->clips.empty())
     return Error{scene->MissingClipMessage(options_.clip)};
@@ -69,6 +70,10 @@ Result<bool> SceneViewer::OnInitialize() {
 void SceneViewer::OnDisplay(RenderFrame& frame) {
   if (Status s = playback_->Evaluate(timeline().time, positions_, normals_); !s) {
     status_ = "evaluation: " + ToString(s);
+    if (failure_.empty()) {  // the run fails with the first, as render and bake do
+      failure_ = options_.scene.string() + ": t = " + std::to_string(timeline().time) +
+                 " s: " + ToString(s);
+    }
   } else {
     const Vec3f followed = picture_->FollowOffset();
     picture_->Update(*playback_, positions_, normals_);

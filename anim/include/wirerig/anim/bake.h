@@ -39,6 +39,9 @@ std::string DeflectionWarning(const PartModel& part, const PartWarnings& warning
 std::vector<double> BakeKeyTimes(double duration, double fps);
 // How many key times BakeKeyTimes gives, without making them; a double, since a long clip at a
 // high rate can have more keys than memory holds (or than size_t counts).
+// A key count for messages: exact below 1e15 ("100000001"), else in scientific form.
+std::string KeyCountText(double keys);
+
 double BakeKeyCount(double duration, double fps);
 // The bytes a bake of `keys` keys holds: float positions (and normals) per render vertex and
 // the spine points and rotations per key.

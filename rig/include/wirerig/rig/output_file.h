@@ -4,6 +4,8 @@
 
 #include <filesystem>
 #include <initializer_list>
+#include <optional>
+#include <string>
 #include <string_view>
 
 #include "wirerig/rig/result.h"
@@ -12,9 +14,16 @@ namespace wirerig {
 
 // Checks that `path` can be written as one of `extensions` (".glb", matched case-insensitively;
 // any extension when the list is empty) without writing anything. Errors read "<path>: <reason>":
-// the extension is not one of those listed, the path is a directory, its folder does not exist
-// (named once: the nearest missing folder), is not a folder, or is not writable.
+// the extension is not one of those listed, the path is a directory or another file that is not
+// a regular file (NotARegularTarget), its folder does not exist (named once: the nearest missing
+// folder), is not a folder, or is not writable.
 Result<bool> CheckOutputFile(const std::filesystem::path& path,
                              std::initializer_list<std::string_view> extensions);
+
+// Why an existing `path` must not be replaced by a written file: it is a device, a FIFO, a
+// socket or a symbolic link (writing renames a new file over the name, which would destroy the
+// device or the link, not write through it). Empty when `path` does not exist or is a regular
+// file. Checked again by every atomic writer.
+std::optional<std::string> NotARegularTarget(const std::filesystem::path& path);
 
 }  // namespace wirerig

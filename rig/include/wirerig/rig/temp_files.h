@@ -34,4 +34,18 @@ class TemporaryFile {
   int slot_ = -1;
 };
 
+// Holds SIGINT and SIGTERM (blocked, not lost) for its lifetime, so that steps which must not
+// be split by a kill (renaming a file into place and no longer covering it) happen together;
+// a signal that came meanwhile is delivered at destruction.
+class SignalsHeld {
+ public:
+  SignalsHeld();
+  ~SignalsHeld();
+  SignalsHeld(const SignalsHeld&) = delete;
+  SignalsHeld& operator=(const SignalsHeld&) = delete;
+
+ private:
+  unsigned long long saved_[16];  // the previous signal mask (a sigset_t)
+};
+
 }  // namespace wirerig

@@ -85,6 +85,9 @@ class Application {
   virtual void OnDisplay(RenderFrame& frame) = 0;
   virtual void OnGui() {}
   virtual void OnShutdown() {}
+  // A failure the run ends with (exit 1) after its frames, e.g. a scene whose evaluation
+  // failed at some frame (drawn as the last good one); empty: none.
+  virtual std::string Failure() const { return {}; }
   // A left press landed on a pickable wire.
   virtual void OnWireGrab(const WirePick& pick) { (void)pick; }
   // The grabbed wire is dragged: `target` is where the grabbed point should go (on the plane

@@ -56,6 +56,7 @@ class SceneViewer : public Application {
 
  protected:
   Result<bool> OnInitialize() override;
+  std::string Failure() const override { return failure_; }
   void OnDisplay(RenderFrame& frame) override;
   void OnGui() override;
   void OnShutdown() override;
@@ -89,7 +90,8 @@ class SceneViewer : public Application {
   const Clip* clip_ = nullptr;
   std::vector<Vec3> positions_, normals_;
   std::vector<SceneDescription> undo_;
-  std::string status_;  // the last message shown in the editor
+  std::string status_;   // the last message shown in the editor
+  std::string failure_;  // the first evaluation failure of the open scene (Failure())
   std::string caption_;
   // The drag in progress.
   bool dragging_ = false;
