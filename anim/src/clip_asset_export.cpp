@@ -1,6 +1,9 @@
 #include "wirerig/anim/clip_asset_export.h"
 
 #include <cmath>
+#include <cstdio>
+
+#include "wirerig/anim/bake.h"
 
 namespace wirerig {
 namespace {
@@ -31,6 +34,18 @@ Result<SampledClip> SampleClipForRuntime(const RigModel& model, const Clip& clip
   if (!(std::isfinite(fps) && fps > 0.0 && fps <= 1000.0))
     return Error{"fps: must lie in (0, 1000]"};
   if (!(clip.duration > 0.0)) return Error{"clip \"" + clip.name + "\": has no duration to sample"};
+  // The work and the asset's size first: every frame is a full evaluation (a 1e5 s clip ran
+  // for minutes toward a 0.7 GB file).
+  if (const double frames = std::ceil(clip.duration * fps - 1e-9) + 1.0;
+      !(frames <= kMaxClipAssetFrames)) {
+    char message[300];
+    std::snprintf(message, sizeof message,
+                  "clip \"%s\": %s frames (%g s at %g frames/s), more than a clip asset may hold "
+                  "(%.0f); sample fewer frames per second or a shorter clip",
+                  clip.name.c_str(), KeyCountText(frames).c_str(), clip.duration, fps,
+                  kMaxClipAssetFrames);
+    return Error{message};
+  }
   Result<Playback> made = Playback::Make(model, clip, playback);
   if (!made) return Error{made.error()};
   Playback& player = made.value();

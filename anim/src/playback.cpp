@@ -113,8 +113,19 @@ Result<Playback> Playback::Make(const RigModel& model, const Clip& clip,
   playback.interactive_points_.resize(widest + 1);
   playback.interactive_profiles_.resize(playback.sample_.profile_loads.size() + 1);
   if (playback.HasDynamics()) {
-    const auto count =
-        static_cast<std::size_t>(steps / static_cast<double>(options.checkpoint_interval)) + 2;
+    // The cache is bounded: a long clip gets its checkpoints further apart (a 1e5 s clip took
+    // 12 GB before its first frame).
+    const double per_checkpoint =
+        double(playback.dynamic_parts_.size() * sizeof(RigidBodyState) +
+               (playback.wires_.states().size() + playback.profiles_.states().size()) *
+                   sizeof(ModalWireState) +
+               playback.reach_.kept().size() * sizeof(ClipReach::Kept));
+    std::size_t& interval = playback.options_.checkpoint_interval;
+    const double wanted = steps / static_cast<double>(interval) + 2.0;
+    if (wanted * per_checkpoint > kMaxCheckpointBytes)
+      interval = static_cast<std::size_t>(
+          std::ceil(double(interval) * wanted * per_checkpoint / kMaxCheckpointBytes));
+    const auto count = static_cast<std::size_t>(steps / static_cast<double>(interval)) + 2;
     playback.checkpoint_count_ = count;
     playback.checkpoints_.resize(count * playback.dynamic_parts_.size());
     for (std::size_t d = 0; d < playback.dynamic_parts_.size(); ++d)

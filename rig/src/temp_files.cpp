@@ -40,10 +40,15 @@ extern "C" void RemoveRegisteredAndReraise(int signal_number) {
   ::raise(signal_number);
 }
 
+// Signals whose default action ends the process: a terminal hang-up, an interrupt, a kill or
+// quit request, a timer or user signal, a write to a closed pipe.
+constexpr int kCleanupSignals[] = {SIGHUP,  SIGINT,  SIGTERM, SIGQUIT,
+                                   SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2};
+
 void InstallHandlers() {
   static std::once_flag once;
   std::call_once(once, [] {
-    for (int signal_number : {SIGINT, SIGTERM}) {
+    for (int signal_number : kCleanupSignals) {
       struct sigaction current {};
       if (::sigaction(signal_number, nullptr, &current) != 0) continue;
       if ((current.sa_flags & SA_SIGINFO) != 0 || current.sa_handler != SIG_DFL) continue;
@@ -117,8 +122,7 @@ SignalsHeld::SignalsHeld() {
   static_assert(sizeof(saved_) >= sizeof(sigset_t), "room for a sigset_t");
   sigset_t held;
   sigemptyset(&held);
-  sigaddset(&held, SIGINT);
-  sigaddset(&held, SIGTERM);
+  for (int signal_number : kCleanupSignals) sigaddset(&held, signal_number);
   pthread_sigmask(SIG_BLOCK, &held, reinterpret_cast<sigset_t*>(saved_));
 }
 

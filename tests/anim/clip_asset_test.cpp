@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdio>
 #include <limits>
 #include <map>
@@ -203,6 +204,23 @@ std::string Refusal(const std::vector<std::uint8_t>& bytes) {
   EXPECT_FALSE(status.ok());
   EXPECT_TRUE(out.parts.empty());
   return ToString(status);
+}
+
+// A 1e5 s clip at 30 frames/s (3,000,001 frames, each a full evaluation) ran for minutes
+// toward a 0.7 GB asset: refused at once, with the numbers.
+TEST(ClipAsset, RefusesMoreFramesThanAnAssetMayHoldBeforeAnyWork) {
+  const BuiltScene& scene = SceneNamed("octopus/octopus.scene.json");
+  Clip clip = scene.clips.front();
+  clip.duration = 1e5;
+  const auto start = std::chrono::steady_clock::now();
+  const Result<SampledClip> sampled =
+      SampleClipForRuntime(scene.model, clip, scene.description.playback, 30.0);
+  ASSERT_FALSE(sampled.ok());
+  EXPECT_EQ(sampled.error(), "clip \"" + clip.name +
+                                 "\": 3000001 frames (100000 s at 30 frames/s), more than a clip "
+                                 "asset may hold (1000000); sample fewer frames per second or a "
+                                 "shorter clip");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
 }
 
 TEST(ClipAsset, RefusesBadClipsNamingTheField) {

@@ -136,6 +136,24 @@ TEST(WirerigExitCodes, ViewFailsOnGeometryRenderAndBakeRefuse) {
       << run.err;
 }
 
+// A long clip with wire dynamics: its checkpoint cache was sized for the whole clip (a 1e5 s
+// octopus took over 12 GB and 2 minutes before drawing t = 0). The cache is bounded now.
+TEST(WirerigExitCodes, ALongDynamicClipDrawsItsFirstFrameAtOnce) {
+  std::ifstream in(std::string(WIRERIG_SOURCE_DIR) + "/samples/octopus/octopus.scene.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string from = "\"duration\": 10.0";
+  const std::size_t at = text.find(from);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, from.size(), "\"duration\": 100000.0");
+  const fs::path scene = Scratch("long_octopus.scene.json");
+  std::ofstream(scene) << text;
+  const auto start = std::chrono::steady_clock::now();
+  const ProcessResult run =
+      RunWirerig({"render", scene.string(), "-o", Scratch("long.png").string(), "--size", "64x64"});
+  ExpectExit(run, 0, "");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30.0);
+}
+
 // Where the gallery page goes is checked before any picture is drawn (it drew for 34 s).
 TEST(WirerigOutputs, GalleryChecksItsPageFirst) {
   const auto start = std::chrono::steady_clock::now();

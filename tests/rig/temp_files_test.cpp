@@ -1,6 +1,6 @@
-// Temporary files: SIGINT and SIGTERM remove the registered ones and still end the process by
-// that signal; a stale temporary file of a dead process is removed by the next write beside
-// its target, a live process's is kept.
+// Temporary files: SIGINT, SIGTERM and the other terminating signals remove the registered ones and
+// still end the process by that signal; a stale temporary file of a dead process is removed by the
+// next write beside its target, a live process's is kept.
 #include "wirerig/rig/temp_files.h"
 
 #include <gtest/gtest.h>
@@ -92,6 +92,39 @@ void ExpectSignalRemoves(int signal_number) {
 
 TEST(TemporaryFiles, SigtermRemovesRegisteredFilesAndStillKills) { ExpectSignalRemoves(SIGTERM); }
 TEST(TemporaryFiles, SigintRemovesRegisteredFilesAndStillKills) { ExpectSignalRemoves(SIGINT); }
+// A hang-up (a closed terminal), a quit, a broken pipe, a timer or a user signal left the
+// temporary file behind until the next run.
+TEST(TemporaryFiles, EveryTerminatingSignalRemovesRegisteredFiles) {
+  for (int signal_number : {SIGHUP, SIGQUIT, SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2}) {
+    SCOPED_TRACE(signal_number);
+    ExpectSignalRemoves(signal_number);
+  }
+}
+
+// Steps that must not be split by a kill: a signal raised while held arrives after them.
+TEST(TemporaryFiles, SignalsHeldArriveAfterTheHeldSteps) {
+  const fs::path dir = ScratchDir("held");
+  const fs::path file = dir / "out.bin", done = dir / "done";
+  Touch(file);
+  fs::remove(done);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    TemporaryFile registered(file);
+    {
+      const SignalsHeld held;
+      ::raise(SIGTERM);
+      Touch(done);        // reached: the signal waits
+      registered.Keep();  // and the file is no longer covered when it comes
+    }
+    ::_exit(0);  // not reached
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  EXPECT_EQ(WTERMSIG(status), SIGTERM);
+  EXPECT_TRUE(fs::exists(done));
+  EXPECT_TRUE(fs::exists(file));
+}
 
 }  // namespace WIRERIG_TEST_FILE
 }  // namespace

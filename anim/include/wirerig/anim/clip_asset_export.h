@@ -9,8 +9,12 @@
 
 namespace wirerig {
 
+// The most frames a sampled clip may have (each is a full evaluation; ~1 GB of asset).
+inline constexpr double kMaxClipAssetFrames = 1e6;
+
 // Frames at k / fps for k = 0 .. ceil(duration * fps), the last at the clip's end. Errors name
-// the option or the playback's failure. With wire dynamics (playback.wires), each wire's motion
+// the option, a clip of more than kMaxClipAssetFrames frames (refused before any work) or the
+// playback's failure. With wire dynamics (playback.wires), each wire's motion
 // beyond its static shape is recorded per frame (SampledClip::wires, wire_motion), so the
 // engine replays what the bake shows; between frames it is interpolated linearly.
 Result<SampledClip> SampleClipForRuntime(const RigModel& model, const Clip& clip,

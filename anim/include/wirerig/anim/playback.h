@@ -40,9 +40,11 @@ struct InteractiveLoad {
 struct PlaybackOptions {
   double rigid_step = 1.0 / 240.0;  // s, fixed step of the rigid-body integration
   RigidIntegrator integrator = RigidIntegrator::kRk4;
-  std::size_t checkpoint_interval = 24;  // steps between cached rigid-body states
-  Vec3 gravity = Vec3::Zero();           // m/s^2, on rigid bodies driven by the clip
-  bool preserve_volume = false;          // see EvaluateRigJob
+  // Steps between cached states; widened for a long clip so the cache holds at most
+  // kMaxCheckpointBytes.
+  std::size_t checkpoint_interval = 24;
+  Vec3 gravity = Vec3::Zero();   // m/s^2, on rigid bodies driven by the clip
+  bool preserve_volume = false;  // see EvaluateRigJob
   // Keyed poses played through the chain's articulated dynamics (articulated_tracking.h) when
   // tracking.frequency > 0.
   TrackingOptions tracking;
@@ -53,6 +55,9 @@ struct PlaybackOptions {
   // profile_wires.modes > 0.
   ProfileWireOptions profile_wires;
 };
+
+// The most memory the checkpoint cache of one playback takes, bytes.
+inline constexpr double kMaxCheckpointBytes = 64.0 * 1024 * 1024;
 
 class Playback {
  public:

@@ -1,6 +1,7 @@
 // Temporary files that never outlive their process: a file registered here is removed if the
-// process is killed by SIGINT or SIGTERM (an async-signal-safe handler unlinks every registered
-// path, then re-raises the signal with its default action), and a temporary file left by a
+// process is killed by SIGHUP, SIGINT, SIGTERM, SIGQUIT, SIGPIPE, SIGALRM, SIGUSR1 or SIGUSR2
+// (an async-signal-safe handler unlinks every registered path, then re-raises the signal with
+// its default action), and a temporary file left by a
 // process that died otherwise (SIGKILL, a crash) is removed by the next write beside it.
 // Temporary files are named "<target>.tmp<pid>" (TemporaryPathFor).
 #pragma once
@@ -16,7 +17,7 @@ std::filesystem::path TemporaryPathFor(const std::filesystem::path& target);
 // 0) fails with ESRCH); another live process's temporary file, and this process's, are kept.
 void RemoveStaleTemporaryFiles(const std::filesystem::path& target);
 
-// Registers `path` (if not empty) for removal on SIGINT or SIGTERM until destruction or Keep().
+// Registers `path` (if not empty) for removal on those signals until destruction or Keep().
 // The handlers are installed on first use, for signals whose action is still the default (an
 // application's own handler or an ignored signal is left alone). At most 32 files are
 // registered at a time; beyond that a file is simply not covered.
@@ -34,7 +35,7 @@ class TemporaryFile {
   int slot_ = -1;
 };
 
-// Holds SIGINT and SIGTERM (blocked, not lost) for its lifetime, so that steps which must not
+// Holds those signals (blocked, not lost) for its lifetime, so that steps which must not
 // be split by a kill (renaming a file into place and no longer covering it) happen together;
 // a signal that came meanwhile is delivered at destruction.
 class SignalsHeld {
