@@ -12,6 +12,7 @@
 #include "wirerig/rig/atomic_file.h"
 #include "wirerig/rig/input_file.h"
 #include "wirerig/rig/json_fields.h"
+#include "wirerig/rig/json_text.h"
 #include "wirerig/rig/output_file.h"
 
 #ifndef WIRERIG_SAMPLES_DIR
@@ -32,8 +33,9 @@ std::string SamplesDir(const SamplesCommandOptions& options) {
 Result<std::vector<CatalogEntry>> LoadCatalog(const std::string& path) {
   Result<std::string> text = ReadInputFile(path, "sample catalog (JSON)");
   if (!text) return Error{text.error()};
-  const nlohmann::json document = nlohmann::json::parse(text.value(), nullptr, false);
-  if (document.is_discarded()) return Error{path + ": not valid JSON"};
+  Result<nlohmann::json> parsed = ParseJsonText(text.value(), path);
+  if (!parsed) return Error{parsed.error()};
+  const nlohmann::json& document = parsed.value();
   std::vector<CatalogEntry> entries;
   try {
     const nlohmann::json& array = RequireArray(document, "");

@@ -1,5 +1,7 @@
 #include "wirerig/anim/profile_dynamics.h"
 
+#include "wirerig/rig/name_hint.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -79,9 +81,12 @@ Result<ProfileDynamics> ProfileDynamics::Make(const RigModel& model,
   for (std::size_t i = 0; i < options.parts.size(); ++i) {
     const auto named = std::find_if(model.parts.begin(), model.parts.end(),
                                     [&](const PartModel& p) { return p.name == options.parts[i]; });
-    if (named == model.parts.end())
+    if (named == model.parts.end()) {
+      std::vector<std::string> names;
+      for (const PartModel& part : model.parts) names.push_back(part.name);
       return Error{"parts[" + std::to_string(i) + "]: the rig has no part named \"" +
-                   options.parts[i] + "\""};
+                   options.parts[i] + "\"" + NameHint(options.parts[i], names, "parts")};
+    }
     chosen[std::size_t(named - model.parts.begin())] = true;
   }
   ProfileDynamics out;

@@ -6,10 +6,12 @@
 
 #include "wirerig/anim/clip_json.h"
 #include "wirerig/anim/scene.h"
+
 #include "wirerig/rig/atomic_file.h"
 #include "wirerig/rig/input_file.h"
 #include "wirerig/rig/json_physics.h"
 #include "wirerig/rig/json_text.h"
+#include "wirerig/rig/name_hint.h"
 
 namespace wirerig {
 namespace {
@@ -90,7 +92,9 @@ MeshSource ReadMeshSource(const JsonObject& o) {
     for (const auto& item : o.Required("parameters").items()) {
       const auto& names = generator->second;
       if (std::find(names.begin(), names.end(), item.key()) == names.end())
-        throw FieldError(parameters.PathOf(item.key()), "unknown parameter of " + mesh.procedural);
+        throw FieldError(
+            parameters.PathOf(item.key()),
+            "unknown parameter of " + mesh.procedural + NameHint(item.key(), names, "parameters"));
       mesh.parameters[item.key()] = parameters.Number(item.key());
     }
   }

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <string>
+#include <vector>
+
+#include "wirerig/rig/name_hint.h"
 
 namespace wirerig {
 namespace {
@@ -53,7 +57,12 @@ Result<std::vector<bool>> FindPassiveTriangles(const Mesh& mesh,
       for (std::uint32_t f = 0; f < mesh_part.triangle_count; ++f)
         passive[mesh_part.first_triangle + f] = true;
     }
-    if (!found) return Error{"passive mesh part '" + name + "' is not in the mesh"};
+    if (!found) {
+      std::vector<std::string> names;
+      for (const MeshPart& mesh_part : mesh.parts) names.push_back(mesh_part.name);
+      return Error{"passive mesh part '" + name + "' is not in the mesh" +
+                   NameHint(name, names, "mesh parts")};
+    }
   }
   return passive;
 }

@@ -1,5 +1,7 @@
 #include "wirerig/rig/rig_description.h"
+
 #include "wirerig/rig/json_text.h"
+#include "wirerig/rig/name_hint.h"
 
 #include <algorithm>
 #include <cmath>
@@ -151,7 +153,10 @@ std::string ValidateRigDescription(const RigDescription& description) {
     if (i > 0 && !seen.contains(part.parent)) {
       if (std::string cycle = ParentCycle(description, i); !cycle.empty())
         return path + "/parent: the chain has a cycle: " + cycle;
-      return path + "/parent: '" + part.parent + "' is not an earlier part";
+      std::vector<std::string> names;
+      for (std::size_t e = 0; e < i; ++e) names.push_back(description.parts[e].name);
+      return path + "/parent: '" + part.parent + "' is not an earlier part" +
+             NameHint(part.parent, names, "parts");
     }
     if (std::string error = ValidateJointDescription(part.joint); !error.empty())
       return path + "/joint/" + error;

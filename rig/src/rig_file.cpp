@@ -1,5 +1,7 @@
 #include "wirerig/rig/rig_file.h"
+
 #include "wirerig/rig/json_text.h"
+#include "wirerig/rig/name_hint.h"
 
 #include <cmath>
 #include <set>
@@ -81,8 +83,12 @@ RigPart ReadPart(const JsonObject& p, const std::vector<RigPart>& earlier) {
     const std::string parent = p.String("parent");
     for (std::size_t i = 0; i < earlier.size(); ++i)
       if (earlier[i].name == parent) part.parent = int(i);
-    if (part.parent < 0)
-      throw FieldError(p.PathOf("parent"), "'" + parent + "' is not an earlier part");
+    if (part.parent < 0) {
+      std::vector<std::string> names;
+      for (const RigPart& other : earlier) names.push_back(other.name);
+      throw FieldError(p.PathOf("parent"), "'" + parent + "' is not an earlier part" +
+                                               NameHint(parent, names, "parts"));
+    }
   } else if (!earlier.empty()) {
     throw FieldError(p.PathOf("parent"), "only the first part may be a root");
   }

@@ -248,6 +248,11 @@ TEST(ProfileDynamics, AStillClipLeavesTheSkinAtRestAndBadOptionsAreNamed) {
   options.profile_wires.frequency = -1.0;
   EXPECT_EQ(Playback::Make(jointed.model, clip, options).error(),
             "profile_wires: frequency: must be in (0, 1000] Hz");
+  options.profile_wires.frequency = 3.0;
+  options.profile_wires.parts = {"bse"};  // a misspelt part gets the nearest name
+  EXPECT_EQ(Playback::Make(jointed.model, clip, options).error(),
+            "profile_wires: parts[0]: the rig has no part named \"bse\"; did you mean \"base\"? "
+            "(parts: base, arm)");
 }
 
 }  // namespace WIRERIG_TEST_FILE

@@ -92,7 +92,9 @@ TEST(Scene, ErrorsNameTheFieldByJsonPointer) {
   EXPECT_EQ(ParseError(d), "/version: must be 1 (this wirerig reads scene format version 1)");
   d = CylinderScene();
   d["mesh"]["parameters"]["radious"] = 1;
-  EXPECT_EQ(ParseError(d), "/mesh/parameters/radious: unknown parameter of cylinder");
+  EXPECT_EQ(ParseError(d),
+            "/mesh/parameters/radious: unknown parameter of cylinder; did you mean \"radius\"? "
+            "(parameters: radius, height, radial_segments, height_segments)");
   d = CylinderScene();
   d["mesh"]["file"] = "x.obj";
   EXPECT_EQ(ParseError(d), "/mesh: needs exactly one of \"file\" and \"procedural\"");

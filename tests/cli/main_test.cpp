@@ -154,6 +154,15 @@ TEST(WirerigExitCodes, ALongDynamicClipDrawsItsFirstFrameAtOnce) {
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30.0);
 }
 
+// A broken catalog says where it breaks, like every other JSON file.
+TEST(WirerigExitCodes, ABrokenCatalogGivesLineAndColumn) {
+  const fs::path dir = Scratch("catalog_dir");
+  fs::create_directories(dir);
+  std::ofstream(dir / "catalog.json") << "[\n  {\"name\": }\n]\n";
+  ExpectExit(RunWirerig({"samples", "--dir", dir.string()}), 1,
+             (dir / "catalog.json").string() + ": not valid JSON: line 2, column ");
+}
+
 // Where the gallery page goes is checked before any picture is drawn (it drew for 34 s).
 TEST(WirerigOutputs, GalleryChecksItsPageFirst) {
   const auto start = std::chrono::steady_clock::now();

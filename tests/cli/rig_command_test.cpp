@@ -176,7 +176,9 @@ TEST(RigCommandErrors, BrokenDescriptionNamesFileAndField) {
   options.mesh = std::string(WIRERIG_ASSET_DIR) + "/cow.off";
   options.description = description.string();
   options.output = Output("broken.rig.json").string();
-  ExpectFailure(options, description.string() + ": /parts/1/parent: 'c' is not an earlier part");
+  ExpectFailure(
+      options, description.string() +
+                   ": /parts/1/parent: 'c' is not an earlier part; did you mean \"a\"? (parts: a)");
 }
 
 }  // namespace WIRERIG_TEST_FILE

@@ -97,6 +97,21 @@ TEST(WireCommand, TooMuchWorkIsRefusedWithTheEstimate) {
             std::string::npos)
       << run.err;
   EXPECT_NE(run.err.find("more than the 2e+09 allowed"), std::string::npos) << run.err;
+  // Linear line loads cost more than point loads: 9,900 of them over 100,000 series terms (2
+  // samples) were estimated at 2e9 and ran for 102 s.
+  problem = ValidProblem();
+  problem["samples"] = 2;
+  problem["bending"] = {{"bc", "simply_supported"}, {"mode", "series"}, {"terms", 100000}};
+  for (int i = 0; i < 9900; ++i) {
+    problem["bending"]["linear_line_loads"].push_back({{"from", 0.1},
+                                                       {"to", 0.9},
+                                                       {"start_force_per_length", {0, -1, 0}},
+                                                       {"end_force_per_length", {0, -2, 0}}});
+  }
+  const CommandRun linear = RunOnText(problem.dump());
+  EXPECT_EQ(linear.exit_code, 1);
+  EXPECT_NE(linear.err.find("9900 bending loads"), std::string::npos) << linear.err;
+  EXPECT_NE(linear.err.find("about 1.98e+10 operations"), std::string::npos) << linear.err;
 }
 
 TEST(WireCommand, SeriesModeAndMaterialPresets) {

@@ -58,7 +58,9 @@ void ExpectRefused(const nlohmann::json& document, const std::string& expected) 
 TEST(RigDescription, EachBrokenRuleIsNamed) {
   nlohmann::json d = Good();
   d["parts"][1]["parent"] = "leg";
-  ExpectRefused(d, "/parts/1/parent: 'leg' is not an earlier part");
+  ExpectRefused(d, "/parts/1/parent: 'leg' is not an earlier part (parts: body)");
+  d["parts"][1]["parent"] = "bdy";  // a misspelling gets the nearest earlier part
+  ExpectRefused(d, "/parts/1/parent: 'bdy' is not an earlier part; did you mean \"body\"?");
   d = Good();
   d["parts"][1]["name"] = "body";
   ExpectRefused(d, "/parts/1/name: 'body' is used twice");

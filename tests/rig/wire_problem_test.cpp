@@ -138,7 +138,8 @@ TEST(WireProblem, LinearLineLoadsAreReadSolvedAndNamedInErrors) {
   const double ei = 1e9 * 1e-8;  // E I, N m^2
   const double expected = 11.0 * -5.0 / (120.0 * ei);
   EXPECT_NEAR(solution.value().bending.back().y(), expected, 1e-14);
-  EXPECT_DOUBLE_EQ(EstimateWireOperations(problem.value()), 3.0 * 2.0);
+  // 3 samples x (1 + 7): a linear line load costs 7 point loads per sample.
+  EXPECT_DOUBLE_EQ(EstimateWireOperations(problem.value()), 3.0 * (1.0 + 7.0));
 
   nlohmann::json reversed = d;
   reversed["bending"]["linear_line_loads"][0]["from"] = 0.8;

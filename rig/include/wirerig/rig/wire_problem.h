@@ -60,9 +60,10 @@ struct WireSolution {
   std::vector<double> axial, normal_force;      // empty when the problem has no axial part
 };
 
-// The work of solving `problem`, in load (or series term) evaluations: per sample, one for each
-// point and line load in exact mode (plus one), one per term in series mode (whose coefficients
-// cost terms x loads more); per sample, one per axial load (plus one).
+// The work of solving `problem`, in units of one exact-mode point load at one sample: per
+// sample, 1 + point loads + 7 x (linear) line loads in exact mode, or one per term in series
+// mode (whose coefficients cost terms x (5 x point and line loads + 20 x linear line loads));
+// per sample, one per axial load (plus one). docs/wire-format.md gives the measurements.
 double EstimateWireOperations(const WireProblem& problem);
 
 // Errors read "<json pointer>: <reason>". A problem whose work is over kMaxOperations is refused
