@@ -55,6 +55,12 @@ Result<bool> CheckOutputFile(const fs::path& path,
   std::error_code error;
   if (fs::is_directory(path, error)) return Fail(path, "is a directory, not a file to write");
   if (std::optional<std::string> reason = NotARegularTarget(path)) return Fail(path, *reason);
+  // Writing goes through "<name>.tmp<pid>" beside the target: that name must fit as well.
+  constexpr std::size_t kLongestName = 255 - 12;
+  if (const std::size_t length = path.filename().string().size(); length > kLongestName) {
+    return Fail(path, "the file name is too long (" + std::to_string(length) + " bytes; at most " +
+                          std::to_string(kLongestName) + ")");
+  }
   const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
   if (!fs::exists(folder, error)) {
     // Name the nearest missing folder, once.

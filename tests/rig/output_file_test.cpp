@@ -93,6 +93,13 @@ TEST(CheckOutputFile, RefusesDevicesFifosAndLinks) {
   fs::remove(link);
 }
 
+// A legal 250-byte name failed only after the work, when its temporary name did not fit.
+TEST(CheckOutputFile, RefusesANameTooLongForItsTemporaryFile) {
+  const fs::path path = Scratch() / (std::string(246, 'n') + ".glb");
+  ExpectRefused(path, {".glb"}, "the file name is too long (250 bytes; at most 243)");
+  EXPECT_TRUE(CheckOutputFile(Scratch() / (std::string(239, 'n') + ".glb"), {".glb"}).ok());
+}
+
 TEST(CheckOutputFile, RefusesAnUnwritableFolder) {
   const fs::path dir = Scratch() / "locked";
   fs::create_directories(dir);
