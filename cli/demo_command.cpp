@@ -38,6 +38,13 @@ int RunDemoCommand(const DemoCommandOptions& options, std::ostream& out, std::os
         << ")\n";
     return 1;
   }
+  // Every input is checked before anything is baked.
+  const fs::path walk = fs::path(options.samples) / "walk" / "walk.scene.json";
+  if (!options.samples.empty() && !fs::is_regular_file(walk, ec)) {
+    err << "wirerig demo: " << walk.string()
+        << ": no such sample scene (--samples names the samples folder)\n";
+    return 1;
+  }
   const fs::path scene = folder / "octopus.scene.json";
   if (Result<fs::path> written = WriteFileAtomically(scene, kOctopusScene); !written) {
     err << "wirerig demo: " << written.error() << "\n";
@@ -67,9 +74,9 @@ int RunDemoCommand(const DemoCommandOptions& options, std::ostream& out, std::os
   bake.clip = render.clip = "";
 
   // The walk: human.zae on its bone chain (its mesh comes from scripts/setup.sh), baked in skin
-  // mode (a joint per spine sample, residual-free: a few MB rather than a morph per frame).
+  // mode (a joint per part, fitted, and corrective shapes: a few MB rather than a morph per
+  // frame).
   if (options.samples.empty()) return 0;
-  const fs::path walk = fs::path(options.samples) / "walk" / "walk.scene.json";
   bake.scene = render.scene = walk.string();
   bake.output = (folder / "walk.glb").string();
   bake.mode = "skin";

@@ -101,7 +101,8 @@ Result<RigDescription> ParseRigDescription(const nlohmann::json& document) {
       defaults.points_per_profile = d.Integer("points_per_profile", defaults.points_per_profile);
     }
     description.passive_mesh_parts = ReadNames(root, "passive_mesh_parts");
-    RequireArray(root.Required("parts"), "/parts");
+    if (RequireArray(root.Required("parts"), "/parts").size() > kMaxRigParts)
+      throw FieldError("/parts", "at most " + std::to_string(kMaxRigParts) + " parts");
     ForEachElement(root, "parts", [&](const JsonObject& p) {
       description.parts.push_back(ReadPart(p, defaults));
     });

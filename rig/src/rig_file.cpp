@@ -1,7 +1,6 @@
 #include "wirerig/rig/rig_file.h"
 
 #include "wirerig/rig/json_text.h"
-#include "wirerig/rig/name_hint.h"
 
 #include <cmath>
 #include <set>
@@ -12,6 +11,8 @@
 #include "wirerig/rig/input_file.h"
 #include "wirerig/rig/json_fields.h"
 #include "wirerig/rig/json_physics.h"
+#include "wirerig/rig/name_hint.h"
+#include "wirerig/rig/rig_description.h"
 
 namespace wirerig {
 namespace {
@@ -184,7 +185,8 @@ Result<Rig> RigFromJson(const nlohmann::json& document) {
         throw FieldError(mesh.PathOf("unit_scale"), "must be positive and finite");
       rig.import.unit_scale = scale;
     }
-    RequireArray(root.Required("parts"), "/parts");
+    if (RequireArray(root.Required("parts"), "/parts").size() > kMaxRigParts)
+      throw FieldError("/parts", "at most " + std::to_string(kMaxRigParts) + " parts");
     ForEachElement(root, "parts",
                    [&](const JsonObject& p) { rig.parts.push_back(ReadPart(p, rig.parts)); });
     if (rig.parts.empty()) throw FieldError("/parts", "needs at least one part");

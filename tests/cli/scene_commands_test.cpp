@@ -316,6 +316,19 @@ TEST_F(DemoCommand, WritesTheSceneTheGlbAndTheContactSheet) {
   EXPECT_EQ(code, 0) << walk;
 }
 
+// A samples folder without the walk: refused before the octopus is baked (it baked ~124 MB).
+TEST_F(DemoCommand, ChecksItsInputsBeforeBaking) {
+  DemoCommandOptions options;
+  options.output = Output("demo_missing").string();
+  options.samples = Output("no_samples").string();
+  std::ostringstream out, err;
+  EXPECT_EQ(RunDemoCommand(options, out, err), 1);
+  EXPECT_EQ(err.str(), "wirerig demo: " + options.samples +
+                           "/walk/walk.scene.json: no such sample scene (--samples names the "
+                           "samples folder)\n");
+  EXPECT_FALSE(fs::exists(fs::path(options.output) / "octopus.glb"));
+}
+
 }  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig::cli

@@ -55,6 +55,14 @@ void ExpectRefused(const nlohmann::json& document, const std::string& expected) 
   EXPECT_NE(d.error().find(expected), std::string::npos) << d.error();
 }
 
+// 20,000 parts ran for minutes: more than kMaxRigParts are refused as they are read.
+TEST(RigDescription, RefusesMorePartsThanARigMayHave) {
+  nlohmann::json d = Good();
+  const nlohmann::json arm = d["parts"][1];
+  while (d["parts"].size() <= kMaxRigParts) d["parts"].push_back(arm);
+  ExpectRefused(d, "/parts: at most 1024 parts");
+}
+
 TEST(RigDescription, EachBrokenRuleIsNamed) {
   nlohmann::json d = Good();
   d["parts"][1]["parent"] = "leg";

@@ -37,6 +37,10 @@ struct PartDescription {
   JointDescription joint;  // how it turns on its parent (joint_description.h)
 };
 
+// The most parts a rig may have (a description or a rig file): building is quadratic in them
+// (20,000 parts ran for minutes); a character has tens.
+inline constexpr std::size_t kMaxRigParts = 1024;
+
 struct RigDescription {
   std::filesystem::path mesh;  // the mesh file; relative paths are relative to the description
   ImportOptions import;        // up axis and unit overrides for the mesh
