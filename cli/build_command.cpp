@@ -42,9 +42,11 @@ int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::
   if (options.clips) {
     const std::filesystem::path output(options.output);
     for (const Clip& clip : built.value().clips) {
+      std::vector<std::string> warnings;
       Result<SampledClip> sampled = SampleClipForRuntime(
-          built.value().model, clip, built.value().description.playback, options.fps);
+          built.value().model, clip, built.value().description.playback, options.fps, &warnings);
       if (!sampled) return fail(options.scene + ": " + sampled.error());
+      for (const std::string& warning : warnings) out << "warning: " << warning << "\n";
       std::filesystem::path path = output;
       std::string name = clip.name;  // as a file name: letters, digits, '-' and '_' kept
       for (char& c : name)

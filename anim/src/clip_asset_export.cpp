@@ -30,7 +30,8 @@ ClipLoop LoopOf(LoopMode mode) {
 }  // namespace
 
 Result<SampledClip> SampleClipForRuntime(const RigModel& model, const Clip& clip,
-                                         const PlaybackOptions& playback, double fps) {
+                                         const PlaybackOptions& playback, double fps,
+                                         std::vector<std::string>* warnings) {
   if (!(std::isfinite(fps) && fps > 0.0 && fps <= 1000.0))
     return Error{"fps: must lie in (0, 1000]"};
   if (!(clip.duration > 0.0)) return Error{"clip \"" + clip.name + "\": has no duration to sample"};
@@ -68,11 +69,16 @@ Result<SampledClip> SampleClipForRuntime(const RigModel& model, const Clip& clip
     out.profile_wires.push_back(profile_wires.Recorded(w));
   const auto frames = std::size_t(std::ceil(clip.duration * fps - 1e-9)) + 1;
   std::vector<Vec3> positions(model.vertices.size());
+  std::vector<PartWarnings> frame(model.parts.size());
+  std::vector<std::pair<PartWarnings, double>> worst(model.parts.size());  // (worst, its time)
   for (std::size_t k = 0; k < frames; ++k) {
     // Clip-local time: a loop's last frame is its end, not its wrap back to the start.
     const double t = std::min(double(k) / fps, clip.duration);
-    if (Status s = player.Evaluate(t, positions, {}); !s)
+    if (Status s = player.Evaluate(t, positions, {}, frame); !s)
       return Error{"clip \"" + clip.name + "\" at " + std::to_string(t) + " s: " + ToString(s)};
+    for (std::size_t p = 0; p < frame.size(); ++p)
+      if (frame[p].max_deflection_ratio > worst[p].first.max_deflection_ratio)
+        worst[p] = {frame[p], t};
     for (const PartPose& pose : player.sample().poses) {
       PartKey key;
       key.rotation = pose.rotation;
@@ -115,6 +121,10 @@ Result<SampledClip> SampleClipForRuntime(const RigModel& model, const Clip& clip
   }
   if (Status s = ValidateSampledClip(out, &model); !s)
     return Error{"clip \"" + clip.name + "\": " + ToString(s)};
+  for (std::size_t p = 0; warnings != nullptr && p < worst.size(); ++p)
+    if (std::string w = DeflectionWarning(model.parts[p], worst[p].first, worst[p].second);
+        !w.empty())
+      warnings->push_back("clip \"" + clip.name + "\": " + w);
   return out;
 }
 

@@ -174,6 +174,41 @@ TEST(WirerigOutputs, GalleryChecksItsPageFirst) {
 }
 #endif
 
+// A steel beam (r = 0.1 m, L = 1 m: EI = 1.57e7 N m^2) whose tip force F = 3 EI 10 m / L^3
+// bends it by ~10 m, ten times its length.
+fs::path BentBeamScene() {
+  const fs::path scene = Scratch("bent.scene.json");
+  std::ofstream(scene) << R"({"format": "wirerig.scene", "version": 1, "name": "bent",
+    "mesh": {"procedural": "cylinder", "parameters": {"radius": 0.1, "height": 1.0}},
+    "rig": {"description": {"parts": [{"name": "beam", "central_curve": [[0, 0, 0], [0, 1, 0]],
+                                       "profile_count": 8, "points_per_profile": 16}]}},
+    "parts": {"beam": {"kind": "deformable", "spine": {"material": "steel"}}},
+    "clips": [{"name": "push", "duration": 1, "parts": [
+      {"part": "beam", "boundary": [{"time": 0, "boundary": "cantilever_free"}],
+       "tip_force": {"keys": [{"time": 0, "value": [4.7e8, 0, 0]}]}}]}]})";
+  return scene;
+}
+
+// A deflection far beyond the part's length: bake and render warned, build --clips and view
+// did not.
+TEST(WirerigExitCodes, BuildAndViewWarnOfDeflectionsBeyondLinearTheory) {
+  const fs::path scene = BentBeamScene();
+  const ProcessResult built =
+      RunWirerig({"build", scene.string(), "-o", Scratch("bent.wrig").string(), "--clips"});
+  EXPECT_EQ(built.exit_code, 0) << built.err;
+  EXPECT_NE(built.out.find("warning: clip \"push\": part \"beam\": its deflection reached"),
+            std::string::npos)
+      << built.out;
+#ifdef WIRERIG_HAS_VIEWER
+  const ProcessResult viewed = RunWirerig({"view", scene.string(), "--no-window", "--frames", "2"});
+  EXPECT_EQ(viewed.exit_code, 0) << viewed.err;
+  EXPECT_NE(viewed.err.find("wirerig view: warning: " + scene.string() +
+                            ": part \"beam\": its deflection reached"),
+            std::string::npos)
+      << viewed.err;
+#endif
+}
+
 TEST(WirerigExitCodes, BadInputExitsOne) {
   ExpectExit(RunWirerig({"wire", Scratch("missing.json").string()}), 1,
              "missing.json: no such file");

@@ -31,6 +31,7 @@ Result<bool> SceneViewer::Open(const SceneDescription& description) {
   if (!built) return Error{built.error()};
   auto scene = std::make_unique<BuiltScene>(std::move(built).value());
   failure_.clear();
+  deflection_warned_ = false;
   const Clip* clip = scene->FindClip(options_.clip);
   if (!clip && !options_.clip.empty() && !scene->clips.empty())
     return Error{scene->MissingClipMessage(options_.clip)};
@@ -68,13 +69,24 @@ Result<bool> SceneViewer::OnInitialize() {
 }
 
 void SceneViewer::OnDisplay(RenderFrame& frame) {
-  if (Status s = playback_->Evaluate(timeline().time, positions_, normals_); !s) {
+  part_warnings_.resize(scene_->model.parts.size());
+  if (Status s = playback_->Evaluate(timeline().time, positions_, normals_, part_warnings_); !s) {
     status_ = "evaluation: " + ToString(s);
     if (failure_.empty()) {  // the run fails with the first, as render and bake do
       failure_ = options_.scene.string() + ": t = " + std::to_string(timeline().time) +
                  " s: " + ToString(s);
     }
   } else {
+    // Linear theory no longer holds: said once per scene, on stderr and in the status line.
+    for (std::size_t p = 0; p < part_warnings_.size() && !deflection_warned_; ++p) {
+      const std::string w =
+          DeflectionWarning(scene_->model.parts[p], part_warnings_[p], timeline().time);
+      if (w.empty()) continue;
+      std::fprintf(stderr, "wirerig view: warning: %s: %s\n", options_.scene.string().c_str(),
+                   w.c_str());
+      status_ = "warning: " + w;
+      deflection_warned_ = true;
+    }
     const Vec3f followed = picture_->FollowOffset();
     picture_->Update(*playback_, positions_, normals_);
     camera().target += picture_->FollowOffset() - followed;  // the part the camera follows

@@ -3,6 +3,9 @@
 // an engine replays it with the runtime alone.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "wirerig/anim/playback.h"
 #include "wirerig/rig/result.h"
 #include "wirerig/runtime/clip_asset.h"
@@ -17,7 +20,10 @@ inline constexpr double kMaxClipAssetFrames = 1e6;
 // playback's failure. With wire dynamics (playback.wires), each wire's motion
 // beyond its static shape is recorded per frame (SampledClip::wires, wire_motion), so the
 // engine replays what the bake shows; between frames it is interpolated linearly.
+// `warnings`, if given, gets each part's worst deflection beyond its length (DeflectionWarning),
+// as a bake reports them.
 Result<SampledClip> SampleClipForRuntime(const RigModel& model, const Clip& clip,
-                                         const PlaybackOptions& playback, double fps);
+                                         const PlaybackOptions& playback, double fps,
+                                         std::vector<std::string>* warnings = nullptr);
 
 }  // namespace wirerig

@@ -89,6 +89,8 @@ class SceneViewer : public Application {
   Clip rest_clip_;  // played when the scene has no clips
   const Clip* clip_ = nullptr;
   std::vector<Vec3> positions_, normals_;
+  std::vector<PartWarnings> part_warnings_;  // per part, at the displayed time
+  bool deflection_warned_ = false;           // a deflection beyond a part's length was reported
   std::vector<SceneDescription> undo_;
   std::string status_;   // the last message shown in the editor
   std::string failure_;  // the first evaluation failure of the open scene (Failure())
