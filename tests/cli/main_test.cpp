@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -45,6 +46,24 @@ void ExpectExit(const ProcessResult& run, int code, const std::string& text) {
   EXPECT_EQ(run.signal, 0) << run.err;
   EXPECT_EQ(run.exit_code, code) << run.err;
   EXPECT_NE(run.err.find(text), std::string::npos) << run.err;
+}
+
+// A steel beam (r = 0.1 m, L = 1 m: EI = 1.57e7 N m^2, a cantilever) pushed at its tip by
+// `force` N along +x for its 1 s clip, written as `name`.
+fs::path PushedBeamScene(const std::string& name, double force) {
+  const fs::path scene = Scratch(name);
+  char text[1000];
+  std::snprintf(text, sizeof text, R"({"format": "wirerig.scene", "version": 1, "name": "pushed",
+    "mesh": {"procedural": "cylinder", "parameters": {"radius": 0.1, "height": 1.0}},
+    "rig": {"description": {"parts": [{"name": "beam", "central_curve": [[0, 0, 0], [0, 1, 0]],
+                                       "profile_count": 8, "points_per_profile": 16}]}},
+    "parts": {"beam": {"kind": "deformable", "spine": {"material": "steel"}}},
+    "clips": [{"name": "push", "duration": 1, "parts": [
+      {"part": "beam", "boundary": [{"time": 0, "boundary": "cantilever_free"}],
+       "tip_force": {"keys": [{"time": 0, "value": [%.17g, 0, 0]}]}}]}]})",
+                force);
+  std::ofstream(scene) << text;
+  return scene;
 }
 
 TEST(WirerigExitCodes, HelpStatesThePolicyAndExitsZero) {
@@ -120,15 +139,7 @@ TEST(WirerigExitCodes, ViewNeedsAFrameCountHeadlessAndStatesItsBound) {
 // A scene whose evaluation overflows: render and bake refused it, view drew its rest pose and
 // exited 0. It now fails the same way, naming the scene, the time and the vertex.
 TEST(WirerigExitCodes, ViewFailsOnGeometryRenderAndBakeRefuse) {
-  const fs::path scene = Scratch("overflow.scene.json");
-  std::ofstream(scene) << R"({"format": "wirerig.scene", "version": 1, "name": "overflow",
-    "mesh": {"procedural": "cylinder", "parameters": {"radius": 0.1, "height": 1.0}},
-    "rig": {"description": {"parts": [{"name": "beam", "central_curve": [[0, 0, 0], [0, 1, 0]],
-                                       "profile_count": 8, "points_per_profile": 16}]}},
-    "parts": {"beam": {"kind": "deformable", "spine": {"material": "steel"}}},
-    "clips": [{"name": "push", "duration": 1, "parts": [
-      {"part": "beam", "boundary": [{"time": 0, "boundary": "cantilever_free"}],
-       "tip_force": {"keys": [{"time": 0, "value": [1e40, 0, 0]}]}}]}]})";
+  const fs::path scene = PushedBeamScene("overflow.scene.json", 1e40);
   const ProcessResult run = RunWirerig({"view", scene.string(), "--no-window", "--frames", "2"});
   ExpectExit(run, 1, "wirerig view: " + scene.string() + ": t = ");
   EXPECT_NE(run.err.find("not finite, or beyond 1e7 m (the deformation overflowed)"),
@@ -174,25 +185,11 @@ TEST(WirerigOutputs, GalleryChecksItsPageFirst) {
 }
 #endif
 
-// A steel beam (r = 0.1 m, L = 1 m: EI = 1.57e7 N m^2) whose tip force F = 3 EI 10 m / L^3
-// bends it by ~10 m, ten times its length.
-fs::path BentBeamScene() {
-  const fs::path scene = Scratch("bent.scene.json");
-  std::ofstream(scene) << R"({"format": "wirerig.scene", "version": 1, "name": "bent",
-    "mesh": {"procedural": "cylinder", "parameters": {"radius": 0.1, "height": 1.0}},
-    "rig": {"description": {"parts": [{"name": "beam", "central_curve": [[0, 0, 0], [0, 1, 0]],
-                                       "profile_count": 8, "points_per_profile": 16}]}},
-    "parts": {"beam": {"kind": "deformable", "spine": {"material": "steel"}}},
-    "clips": [{"name": "push", "duration": 1, "parts": [
-      {"part": "beam", "boundary": [{"time": 0, "boundary": "cantilever_free"}],
-       "tip_force": {"keys": [{"time": 0, "value": [4.7e8, 0, 0]}]}}]}]})";
-  return scene;
-}
-
 // A deflection far beyond the part's length: bake and render warned, build --clips and view
 // did not.
 TEST(WirerigExitCodes, BuildAndViewWarnOfDeflectionsBeyondLinearTheory) {
-  const fs::path scene = BentBeamScene();
+  // F = 3 EI 10 m / L^3 bends the tip by ~10 m, ten times the length.
+  const fs::path scene = PushedBeamScene("bent.scene.json", 4.7e8);
   const ProcessResult built =
       RunWirerig({"build", scene.string(), "-o", Scratch("bent.wrig").string(), "--clips"});
   EXPECT_EQ(built.exit_code, 0) << built.err;
