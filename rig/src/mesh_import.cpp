@@ -1063,8 +1063,7 @@ bool ParseUpAxis(std::string_view name, UpAxis* out) {
 
 Result<ImportedMesh> ImportMesh(const fs::path& path, const ImportOptions& options) {
   // The file itself: exists, is a regular file (input_file.h), can be read, is not empty.
-  Result<std::uintmax_t> checked =
-      CheckInputFile(path, "mesh file", std::numeric_limits<std::uintmax_t>::max());
+  Result<std::uintmax_t> checked = CheckInputFile(path, "mesh file", options.max_file_bytes);
   if (!checked) return Error{checked.error()};
   const std::uintmax_t file_size = checked.value();
 

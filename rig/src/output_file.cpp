@@ -3,6 +3,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <string>
 #include <system_error>
 
@@ -76,6 +78,18 @@ Result<bool> CheckOutputFile(const fs::path& path,
   }
   if (::faccessat(AT_FDCWD, folder.c_str(), W_OK | X_OK, AT_EACCESS) != 0) {
     return Fail(path, "the folder " + folder.string() + " is not writable");
+  }
+  // Permission bits do not tell everything (root in /sys, a read-only mount): an empty probe
+  // file is made and removed.
+  const fs::path probe = folder / (".wirerig-probe-" + std::to_string(::getpid()));
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (fd < 0 && errno != EEXIST) {
+    return Fail(
+        path, "the folder " + folder.string() + " is not writable (" + std::strerror(errno) + ")");
+  }
+  if (fd >= 0) {
+    ::close(fd);
+    ::unlink(probe.c_str());
   }
   return true;
 }

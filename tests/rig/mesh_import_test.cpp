@@ -720,6 +720,15 @@ TEST(MeshImportInvalid, NotARegularFile) {
   fs::remove(path);
 }
 
+// A 10 GB (sparse) .obj ran until the import's time limit: files over max_file_bytes are
+// refused before they are read.
+TEST(MeshImportInvalid, AFileTooLargeIsRefusedUnread) {
+  const fs::path path = WriteFile("huge.obj", "v 0 0 0\n");
+  fs::resize_file(path, (std::uintmax_t{2} << 30) + 1);  // sparse: no disk used
+  ExpectError(ImportMesh(path), path, "is 2147483649 bytes, more than the 2147483648");
+  fs::remove(path);
+}
+
 TEST(MeshImportInvalid, UnreadableFile) {
   const fs::path path = WriteFile("unreadable.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   fs::permissions(path, fs::perms::none);

@@ -100,6 +100,19 @@ TEST(CheckOutputFile, RefusesANameTooLongForItsTemporaryFile) {
   EXPECT_TRUE(CheckOutputFile(Scratch() / (std::string(239, 'n') + ".glb"), {".glb"}).ok());
 }
 
+// As root every folder's permission bits allow writing, /sys's too: the bake then ran in full
+// before the write failed. The probe finds it; a folder that can be written keeps no probe.
+TEST(CheckOutputFile, ProbesTheFolderWherePermissionBitsDoNotTell) {
+  const Result<bool> checked = CheckOutputFile("/sys/wirerig_x.glb", {".glb"});
+  ASSERT_FALSE(checked.ok());
+  EXPECT_EQ(checked.error().rfind("/sys/wirerig_x.glb: the folder /sys is not writable", 0), 0u)
+      << checked.error();
+  ASSERT_TRUE(CheckOutputFile(Scratch() / "probe.glb", {".glb"}).ok());
+  for (const auto& entry : fs::directory_iterator(Scratch()))
+    EXPECT_EQ(entry.path().filename().string().rfind(".wirerig-probe", 0), std::string::npos)
+        << entry.path();
+}
+
 TEST(CheckOutputFile, RefusesAnUnwritableFolder) {
   const fs::path dir = Scratch() / "locked";
   fs::create_directories(dir);

@@ -50,6 +50,9 @@ struct ImportOptions {
   // Files claiming more than this many vertices or triangles are refused before any large
   // allocation happens.
   std::uint64_t max_elements = 20'000'000;
+  // Files larger than this are refused before they are read (a 10 GB file ran until the
+  // import's time limit); the largest real assets are a few hundred MB.
+  std::uintmax_t max_file_bytes = std::uintmax_t{2} << 30;
   // When set, Assimp runs in a child process (see ImportIsolation); the wirerig command sets
   // it for every mesh it imports. Never read from or written to files.
   std::optional<ImportIsolation> isolation;

@@ -13,7 +13,9 @@
 namespace wirerig {
 
 // Checks that `path` can be written as one of `extensions` (".glb", matched case-insensitively;
-// any extension when the list is empty) without writing anything. Errors read "<path>: <reason>":
+// any extension when the list is empty) without writing it (an empty probe file is made and
+// removed beside it, as permission bits do not show a read-only mount). Errors read
+// "<path>: <reason>":
 // the extension is not one of those listed, the path is a directory or another file that is not
 // a regular file (NotARegularTarget), its folder does not exist (named once: the nearest missing
 // folder), is not a folder, or is not writable.
