@@ -42,11 +42,11 @@ Vec3 TentaclePoint(const OctopusParameters& p, int i, double s) {
 
 std::string ValidateOctopusParameters(const OctopusParameters& p) {
   auto positive = [](double x) { return std::isfinite(x) && x > 0.0 && x < 1e6; };
-  if (!positive(p.mantle_radius)) return "mantle_radius: must be positive (m)";
-  if (!positive(p.mantle_height)) return "mantle_height: must be positive (m)";
+  if (!positive(p.mantle_radius)) return "mantle_radius: must be in (0, 1e6) m";
+  if (!positive(p.mantle_height)) return "mantle_height: must be in (0, 1e6) m";
   if (p.tentacle_count < 1 || p.tentacle_count > 64) return "tentacle_count: must be in [1, 64]";
-  if (!positive(p.tentacle_length)) return "tentacle_length: must be positive (m)";
-  if (!positive(p.tentacle_radius)) return "tentacle_radius: must be positive (m)";
+  if (!positive(p.tentacle_length)) return "tentacle_length: must be in (0, 1e6) m";
+  if (!positive(p.tentacle_radius)) return "tentacle_radius: must be in (0, 1e6) m";
   if (!positive(p.tip_radius) || p.tip_radius >= p.tentacle_radius)
     return "tip_radius: must be positive and below tentacle_radius";
   if (!(p.spread >= 0.0 && p.spread <= 1.0)) return "spread: must be in [0, 1]";

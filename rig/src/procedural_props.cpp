@@ -86,8 +86,8 @@ PartDescription Part(const std::string& name, std::vector<Vec3> central_curve, i
 
 std::string ValidateCandleRowParameters(const CandleRowParameters& p) {
   if (p.count < 1 || p.count > 16) return "count: must be in [1, 16]";
-  if (!Positive(p.radius)) return "radius: must be positive (m)";
-  if (!Positive(p.height)) return "height: must be positive (m)";
+  if (!Positive(p.radius)) return "radius: must be in (0, 1e6) m";
+  if (!Positive(p.height)) return "height: must be in (0, 1e6) m";
   if (!Positive(p.spacing) || p.spacing <= 2.0 * p.radius)
     return "spacing: must exceed twice the radius (m)";
   if (std::string e = CheckRings(p.height_segments, 1, "height_segments"); !e.empty()) return e;
@@ -95,7 +95,7 @@ std::string ValidateCandleRowParameters(const CandleRowParameters& p) {
 }
 
 std::string ValidateBeamParameters(const BeamParameters& p) {
-  if (!Positive(p.length)) return "length: must be positive (m)";
+  if (!Positive(p.length)) return "length: must be in (0, 1e6) m";
   if (!Positive(p.radius) || p.radius >= 0.25 * p.length)
     return "radius: must be positive and below a quarter of the length";
   if (std::string e = CheckRings(p.rings, 8, "rings"); !e.empty()) return e;
@@ -103,8 +103,8 @@ std::string ValidateBeamParameters(const BeamParameters& p) {
 }
 
 std::string ValidateTrunkParameters(const TrunkParameters& p) {
-  if (!Positive(p.height)) return "height: must be positive (m)";
-  if (!Positive(p.base_radius)) return "base_radius: must be positive (m)";
+  if (!Positive(p.height)) return "height: must be in (0, 1e6) m";
+  if (!Positive(p.base_radius)) return "base_radius: must be in (0, 1e6) m";
   if (!Positive(p.top_radius) || p.top_radius >= p.base_radius)
     return "top_radius: must be positive and below base_radius";
   if (!(std::isfinite(p.flare) && p.flare >= 0.0 && p.flare <= 2.0))
@@ -114,30 +114,30 @@ std::string ValidateTrunkParameters(const TrunkParameters& p) {
 }
 
 std::string ValidateLampPostParameters(const LampPostParameters& p) {
-  if (!Positive(p.height)) return "height: must be positive (m)";
-  if (!Positive(p.pole_radius)) return "pole_radius: must be positive (m)";
+  if (!Positive(p.height)) return "height: must be in (0, 1e6) m";
+  if (!Positive(p.pole_radius)) return "pole_radius: must be in (0, 1e6) m";
   if (!Positive(p.base_radius) || p.base_radius <= p.pole_radius)
     return "base_radius: must exceed pole_radius";
   if (!Positive(p.base_height) || p.base_height >= 0.5 * p.height)
     return "base_height: must be positive and below half the height";
   if (6.0 * p.pole_radius >= p.height - p.base_height)
     return "pole_radius: must be below a sixth of the height above the plinth";
-  if (!Positive(p.lantern_radius)) return "lantern_radius: must be positive (m)";
-  if (!Positive(p.lantern_height)) return "lantern_height: must be positive (m)";
+  if (!Positive(p.lantern_radius)) return "lantern_radius: must be in (0, 1e6) m";
+  if (!Positive(p.lantern_height)) return "lantern_height: must be in (0, 1e6) m";
   if (std::string e = CheckRings(p.rings, 24, "rings"); !e.empty()) return e;
   return CheckCounts(p.radial_segments, p.profile_count, p.points_per_profile);
 }
 
 std::string ValidateChairParameters(const ChairParameters& p) {
-  if (!Positive(p.seat_width)) return "seat_width: must be positive (m)";
-  if (!Positive(p.seat_depth)) return "seat_depth: must be positive (m)";
+  if (!Positive(p.seat_width)) return "seat_width: must be in (0, 1e6) m";
+  if (!Positive(p.seat_depth)) return "seat_depth: must be in (0, 1e6) m";
   if (!Positive(p.seat_thickness) || p.seat_thickness >= 0.5 * p.seat_depth)
     return "seat_thickness: must be positive and below half the seat depth";
   if (!Positive(p.seat_height) || p.seat_height <= 2.0 * p.seat_thickness)
     return "seat_height: must exceed twice the seat thickness";
   if (!Positive(p.leg_radius) || p.leg_radius >= 0.1 * std::min(p.seat_width, p.seat_depth))
     return "leg_radius: must be positive and below a tenth of the seat";
-  if (!Positive(p.back_height)) return "back_height: must be positive (m)";
+  if (!Positive(p.back_height)) return "back_height: must be in (0, 1e6) m";
   if (!Positive(p.back_thickness) || p.back_thickness >= 0.25 * p.seat_depth)
     return "back_thickness: must be positive and below a quarter of the seat depth";
   if (std::string e = CheckRings(p.rings, 8, "rings"); !e.empty()) return e;

@@ -95,7 +95,9 @@ TEST(ProceduralOctopus, RefusesBadParametersByName) {
   EXPECT_EQ(MakeOctopus(p).error(), "tip_radius: must be positive and below tentacle_radius");
   p = {};
   p.mantle_radius = std::nan("");
-  EXPECT_EQ(MakeOctopus(p).error(), "mantle_radius: must be positive (m)");
+  EXPECT_EQ(MakeOctopus(p).error(), "mantle_radius: must be in (0, 1e6) m");
+  p.mantle_radius = 1e300;  // said "must be positive" of a positive number: the bound is stated
+  EXPECT_EQ(MakeOctopus(p).error(), "mantle_radius: must be in (0, 1e6) m");
 }
 
 }  // namespace WIRERIG_TEST_FILE
