@@ -87,6 +87,7 @@ SkinInfluences FitWeights(const SkinInfluences& start, const std::vector<int>& p
     const auto n = static_cast<Eigen::Index>(candidates.size());
     Eigen::VectorXd start_weights = Eigen::VectorXd::Zero(n);
     for (std::size_t c = 0; c < 4; ++c) {
+      if (start.weights[v * 4 + c] <= 0.0f) continue;  // unused slots name joint 0, not a candidate
       const auto at = std::find(candidates.begin(), candidates.end(), start.joints[v * 4 + c]);
       start_weights(at - candidates.begin()) += start.weights[v * 4 + c];
     }
