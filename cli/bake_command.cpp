@@ -36,10 +36,12 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
   bake->add_option("scene", options.scene, "Scene file (JSON)")->required();
   bake->add_option("-o,--output", options.output, "Output file: .glb, or .gltf (+ .bin)")
       ->required();
-  bake->add_option("--mode", options.mode,
-                   "skin: the rig's joints plus a few per deformable part, fitted to the bake, "
-                   "and corrective shapes; morph: a morph target per key (exact, large)")
-      ->check(CLI::IsMember({"morph", "skin"}))
+  bake->add_option(
+          "--mode", options.mode,
+          "skin: the rig's joints plus a few per deformable part, fitted to the bake, "
+          "and corrective shapes (small; the default); morph: a morph target per key (exact, "
+          "large, for offline tools)")
+      ->check(CLI::IsMember({"skin", "morph"}))
       ->capture_default_str();
   bake->add_option("--fps", options.fps, "Keys per second")
       ->check(InRange(1, 1000))
@@ -64,11 +66,16 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
                    "skin mode: correctives are added until the error is below this, m")
       ->check(Above(0))
       ->capture_default_str();
+  bake->add_option("--key-tolerance", options.key_tolerance,
+                   "skin mode: a joint key is left out when interpolating its neighbours moves "
+                   "the joint's vertices by at most this, m (0: every key)")
+      ->check(InRange(0.0, 1.0))
+      ->capture_default_str();
   // Options that do not apply to the chosen mode are refused, not ignored.
   bake->callback([bake, &options] {
     if (options.mode == "morph") {
       for (const char* name : {"--residual", "--max-joints", "--joints-per-part",
-                               "--max-correctives", "--corrective-error"}) {
+                               "--max-correctives", "--corrective-error", "--key-tolerance"}) {
         if (bake->count(name) > 0) throw CLI::ValidationError(name, "applies to --mode skin only");
       }
     } else if (options.residual &&
@@ -116,6 +123,7 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   export_options.max_joints_per_part = options.joints_per_part;
   export_options.max_correctives = options.max_correctives;
   export_options.corrective_error = options.corrective_error;
+  export_options.key_tolerance = options.key_tolerance;
   export_options.node_name = scene.description.name;
   // An export too large to write is refused with its numbers before anything is baked.
   {

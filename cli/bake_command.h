@@ -1,4 +1,4 @@
-// `wirerig bake SCENE -o OUT.glb [--mode morph|skin] [--fps N] [--clip NAME]`: plays a clip of a
+// `wirerig bake SCENE -o OUT.glb [--mode skin|morph] [--fps N] [--clip NAME]`: plays a clip of a
 // scene, bakes it and exports animated glTF 2.0 (.glb, or .gltf + .bin). A progress bar on a
 // terminal, quiet otherwise; on any failure a message naming the file and field, exit 1, and no
 // output file.
@@ -17,7 +17,7 @@ namespace wirerig::cli {
 struct BakeCommandOptions {
   std::string scene;
   std::string output;
-  std::string mode = "morph";
+  std::string mode = "skin";  // the default: a game skeleton and a few shapes, small
   double fps = 30.0;
   std::string clip;  // empty: the scene's first clip
   bool residual = false;
@@ -26,6 +26,7 @@ struct BakeCommandOptions {
   std::size_t joints_per_part = 8;   // skin mode: GltfExportOptions::max_joints_per_part
   std::size_t max_correctives = 16;  // skin mode: GltfExportOptions::max_correctives
   double corrective_error = 1e-3;    // skin mode: GltfExportOptions::corrective_error, m
+  double key_tolerance = 0.0;        // skin mode: GltfExportOptions::key_tolerance, m
   bool progress = false;             // set by main when stderr is a terminal
   ImportLimitOptions import_limits;
 };

@@ -73,13 +73,10 @@ int RunDemoCommand(const DemoCommandOptions& options, std::ostream& out, std::os
   if (int code = RunRenderCommand(render, out, err); code != 0) return code;
   bake.clip = render.clip = "";
 
-  // The walk: human.zae on its bone chain (its mesh comes from scripts/setup.sh), baked in skin
-  // mode (a joint per part, fitted, and corrective shapes: a few MB rather than a morph per
-  // frame).
+  // The walk: human.zae on its bone chain (its mesh comes from scripts/setup.sh).
   if (options.samples.empty()) return 0;
   bake.scene = render.scene = walk.string();
   bake.output = (folder / "walk.glb").string();
-  bake.mode = "skin";
   if (int code = RunBakeCommand(bake, out, err); code != 0) return code;
   render.output = (folder / "walk.png").string();
   render.size = "400x400";

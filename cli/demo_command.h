@@ -1,6 +1,7 @@
 // `wirerig demo [-o DIR]`: the octopus demo (paper Fig. 13), with no display. Writes the sample
 // scene DIR/octopus.scene.json (a copy built into the binary), bakes its 10 s swim to
-// DIR/octopus.glb (morph mode) and draws DIR/octopus.png, a contact sheet of six times.
+// DIR/octopus.glb (skin mode: fitted joints and corrective shapes) and draws DIR/octopus.png,
+// a contact sheet of six times.
 #pragma once
 
 #include <iosfwd>

@@ -29,6 +29,14 @@ int AddIndexAccessor(tinygltf::Model& model, std::span<const std::uint32_t> indi
 int AddJointAccessor(tinygltf::Model& model, std::span<const std::uint16_t> joints,
                      std::size_t joint_count);
 
+// Normalized 16-bit accessor (#values / components elements, components from `type`): signed
+// shorts (value = max(q / 32767, -1)) or unsigned (value = q / 65535), as glTF allows for
+// rotation keys and WEIGHTS_0 without any extension.
+int AddNormalizedShortAccessor(tinygltf::Model& model, std::span<const std::int16_t> values,
+                               int type, int target);
+int AddNormalizedShortAccessor(tinygltf::Model& model, std::span<const std::uint16_t> values,
+                               int type, int target);
+
 // Pads buffer 0's in-memory data (created when missing) to a multiple of 4 bytes and returns
 // its size: the offset at which reserved views may start.
 std::size_t AlignedBufferEnd(tinygltf::Model& model);

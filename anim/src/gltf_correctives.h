@@ -7,8 +7,10 @@
 // lambda_i first) give shapes X^T u_i / sqrt(lambda_i) and weights u_i sqrt(lambda_i) per key
 // (the SVD of X). Shapes are added until every vertex at every key is within `max_error` of its
 // exact residual (in bind space: the skinning matrix blends rotations, so the skinned error is
-// no larger up to the blend's shrinkage), or `max_shapes` are used. Normal deltas are projected
-// on the same weights (least squares).
+// no larger up to the blend's shrinkage), or `max_shapes` are used. Normal deltas, when the fit
+// has normal residuals, are projected on the same weights (least squares); the export's
+// correctives carry positions only (millimetres of bulge: the skinned normals stand, and each
+// shape costs half the bytes).
 #pragma once
 
 #include <cstddef>

@@ -76,11 +76,12 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::An
                                             const gltf::BaseVertices& base,
                                             const GltfExportOptions& options,
                                             const gltf::MorphQuantization& quantization,
-                                            int mesh_index, int time_accessor,
-                                            GltfExportReport* report) {
+                                            int mesh_index, std::span<const float> times,
+                                            int time_accessor, GltfExportReport* report) {
   gltf::SkinFitOptions fit_options;
   fit_options.max_joints = options.max_joints;
   fit_options.max_joints_per_part = options.max_joints_per_part;
+  fit_options.key_tolerance = options.key_tolerance;
   if (!options.fit_skin) fit_options.iterations = fit_options.weight_rounds = 0;
   Result<gltf::FittedSkin> fitted = gltf::FitSkeleton(bake, base, fit_options);
   if (!fitted) return Error{fitted.error()};
@@ -88,11 +89,12 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::An
   const gltf::SkinInfluences& influences = fitted.value().influences;
   const bool residuals = options.residual_morph_targets;
   std::vector<int> roots;
-  model.nodes[0].skin = gltf::AddSkeleton(model, animation, skeleton, time_accessor, &roots);
+  model.nodes[0].skin = gltf::AddSkeleton(model, animation, skeleton, times, time_accessor, &roots);
   model.scenes[0].nodes.insert(model.scenes[0].nodes.end(), roots.begin(), roots.end());
   gltf::AddSkinAttributes(model, mesh_index, influences, skeleton.JointCount());
   const bool correct = !residuals && options.max_correctives > 0;
-  gltf::SkinFit fit = gltf::FitSkin(skeleton, influences, base, bake, residuals || correct);
+  gltf::SkinFit fit =
+      gltf::FitSkin(skeleton, influences, base, bake, residuals || correct, residuals);
   report->joint_count = skeleton.JointCount();
   report->skin_max_error = fit.max_error;
   report->skin_rms_error = fit.rms_error;
@@ -231,7 +233,7 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
     report.morph_target_count = bake.KeyCount();
   } else {
     Result<gltf::MorphTargetsAdded> skinned =
-        AddSkinMode(model, animation, mesh, bake, base, options, quantization, mesh_index,
+        AddSkinMode(model, animation, mesh, bake, base, options, quantization, mesh_index, times,
                     time_accessor, &report);
     if (!skinned) return Error{out.string() + ": skin: " + skinned.error()};
     targets = std::move(skinned).value();

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <map>
 #include <utility>
 
 #include "gltf_buffers.h"
@@ -12,48 +14,134 @@ namespace {
 
 using Rigid = RigidTransform;
 
-// Float as stored, and back to double as read (rotation normalized).
-std::pair<Vec3f, Quatf> Store(const Rigid& local) {
-  return {local.translation.cast<float>(), local.rotation.normalized().cast<float>()};
-}
-Rigid Load(const Vec3f& t, const Quatf& q) {
-  return {q.cast<double>().normalized(), t.cast<double>()};
+constexpr double kShortScale = 32767.0;   // normalized signed short
+constexpr double kWeightScale = 65535.0;  // normalized unsigned short
+constexpr std::uint32_t kWeightTotal = 65535;
+
+// A unit quaternion as stored: each component a normalized signed short.
+Quatf StoreRotation(const Quat& q) {
+  const auto store = [](double c) {
+    return static_cast<float>(std::round(c * kShortScale) / kShortScale);
+  };
+  return Quatf(store(q.w()), store(q.x()), store(q.y()), store(q.z()));
 }
 
-// Locals of every joint for world transforms `world` (#J), parents first.
-void StoreLocals(const std::vector<int>& parent, std::span<const Rigid> world,
-                 std::vector<Vec3f>* translations, std::vector<Quatf>* rotations) {
+// The locals of a rest pose (float, rotations unquantized: node values are JSON numbers).
+void StoreRestLocals(const std::vector<int>& parent, std::span<const Rigid> world,
+                     std::vector<Vec3f>* translations, std::vector<Quatf>* rotations) {
   std::vector<Rigid> stored_world(world.size());
   for (std::size_t j = 0; j < world.size(); ++j) {
     const int p = parent[j];
     const Rigid parent_world = p < 0 ? Rigid{} : stored_world[static_cast<std::size_t>(p)];
-    const auto [t, q] = Store(parent_world.LocalOf(world[j]));
-    translations->push_back(t);
-    rotations->push_back(q);
-    stored_world[j] = parent_world.Compose(Load(t, q));
+    const Rigid local = parent_world.LocalOf(world[j]);
+    translations->push_back(local.translation.cast<float>());
+    rotations->push_back(local.rotation.normalized().cast<float>());
+    stored_world[j] = parent_world.Compose(
+        {rotations->back().cast<double>().normalized(), translations->back().cast<double>()});
   }
+}
+
+// One joint's track. `exact` (#K) are the locals wanted; `stored_t` / `stored_q` what would be
+// stored at each key. Fills `keys` and the values a reader has at every key.
+struct Track {
+  std::vector<std::uint32_t> keys;
+  std::vector<Vec3f> translations;
+  std::vector<Quatf> rotations;
+};
+
+Track ThinTrack(std::span<const Rigid> exact, std::span<const float> times, double tolerance,
+                double reach) {
+  const std::size_t count = exact.size();
+  std::vector<Vec3f> stored_t(count);
+  std::vector<Quatf> stored_q(count);
+  Quat previous = Quat::Identity();
+  for (std::size_t k = 0; k < count; ++k) {
+    Quat q = exact[k].rotation.normalized();
+    if (k > 0 && previous.dot(q) < 0.0) q.coeffs() = -q.coeffs();
+    previous = q;
+    stored_t[k] = exact[k].translation.cast<float>();
+    stored_q[k] = StoreRotation(q);
+  }
+  // What a reader has at key i between stored keys a and b.
+  const auto interpolate = [&](std::size_t a, std::size_t b, std::size_t i) {
+    const double u = (double(times[i]) - times[a]) / (double(times[b]) - times[a]);
+    const Vec3 t = (1.0 - u) * stored_t[a].cast<double>() + u * stored_t[b].cast<double>();
+    const Quat q =
+        stored_q[a].cast<double>().normalized().slerp(u, stored_q[b].cast<double>().normalized());
+    return Rigid{q.normalized(), t};
+  };
+  const auto within = [&](std::size_t a, std::size_t b) {
+    for (std::size_t i = a + 1; i < b; ++i) {
+      const Rigid r = interpolate(a, b, i);
+      const double error = (r.translation - exact[i].translation).norm() +
+                           reach * r.rotation.angularDistance(exact[i].rotation);
+      if (!(error <= tolerance)) return false;
+    }
+    return true;
+  };
+  Track track;
+  track.keys.push_back(0);
+  for (std::size_t a = 0; a + 1 < count;) {
+    std::size_t b = a + 1;
+    while (tolerance > 0.0 && b + 1 < count && within(a, b + 1)) ++b;
+    track.keys.push_back(static_cast<std::uint32_t>(b));
+    a = b;
+  }
+  track.translations.resize(count);
+  track.rotations.resize(count);
+  for (std::size_t n = 0; n < track.keys.size(); ++n) {
+    const std::size_t a = track.keys[n];
+    track.translations[a] = stored_t[a];
+    track.rotations[a] = stored_q[a];
+    if (n + 1 == track.keys.size()) break;
+    for (std::size_t i = a + 1; i < track.keys[n + 1]; ++i) {
+      const Rigid r = interpolate(a, track.keys[n + 1], i);
+      track.translations[i] = r.translation.cast<float>();
+      track.rotations[i] = r.rotation.cast<float>();
+    }
+  }
+  return track;
 }
 
 }  // namespace
 
+std::size_t Skeleton::StoredKeyCount() const {
+  std::size_t count = 0;
+  for (const auto& joint_keys : keys) count += joint_keys.size();
+  return count;
+}
+
 Skeleton MakeSkeleton(std::vector<int> parent, std::vector<std::string> names,
-                      std::span<const RigidTransform> rest, std::span<const RigidTransform> keyed) {
+                      std::span<const RigidTransform> rest, std::span<const RigidTransform> keyed,
+                      const KeyThinning& thinning) {
   Skeleton skeleton;
   skeleton.parent = std::move(parent);
   skeleton.names = std::move(names);
   const std::size_t joints = skeleton.JointCount();
   const std::size_t keys = joints == 0 ? 0 : keyed.size() / joints;
-  StoreLocals(skeleton.parent, rest, &skeleton.rest_translations, &skeleton.rest_rotations);
-  for (std::size_t k = 0; k < keys; ++k) {
-    StoreLocals(skeleton.parent, keyed.subspan(k * joints, joints), &skeleton.translations,
-                &skeleton.rotations);
-  }
-  for (std::size_t k = 1; k < keys; ++k) {
-    for (std::size_t j = 0; j < joints; ++j) {
-      const Quatf& previous = skeleton.rotations[(k - 1) * joints + j];
-      Quatf& q = skeleton.rotations[k * joints + j];
-      if (previous.dot(q) < 0.0f) q.coeffs() = -q.coeffs();
+  StoreRestLocals(skeleton.parent, rest, &skeleton.rest_translations, &skeleton.rest_rotations);
+  skeleton.translations.resize(keys * joints);
+  skeleton.rotations.resize(keys * joints);
+  skeleton.keys.resize(joints);
+  // Joint worlds as a reader reconstructs them (#J x #K, joint-major), parents first.
+  std::vector<Rigid> world(joints * keys);
+  std::vector<Rigid> exact(keys);
+  for (std::size_t j = 0; j < joints; ++j) {
+    const int p = skeleton.parent[j];
+    for (std::size_t k = 0; k < keys; ++k) {
+      const Rigid parent_world = p < 0 ? Rigid{} : world[static_cast<std::size_t>(p) * keys + k];
+      exact[k] = parent_world.LocalOf(keyed[k * joints + j]);
     }
+    const double reach = j < thinning.reach.size() ? thinning.reach[j] : 0.0;
+    Track track = ThinTrack(exact, thinning.times, thinning.tolerance, reach);
+    for (std::size_t k = 0; k < keys; ++k) {
+      skeleton.translations[k * joints + j] = track.translations[k];
+      skeleton.rotations[k * joints + j] = track.rotations[k];
+      const Rigid parent_world = p < 0 ? Rigid{} : world[static_cast<std::size_t>(p) * keys + k];
+      world[j * keys + k] = parent_world.Compose(
+          {track.rotations[k].cast<double>().normalized(), track.translations[k].cast<double>()});
+    }
+    skeleton.keys[j] = std::move(track.keys);
   }
   const std::vector<Mat4d> rest_globals =
       JointGlobals(skeleton, skeleton.rest_translations, skeleton.rest_rotations);
@@ -75,22 +163,23 @@ void AppendInfluences(std::vector<std::pair<std::uint32_t, double>> pairs,
   if (pairs.size() > 4) pairs.resize(4);
   double sum = 0.0;
   for (const auto& pair : pairs) sum += pair.second;
-  std::array<float, 4> weights{};
-  float rest = 1.0f;
+  // Shorts summing to exactly 65535; the largest takes what rounding leaves.
+  std::array<std::uint32_t, 4> quantized{};
+  std::uint32_t rest = kWeightTotal;
   for (std::size_t c = 1; c < pairs.size(); ++c) {
-    weights[c] = static_cast<float>(pairs[c].second / sum);
-    rest -= weights[c];
+    quantized[c] = static_cast<std::uint32_t>(std::lround(pairs[c].second / sum * kWeightScale));
+    rest -= quantized[c];
   }
-  weights[0] = rest;
+  quantized[0] = rest;
   for (std::size_t c = 0; c < 4; ++c) {
     influences->joints.push_back(c < pairs.size() ? static_cast<std::uint16_t>(pairs[c].first)
                                                   : std::uint16_t{0});
-    influences->weights.push_back(weights[c]);
+    influences->weights.push_back(static_cast<float>(quantized[c] / kWeightScale));
   }
 }
 
 int AddSkeleton(tinygltf::Model& model, tinygltf::Animation& animation, const Skeleton& skeleton,
-                int time_accessor, std::vector<int>* roots) {
+                std::span<const float> times, int time_accessor, std::vector<int>* roots) {
   const std::size_t joints = skeleton.JointCount();
   const std::size_t keys = skeleton.translations.size() / joints;
   const int first_node = static_cast<int>(model.nodes.size());
@@ -120,29 +209,41 @@ int AddSkeleton(tinygltf::Model& model, tinygltf::Animation& animation, const Sk
     skin.skeleton = first_node;
   model.skins.push_back(std::move(skin));
 
+  std::map<std::vector<std::uint32_t>, int> inputs;  // stored keys -> their times' accessor
   for (std::size_t j = 0; j < joints; ++j) {
+    const std::vector<std::uint32_t>& stored = skeleton.keys[j];
+    int input = time_accessor;
+    if (stored.size() != keys) {
+      auto [it, added] = inputs.try_emplace(stored, -1);
+      if (added) {
+        std::vector<float> kept_times;
+        for (std::uint32_t k : stored) kept_times.push_back(times[k]);
+        it->second = AddFloatAccessor(model, kept_times, TINYGLTF_TYPE_SCALAR, 0, true);
+      }
+      input = it->second;
+    }
     std::vector<float> translation;
-    std::vector<float> rotation;
-    for (std::size_t k = 0; k < keys; ++k) {
+    std::vector<std::int16_t> rotation;
+    for (std::uint32_t k : stored) {
       const Vec3f& t = skeleton.translations[k * joints + j];
       const Quatf& q = skeleton.rotations[k * joints + j];
       translation.insert(translation.end(), {t.x(), t.y(), t.z()});
-      rotation.insert(rotation.end(), {q.x(), q.y(), q.z(), q.w()});
+      for (float c : {q.x(), q.y(), q.z(), q.w()})
+        rotation.push_back(static_cast<std::int16_t>(std::lround(c * kShortScale)));
     }
-    const std::pair<const char*, const std::vector<float>*> paths[] = {
-        {"translation", &translation}, {"rotation", &rotation}};
-    for (const auto& [path, values] : paths) {
+    const int outputs[] = {AddFloatAccessor(model, translation, TINYGLTF_TYPE_VEC3, 0, false),
+                           AddNormalizedShortAccessor(model, rotation, TINYGLTF_TYPE_VEC4, 0)};
+    const char* paths[] = {"translation", "rotation"};
+    for (int c = 0; c < 2; ++c) {
       tinygltf::AnimationSampler sampler;
-      sampler.input = time_accessor;
-      sampler.output = AddFloatAccessor(
-          model, *values, values == &translation ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4, 0,
-          false);
+      sampler.input = input;
+      sampler.output = outputs[c];
       sampler.interpolation = "LINEAR";
       animation.samplers.push_back(sampler);
       tinygltf::AnimationChannel channel;
       channel.sampler = static_cast<int>(animation.samplers.size()) - 1;
       channel.target_node = first_node + static_cast<int>(j);
-      channel.target_path = path;
+      channel.target_path = paths[c];
       animation.channels.push_back(channel);
     }
   }
@@ -152,8 +253,11 @@ int AddSkeleton(tinygltf::Model& model, tinygltf::Animation& animation, const Sk
 void AddSkinAttributes(tinygltf::Model& model, int mesh_index, const SkinInfluences& influences,
                        std::size_t joint_count) {
   const int joints = AddJointAccessor(model, influences.joints, joint_count);
-  const int weights = AddFloatAccessor(model, influences.weights, TINYGLTF_TYPE_VEC4,
-                                       TINYGLTF_TARGET_ARRAY_BUFFER, false);
+  std::vector<std::uint16_t> stored(influences.weights.size());
+  std::transform(influences.weights.begin(), influences.weights.end(), stored.begin(),
+                 [](float w) { return static_cast<std::uint16_t>(std::lround(w * kWeightScale)); });
+  const int weights =
+      AddNormalizedShortAccessor(model, stored, TINYGLTF_TYPE_VEC4, TINYGLTF_TARGET_ARRAY_BUFFER);
   for (tinygltf::Primitive& primitive :
        model.meshes[static_cast<std::size_t>(mesh_index)].primitives) {
     primitive.attributes["JOINTS_0"] = joints;

@@ -37,25 +37,43 @@ struct Skeleton {
   std::vector<std::string> names;
   std::vector<Vec3f> rest_translations;  // #J local (relative to the parent joint), m
   std::vector<Quatf> rest_rotations;     // #J local
-  std::vector<Vec3f> translations;       // #K x #J local, key-major
-  std::vector<Quatf> rotations;          // #K x #J local, key-major, same hemisphere per joint
-  std::vector<Mat4f> inverse_bind;       // #J: inverse of the rest joint-to-world transform
+  // #K x #J local transforms, key-major, as a reader has them at every key: at the keys a
+  // joint's track stores (`keys`) the stored values (translation float, rotation a normalized
+  // signed short per component), between them the reader's interpolation (lerp, slerp).
+  // Consecutive rotations of a joint are in one hemisphere (slerp takes the short way).
+  std::vector<Vec3f> translations;
+  std::vector<Quatf> rotations;
+  std::vector<std::vector<std::uint32_t>> keys;  // #J: stored keys, increasing, first and last
+  std::vector<Mat4f> inverse_bind;               // #J: inverse of the rest joint-to-world
   std::size_t JointCount() const { return parent.size(); }
+  std::size_t StoredKeyCount() const;  // over all joints
+};
+
+// How MakeSkeleton thins each joint's track: a key is left out when interpolating its
+// neighbours reproduces it within `tolerance`, measured as the joint's translation error plus
+// its rotation error (radians) times `reach[j]`, the farthest distance of a vertex it moves
+// from its origin. A child's locals are taken against the parent as a reader reconstructs it,
+// so the errors do not add up along a chain. Tolerance 0 keeps every key.
+struct KeyThinning {
+  std::span<const float> times;   // #K key times as stored, s
+  double tolerance = 0.0;         // m
+  std::span<const double> reach;  // #J, m
 };
 
 // The skeleton of joints with parents `parent` (parents first) and names `names`, at rest at the
 // world transforms `rest` (#J) and at key k at keyed[k * #J + j]. Local transforms are taken
-// relative to the parent's world transform as reconstructed from the stored (float) locals, so
-// float rounding does not accumulate along a chain; consecutive rotation keys of a joint are
-// kept in one hemisphere (slerp takes the short way).
+// relative to the parent's world transform as reconstructed from the stored locals, so
+// rounding and thinning do not accumulate along a chain.
 Skeleton MakeSkeleton(std::vector<int> parent, std::vector<std::string> names,
-                      std::span<const RigidTransform> rest, std::span<const RigidTransform> keyed);
+                      std::span<const RigidTransform> rest, std::span<const RigidTransform> keyed,
+                      const KeyThinning& thinning);
 
-// Per vertex 4 joints and weights as written: sorted by decreasing weight, normalized so that
-// the float weights sum to 1; unused slots are joint 0 with weight 0.
+// Per vertex 4 joints and weights as written: sorted by decreasing weight, stored as normalized
+// unsigned shorts that sum to exactly 65535 (weights q / 65535); unused slots are joint 0 with
+// weight 0.
 struct SkinInfluences {
   std::vector<std::uint16_t> joints;  // #V x 4
-  std::vector<float> weights;         // #V x 4
+  std::vector<float> weights;         // #V x 4, the stored q / 65535
 };
 // Appends one vertex's influences from (joint, weight) pairs (distinct joints, weights >= 0,
 // some positive): the 4 largest kept and normalized.
@@ -63,10 +81,11 @@ void AppendInfluences(std::vector<std::pair<std::uint32_t, double>> pairs,
                       SkinInfluences* influences);
 
 // Appends the joint nodes (their roots to `roots`, for the scene), the skin with its inverse
-// bind matrices, and per joint a translation and a rotation channel (LINEAR, on
-// `time_accessor`) to `animation`. Returns the skin index.
+// bind matrices, and per joint a translation and a rotation channel (LINEAR) on its stored keys
+// to `animation`: `time_accessor` (all #K `times`) when it keeps every key, else an input of
+// its own, shared by joints keeping the same keys. Returns the skin index.
 int AddSkeleton(tinygltf::Model& model, tinygltf::Animation& animation, const Skeleton& skeleton,
-                int time_accessor, std::vector<int>* roots);
+                std::span<const float> times, int time_accessor, std::vector<int>* roots);
 
 // Adds JOINTS_0 and WEIGHTS_0 to every primitive of mesh `mesh_index`.
 void AddSkinAttributes(tinygltf::Model& model, int mesh_index, const SkinInfluences& influences,

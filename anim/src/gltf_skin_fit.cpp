@@ -309,7 +309,23 @@ Result<FittedSkin> FitSkeleton(const BakedAnimation& bake, const BaseVertices& b
     keyed[i] = {(q * rest[j].rotation).normalized(),
                 rotation[i] * rest[j].translation + translation[i]};
   }
-  fitted.skeleton = MakeSkeleton(std::move(parent), std::move(names), rest, keyed);
+  // Each joint's reach: the farthest vertex it moves, from its rest origin.
+  std::vector<double> reach(joints, 0.0);
+  for (std::size_t v = 0; v < base.Count(); ++v) {
+    const Vec3 p = Eigen::Map<const Eigen::Vector3f>(&base.positions[v * 3]).cast<double>();
+    for (std::size_t c = 0; c < 4; ++c) {
+      if (fitted.influences.weights[v * 4 + c] == 0.0f) continue;
+      const std::size_t j = fitted.influences.joints[v * 4 + c];
+      reach[j] = std::max(reach[j], (p - rest[j].translation).norm());
+    }
+  }
+  std::vector<float> times;
+  for (double t : bake.times) times.push_back(static_cast<float>(t));
+  KeyThinning thinning;
+  thinning.times = times;
+  thinning.tolerance = options.key_tolerance;
+  thinning.reach = reach;
+  fitted.skeleton = MakeSkeleton(std::move(parent), std::move(names), rest, keyed, thinning);
   return fitted;
 }
 

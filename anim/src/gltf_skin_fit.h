@@ -20,6 +20,9 @@
 // for `weight_rounds` rounds, the weights are solved with the transforms held
 // (gltf_skin_weights.h; the first round on the baked frames), each round followed by the
 // transform passes with the new weights held.
+//
+// Last, each joint's track is stored (rotations as normalized shorts) and thinned within
+// key_tolerance (gltf_skin.h): the skeleton holds what a reader has at every key.
 #pragma once
 
 #include <cstddef>
@@ -35,7 +38,8 @@ struct SkinFitOptions {
   std::size_t max_joints = 64;          // per skin
   std::size_t max_joints_per_part = 8;  // deformable parts; 0: a joint at every spine sample
   int iterations = 2;                   // fitting passes per key; 0: the baked spine frames
-  int weight_rounds = 2;  // weight solves (gltf_skin_weights.h), each followed by the passes
+  int weight_rounds = 2;       // weight solves (gltf_skin_weights.h), each followed by the passes
+  double key_tolerance = 0.0;  // m: joint keys thinned within it (KeyThinning); 0 keeps all
 };
 
 struct FittedSkin {

@@ -39,11 +39,13 @@ Mat4d BlendedSkinMatrix(const SkinInfluences& influences, std::span<const Mat4d>
 }
 
 SkinFit FitSkin(const Skeleton& skeleton, const SkinInfluences& influences,
-                const BaseVertices& base, const BakedAnimation& bake, bool residuals) {
+                const BaseVertices& base, const BakedAnimation& bake, bool residuals,
+                bool residual_normals) {
   SkinFit fit;
   const std::size_t keys = bake.KeyCount();
   const std::size_t vertices = base.Count();
-  const bool normals = residuals && !base.normals.empty() && !bake.normals.empty();
+  const bool normals =
+      residuals && residual_normals && !base.normals.empty() && !bake.normals.empty();
   if (residuals) fit.residual_positions.resize(keys * vertices * 3);
   if (normals) fit.residual_normals.resize(keys * vertices * 3);
   double sum_squares = 0.0;

@@ -27,8 +27,8 @@ Mat4d BlendedSkinMatrix(const SkinInfluences& influences, std::span<const Mat4d>
 // Error of the skinned rest mesh against the bake at every key and, when asked, the residual
 // morph targets that make the skin exact at the keys: per key k and vertex v the delta r with
 // M (p + r) = bake (M = the blended matrix, linear part A): r = A^-1 (bake - M p); normals
-// likewise n + dn = A^-1 bake_n. Where A is singular (|det A| < 1e-9) the residual falls back
-// to bake - M p and is not exact.
+// likewise n + dn = A^-1 bake_n (with residual_normals). Where A is singular (|det A| < 1e-9) the
+// residual falls back to bake - M p and is not exact.
 struct SkinFit {
   double max_error = 0.0;                 // m, over keys and vertices
   double rms_error = 0.0;                 // m
@@ -37,6 +37,7 @@ struct SkinFit {
   double residual_max_error = 0.0;        // m, skinned (p + r) against the bake
 };
 SkinFit FitSkin(const Skeleton& skeleton, const SkinInfluences& influences,
-                const BaseVertices& base, const BakedAnimation& bake, bool residuals);
+                const BaseVertices& base, const BakedAnimation& bake, bool residuals,
+                bool residual_normals);
 
 }  // namespace wirerig::gltf

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "wirerig/anim/scene.h"
@@ -36,6 +37,22 @@ std::string CheckCount(double value, const char* name, double lo, double hi) {
   if (value >= lo && value <= hi && value == std::floor(value)) return {};
   return std::string("/mesh/parameters/") + name + ": must be a whole number in [" +
          std::to_string(int(lo)) + ", " + std::to_string(int(hi)) + "]";
+}
+
+// A procedural mesh's material: one matte colour per generator (linear RGB), so exports and
+// engines show it as the sample means it rather than as their default grey.
+MeshMaterial ProceduralMaterial(const std::string& generator) {
+  static const std::pair<const char*, Vec4> kColors[] = {
+      {"octopus", Vec4(0.62, 0.16, 0.09, 1.0)}, {"candles", Vec4(0.85, 0.78, 0.60, 1.0)},
+      {"trunk", Vec4(0.23, 0.13, 0.06, 1.0)},   {"lamp_post", Vec4(0.05, 0.06, 0.06, 1.0)},
+      {"chair", Vec4(0.40, 0.22, 0.10, 1.0)},   {"beam", Vec4(0.50, 0.52, 0.55, 1.0)},
+  };
+  MeshMaterial material;
+  material.name = generator;
+  material.base_color = Vec4(0.60, 0.60, 0.62, 1.0);  // shapes: a light clay
+  for (const auto& [name, color] : kColors)
+    if (generator == name) material.base_color = color;
+  return material;
 }
 
 struct Generated {
@@ -259,6 +276,10 @@ Result<BuiltScene> BuildScene(const SceneDescription& scene) {
     Result<Generated> generated = Generate(scene.mesh);
     if (!generated) return fail(generated.error());
     out.mesh = std::move(generated.value().mesh);
+    if (out.mesh.materials.empty()) {
+      out.mesh.materials.push_back(ProceduralMaterial(scene.mesh.procedural));
+      for (MeshPart& part : out.mesh.parts) part.material = 0;
+    }
     procedural_description = std::move(generated.value().description);
     mesh_name = "procedural:" + scene.mesh.procedural;
   } else {

@@ -223,13 +223,15 @@ tinygltf::Model LoadWithTinygltf(const fs::path& file) {
   return model;
 }
 
-// The values of a float accessor, tightly packed (count x components). KHR_mesh_quantization's
-// normalized signed shorts are decoded as glTF says: max(q / 32767, -1).
+// The values of a float accessor, tightly packed (count x components). Normalized shorts are
+// decoded as glTF says: signed max(q / 32767, -1) (KHR_mesh_quantization targets, rotation
+// keys), unsigned q / 65535 (WEIGHTS_0).
 std::vector<float> ReadFloats(const tinygltf::Model& model, int index) {
   const tinygltf::Accessor& accessor = model.accessors.at(static_cast<std::size_t>(index));
   const bool shorts = accessor.componentType == TINYGLTF_COMPONENT_TYPE_SHORT;
+  const bool unsigned_shorts = accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
   EXPECT_TRUE(accessor.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-              (shorts && accessor.normalized));
+              ((shorts || unsigned_shorts) && accessor.normalized));
   EXPECT_FALSE(accessor.sparse.isSparse);
   const tinygltf::BufferView& view =
       model.bufferViews.at(static_cast<std::size_t>(accessor.bufferView));
@@ -237,16 +239,22 @@ std::vector<float> ReadFloats(const tinygltf::Model& model, int index) {
       model.buffers.at(static_cast<std::size_t>(view.buffer)).data;
   const auto components = static_cast<std::size_t>(
       tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type)));
-  const std::size_t size = shorts ? sizeof(std::int16_t) : sizeof(float);
+  const std::size_t size = shorts || unsigned_shorts ? sizeof(std::int16_t) : sizeof(float);
   const std::size_t stride = view.byteStride != 0 ? view.byteStride : components * size;
   std::vector<float> values(accessor.count * components);
   for (std::size_t i = 0; i < accessor.count; ++i) {
     const unsigned char* element = &data.at(view.byteOffset + accessor.byteOffset + i * stride);
-    if (!shorts) {
+    if (size == sizeof(float)) {
       std::memcpy(&values[i * components], element, components * sizeof(float));
       continue;
     }
     for (std::size_t c = 0; c < components; ++c) {
+      if (unsigned_shorts) {
+        std::uint16_t q = 0;
+        std::memcpy(&q, element + c * sizeof q, sizeof q);
+        values[i * components + c] = static_cast<float>(q) / 65535.0f;
+        continue;
+      }
       std::int16_t q = 0;
       std::memcpy(&q, element + c * sizeof q, sizeof q);
       values[i * components + c] = std::max(static_cast<float>(q) / 32767.0f, -1.0f);
@@ -605,7 +613,7 @@ TEST(GltfExport, SkinIsExactWhenEveryRingHasAJoint) {
   EXPECT_LE(errors.max, 1e-4 * scene.diagonal);
 }
 
-TEST(GltfExport, SkinWeightsAreMergedSortedAndNormalizedInFloat) {
+TEST(GltfExport, SkinWeightsAreMergedSortedAndStoredAsShortsSummingToOne) {
   TempDir dir;
   Scene scene = MakeScene(BendCase{});
   scene.bake.skin_joints[20] = {2, 1, 2, 0};
@@ -626,12 +634,18 @@ TEST(GltfExport, SkinWeightsAreMergedSortedAndNormalizedInFloat) {
             TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE);
   EXPECT_EQ(std::vector<std::uint32_t>(joints.begin() + 80, joints.begin() + 84),
             (std::vector<std::uint32_t>{2, 1, 0, 0}));
-  EXPECT_NEAR(weights[80], 0.4 / 0.7, 1e-7);
-  EXPECT_NEAR(weights[81], 0.3 / 0.7, 1e-7);
+  const tinygltf::Accessor& weight_accessor =
+      model.accessors.at(static_cast<std::size_t>(primitive.attributes.at("WEIGHTS_0")));
+  EXPECT_EQ(weight_accessor.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  EXPECT_TRUE(weight_accessor.normalized);
+  EXPECT_NEAR(weights[80], 0.4 / 0.7, 0.5 / 65535);
+  EXPECT_NEAR(weights[81], 0.3 / 0.7, 0.5 / 65535);
   EXPECT_EQ(weights[82], 0.0f);
   EXPECT_EQ(weights[83], 0.0f);
+  // glTF: the stored weights of a vertex sum to one; as shorts, exactly 65535.
+  const std::vector<std::uint32_t> stored = ReadUints(model, primitive.attributes.at("WEIGHTS_0"));
   for (std::size_t v = 0; v < scene.bake.vertex_count; ++v) {
-    EXPECT_EQ(weights[v * 4] + weights[v * 4 + 1] + weights[v * 4 + 2] + weights[v * 4 + 3], 1.0f)
+    EXPECT_EQ(stored[v * 4] + stored[v * 4 + 1] + stored[v * 4 + 2] + stored[v * 4 + 3], 65535u)
         << v;
   }
 }

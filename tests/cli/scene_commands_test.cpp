@@ -182,6 +182,7 @@ TEST(BakeCommand, AMorphExportWhoseWeightsOutgrowABufferIsRefusedBeforeBaking) {
   BakeCommandOptions options;
   options.scene = scene.string();
   options.output = Output("weights.glb").string();
+  options.mode = "morph";
   const auto start = std::chrono::steady_clock::now();
   const CommandRun run = Bake(options);
   EXPECT_EQ(run.code, 1);

@@ -54,6 +54,10 @@ struct GltfExportOptions {
   // the bake at every key, at most max_correctives of them (0: none).
   std::size_t max_correctives = 16;
   double corrective_error = 1e-3;
+  // kSkin: a joint's key is left out of its track when interpolating its neighbours moves the
+  // joint's vertices by at most key_tolerance (m; gltf_skin.h's KeyThinning); the correctives
+  // are fitted to what remains. 0 keeps every key.
+  double key_tolerance = 0.0;
   // Name of the mesh node (and mesh); empty: the clip's name, or "mesh" when that is empty.
   std::string node_name;
   // Folder the mesh's MeshMaterial::base_color_texture paths are relative to (the source file's
