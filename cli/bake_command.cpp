@@ -178,10 +178,10 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   out << line;
   if (export_options.mode == GltfAnimationMode::kSkin) {
     std::snprintf(line, sizeof line,
-                  "skin: %zu joints, error against the bake max %.3g m (%.3g of the diagonal), "
-                  "RMS %.3g m\n",
-                  report.joint_count, report.skin_max_error, report.skin_max_error_relative,
-                  report.skin_rms_error);
+                  "skin: %zu joints (%zu keys stored), error against the bake max %.3g m (%.3g "
+                  "of the diagonal), RMS %.3g m\n",
+                  report.joint_count, report.joint_keys, report.skin_max_error,
+                  report.skin_max_error_relative, report.skin_rms_error);
     out << line;
     if (options.residual) {
       std::snprintf(line, sizeof line, "residual targets: %zu, error max %.3g m\n",

@@ -92,6 +92,10 @@ int AddFloatAccessor(tinygltf::Model& model, std::span<const float> values, int 
   return index;
 }
 
+int AddBytesView(tinygltf::Model& model, std::span<const unsigned char> bytes) {
+  return AddBufferView(model, bytes.data(), bytes.size(), 0);
+}
+
 int AddNormalizedShortAccessor(tinygltf::Model& model, std::span<const std::int16_t> values,
                                int type, int target) {
   const int view = AddBufferView(model, values.data(), values.size_bytes(), target);

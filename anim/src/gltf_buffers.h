@@ -37,6 +37,9 @@ int AddNormalizedShortAccessor(tinygltf::Model& model, std::span<const std::int1
 int AddNormalizedShortAccessor(tinygltf::Model& model, std::span<const std::uint16_t> values,
                                int type, int target);
 
+// A view of `bytes` in buffer 0 (an embedded image: no target). Returns the view's index.
+int AddBytesView(tinygltf::Model& model, std::span<const unsigned char> bytes);
+
 // Pads buffer 0's in-memory data (created when missing) to a multiple of 4 bytes and returns
 // its size: the offset at which reserved views may start.
 std::size_t AlignedBufferEnd(tinygltf::Model& model);

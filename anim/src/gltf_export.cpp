@@ -96,6 +96,7 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::An
   gltf::SkinFit fit =
       gltf::FitSkin(skeleton, influences, base, bake, residuals || correct, residuals);
   report->joint_count = skeleton.JointCount();
+  report->joint_keys = skeleton.StoredKeyCount();
   report->skin_max_error = fit.max_error;
   report->skin_rms_error = fit.rms_error;
   report->corrected_max_error = fit.max_error;

@@ -1,8 +1,11 @@
 #include "gltf_material.h"
 
+#include <algorithm>
+#include <iterator>
 #include <map>
 #include <system_error>
 
+#include "gltf_buffers.h"
 #include "gltf_paths.h"
 
 namespace wirerig::gltf {
@@ -17,20 +20,34 @@ std::string MimeType(const fs::path& file) {
   return {};
 }
 
-// The image for `texture`, or the reason it is left out.
+// PNG or JPEG by the bytes' signature, else empty.
+std::string MimeTypeOf(const std::vector<unsigned char>& bytes) {
+  static constexpr unsigned char kPng[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (bytes.size() > sizeof kPng && std::equal(std::begin(kPng), std::end(kPng), bytes.begin()))
+    return "image/png";
+  if (bytes.size() > 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff)
+    return "image/jpeg";
+  return {};
+}
+
+// The image for a material's texture, or the reason it is left out: a file referenced by its
+// URI, or bytes the source held (embedded in the output's buffer; `uri` empty).
 struct ImageRef {
   std::string uri;
   std::string mime_type;
   std::string problem;
 };
 
-ImageRef ResolveTexture(const Mesh& mesh, const std::string& texture, const fs::path& texture_dir,
+ImageRef ResolveTexture(const Mesh& mesh, const MeshMaterial& material, const fs::path& texture_dir,
                         const fs::path& out_dir) {
   ImageRef ref;
-  const fs::path file = texture_dir / texture;
+  const fs::path file = texture_dir / material.base_color_texture;
   std::error_code error;
   if (mesh.uvs.empty()) {
     ref.problem = "the mesh has no UVs";
+  } else if (!material.base_color_image.empty()) {
+    ref.mime_type = MimeTypeOf(material.base_color_image);
+    if (ref.mime_type.empty()) ref.problem = "not PNG or JPEG";
   } else if (!fs::is_regular_file(file, error)) {
     ref.problem = "file not found";
   } else if (ref.mime_type = MimeType(file); ref.mime_type.empty()) {
@@ -64,8 +81,9 @@ MaterialsAdded AddMaterials(tinygltf::Model& model, const Mesh& mesh, const fs::
     material.pbrMetallicRoughness.baseColorFactor = {color[0], color[1], color[2], color[3]};
     material.pbrMetallicRoughness.metallicFactor = 0.0;
     material.pbrMetallicRoughness.roughnessFactor = 1.0;
-    if (!texture_dir.empty() && !source.base_color_texture.empty()) {
-      const ImageRef ref = ResolveTexture(mesh, source.base_color_texture, texture_dir, out_dir);
+    const bool held = !source.base_color_image.empty();
+    if (held || (!texture_dir.empty() && !source.base_color_texture.empty())) {
+      const ImageRef ref = ResolveTexture(mesh, source, texture_dir, out_dir);
       if (!ref.problem.empty()) {
         std::string warning = "material '";
         warning.append(source.name)
@@ -75,7 +93,9 @@ MaterialsAdded AddMaterials(tinygltf::Model& model, const Mesh& mesh, const fs::
             .append(ref.problem);
         warnings->push_back(std::move(warning));
       } else {
-        auto [it, inserted] = texture_of_uri.try_emplace(ref.uri, -1);
+        // Held images are told apart by their material (each is embedded once).
+        const std::string key = held ? "held:" + std::to_string(m) : ref.uri;
+        auto [it, inserted] = texture_of_uri.try_emplace(key, -1);
         if (inserted) {
           if (model.samplers.empty()) {
             tinygltf::Sampler sampler;
@@ -86,6 +106,10 @@ MaterialsAdded AddMaterials(tinygltf::Model& model, const Mesh& mesh, const fs::
           tinygltf::Image image;
           image.uri = ref.uri;
           image.mimeType = ref.mime_type;
+          if (held) {
+            image.name = fs::path(source.base_color_texture).stem().string();
+            image.bufferView = AddBytesView(model, source.base_color_image);
+          }
           model.images.push_back(image);
           tinygltf::Texture texture;
           texture.sampler = 0;

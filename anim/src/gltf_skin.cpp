@@ -172,8 +172,10 @@ void AppendInfluences(std::vector<std::pair<std::uint32_t, double>> pairs,
   }
   quantized[0] = rest;
   for (std::size_t c = 0; c < 4; ++c) {
-    influences->joints.push_back(c < pairs.size() ? static_cast<std::uint16_t>(pairs[c].first)
-                                                  : std::uint16_t{0});
+    // A slot whose weight rounded to zero is unused (joint 0), as glTF asks.
+    const bool used = c < pairs.size() && quantized[c] > 0;
+    influences->joints.push_back(used ? static_cast<std::uint16_t>(pairs[c].first)
+                                      : std::uint16_t{0});
     influences->weights.push_back(static_cast<float>(quantized[c] / kWeightScale));
   }
 }

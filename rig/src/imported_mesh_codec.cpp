@@ -104,6 +104,7 @@ std::string EncodeImportedMesh(const ImportedMesh& imported) {
     w.Put(material.name);
     for (int i = 0; i < 4; ++i) w.Put(material.base_color[i]);
     w.Put(material.base_color_texture);
+    w.PutList(material.base_color_image);
   }
   w.Put<std::uint64_t>(mesh.joints.size());
   for (const Joint& joint : mesh.joints) {
@@ -150,7 +151,8 @@ Result<ImportedMesh> DecodeImportedMesh(std::string_view bytes) {
     MeshMaterial material;
     bool ok = r.Get(material.name);
     for (int k = 0; k < 4 && ok; ++k) ok = r.Get(material.base_color[k]);
-    if (!ok || !r.Get(material.base_color_texture)) return Damaged("materials");
+    if (!ok || !r.Get(material.base_color_texture) || !r.GetList(material.base_color_image))
+      return Damaged("materials");
     mesh.materials.push_back(std::move(material));
   }
   if (!r.Get(count)) return Damaged("joints");

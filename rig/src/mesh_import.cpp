@@ -5,9 +5,11 @@
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <minizip/unzip.h>
 #include <assimp/Importer.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cfenv>
 #include <cmath>
@@ -474,6 +476,7 @@ Vec4 ReadBaseColor(const aiMaterial& material) {
   return Vec4::Ones();
 }
 
+// The base colour texture's path as the file gives it ("*N" for an embedded one), or empty.
 std::string ReadBaseColorTexture(const aiMaterial& material) {
   aiString path;
   if (material.GetTexture(aiTextureType_BASE_COLOR, 0, &path) != aiReturn_SUCCESS &&
@@ -481,9 +484,30 @@ std::string ReadBaseColorTexture(const aiMaterial& material) {
     return {};
   }
   std::string out = path.C_Str();
-  if (out.starts_with('*')) return {};  // embedded in the file, not a path
   std::replace(out.begin(), out.end(), '\\', '/');
   return out;
+}
+
+// A texture larger than this is left to its file (a decompression bomb in an archive).
+constexpr std::size_t kMaxTextureBytes = std::size_t{256} << 20;
+
+// The bytes of `entry` in the zip archive `archive` (a .zae), or empty when it has none.
+std::vector<unsigned char> ReadArchiveEntry(const fs::path& archive, std::string entry) {
+  while (entry.starts_with("./")) entry.erase(0, 2);
+  unzFile zip = unzOpen64(archive.c_str());
+  if (zip == nullptr) return {};
+  std::vector<unsigned char> bytes;
+  unz_file_info64 info{};
+  if (unzLocateFile(zip, entry.c_str(), /*case sensitive=*/1) == UNZ_OK &&
+      unzGetCurrentFileInfo64(zip, &info, nullptr, 0, nullptr, 0, nullptr, 0) == UNZ_OK &&
+      info.uncompressed_size > 0 && info.uncompressed_size <= kMaxTextureBytes &&
+      unzOpenCurrentFile(zip) == UNZ_OK) {
+    bytes.resize(static_cast<std::size_t>(info.uncompressed_size));
+    const int read = unzReadCurrentFile(zip, bytes.data(), static_cast<unsigned>(bytes.size()));
+    if (unzCloseCurrentFile(zip) != UNZ_OK || read != static_cast<int>(bytes.size())) bytes.clear();
+  }
+  unzClose(zip);
+  return bytes;
 }
 
 class SceneConverter {
@@ -720,9 +744,28 @@ class SceneConverter {
         if (source.Get(AI_MATKEY_NAME, name) == aiReturn_SUCCESS) material.name = name.C_Str();
         material.base_color = ReadBaseColor(source);
         material.base_color_texture = ReadBaseColorTexture(source);
+        material.base_color_image = ReadHeldImage(material.base_color_texture);
       }
       mesh_.materials.push_back(std::move(material));
     }
+  }
+
+  // The bytes of a texture the source holds itself: embedded in the file (compressed, as PNG or
+  // JPEG), or an entry of the .zae archive it was read from. Empty otherwise: the texture is a
+  // file next to the source (or missing).
+  std::vector<unsigned char> ReadHeldImage(const std::string& texture) const {
+    if (texture.empty()) return {};
+    if (const aiTexture* embedded = scene_.GetEmbeddedTexture(texture.c_str())) {
+      if (embedded->mHeight != 0 || embedded->mWidth > kMaxTextureBytes) return {};  // raw texels
+      const auto* bytes = reinterpret_cast<const unsigned char*>(embedded->pcData);
+      return {bytes, bytes + embedded->mWidth};
+    }
+    std::string extension = path_.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::error_code error;
+    if (extension != ".zae" || fs::exists(path_.parent_path() / texture, error)) return {};
+    return ReadArchiveEntry(path_, texture);
   }
 
   // The first node (in pre-order) with this name, or -1.

@@ -18,6 +18,8 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -113,7 +115,7 @@ Scene MakeScene(const BendCase& c) {
     const double angle = std::atan2(-p.z(), p.x());
     mesh.uvs.emplace_back(0.5 + angle / (2.0 * std::numbers::pi), 1.0 - p.y() / kHeight);
   }
-  mesh.materials.push_back(MeshMaterial{"skin", Vec4(0.8, 0.4, 0.3, 1.0), "textures/logo.png"});
+  mesh.materials.push_back(MeshMaterial{"skin", Vec4(0.8, 0.4, 0.3, 1.0), "textures/logo.png", {}});
   mesh.parts[0].material = 0;
   scene.diagonal = ComputeBounds(mesh).Diagonal();
 
@@ -618,6 +620,8 @@ TEST(GltfExport, SkinWeightsAreMergedSortedAndStoredAsShortsSummingToOne) {
   Scene scene = MakeScene(BendCase{});
   scene.bake.skin_joints[20] = {2, 1, 2, 0};
   scene.bake.skin_weights[20] = Vec4f(0.2f, 0.3f, 0.2f, 0.0f);
+  scene.bake.skin_joints[21] = {2, 1, 0, 0};  // the second weight rounds to zero as a short
+  scene.bake.skin_weights[21] = Vec4f(1.0f, 1e-6f, 0.0f, 0.0f);
   GltfExportOptions options;
   options.mode = GltfAnimationMode::kSkin;
   options.max_joints_per_part = 0;  // a joint per sample, the bake's weights as they are
@@ -642,11 +646,19 @@ TEST(GltfExport, SkinWeightsAreMergedSortedAndStoredAsShortsSummingToOne) {
   EXPECT_NEAR(weights[81], 0.3 / 0.7, 0.5 / 65535);
   EXPECT_EQ(weights[82], 0.0f);
   EXPECT_EQ(weights[83], 0.0f);
-  // glTF: the stored weights of a vertex sum to one; as shorts, exactly 65535.
+  EXPECT_EQ(std::vector<std::uint32_t>(joints.begin() + 84, joints.begin() + 88),
+            (std::vector<std::uint32_t>{2, 0, 0, 0}));
+  // glTF: the stored weights of a vertex sum to one; as shorts, exactly 65535; a slot whose
+  // weight is zero names joint 0 (the validator warns otherwise).
   const std::vector<std::uint32_t> stored = ReadUints(model, primitive.attributes.at("WEIGHTS_0"));
   for (std::size_t v = 0; v < scene.bake.vertex_count; ++v) {
     EXPECT_EQ(stored[v * 4] + stored[v * 4 + 1] + stored[v * 4 + 2] + stored[v * 4 + 3], 65535u)
         << v;
+    for (std::size_t c = 0; c < 4; ++c) {
+      if (stored[v * 4 + c] == 0) {
+        EXPECT_EQ(joints[v * 4 + c], 0u) << v;
+      }
+    }
   }
 }
 
@@ -698,6 +710,41 @@ TEST(GltfExport, ReportsMissingTexturesAndExportsWithoutThem) {
   const tinygltf::Model model = LoadWithTinygltf(out);
   EXPECT_TRUE(model.images.empty());
   EXPECT_EQ(model.materials.size(), 1u);
+}
+
+// A texture the source held itself (an archive entry, an embedded texture) is embedded in the
+// file's buffer, with no texture folder: a reader decodes it from there.
+TEST(GltfExport, EmbedsATextureTheSourceHeld) {
+  TempDir dir;
+  Scene scene = MakeScene(BendCase{});
+  const fs::path png = InstallTexture(dir.path()) / "textures" / "logo.png";
+  std::ifstream in(png, std::ios::binary);
+  scene.mesh.materials.at(0).base_color_image.assign(std::istreambuf_iterator<char>(in), {});
+  ASSERT_GT(scene.mesh.materials[0].base_color_image.size(), 8u);
+  GltfExportOptions options;  // no texture_dir
+  const fs::path out = dir.path() / "held.glb";
+  const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
+  ASSERT_TRUE(report.ok()) << report.error();
+  EXPECT_TRUE(report.value().warnings.empty());
+  EXPECT_EQ(report.value().texture_count, 1u);
+  const tinygltf::Model model = LoadWithTinygltf(out);
+  ASSERT_EQ(model.images.size(), 1u);
+  EXPECT_TRUE(model.images[0].uri.empty());
+  EXPECT_GE(model.images[0].bufferView, 0);
+  EXPECT_EQ(model.images[0].mimeType, "image/png");
+  EXPECT_GT(model.images[0].width, 0) << "tinygltf did not decode the embedded image";
+  EXPECT_EQ(model.materials.at(0).pbrMetallicRoughness.baseColorTexture.index, 0);
+  const Validation validation = Validate(out);
+  EXPECT_NE(validation.output.find(": 0 errors, 0 warnings"), std::string::npos)
+      << validation.output;
+  // Bytes that are neither PNG nor JPEG are left out, with the reason.
+  scene.mesh.materials[0].base_color_image.assign(16, 0x42);
+  const Result<GltfExportReport> refused =
+      ExportGltf(scene.mesh, scene.bake, options, dir.path() / "odd.glb");
+  ASSERT_TRUE(refused.ok()) << refused.error();
+  ASSERT_EQ(refused.value().warnings.size(), 1u);
+  EXPECT_NE(refused.value().warnings[0].find("left out: not PNG or JPEG"), std::string::npos)
+      << refused.value().warnings[0];
 }
 
 TEST(GltfExport, UsesTheNodeNameAndKeepsAnExistingFileOnError) {
@@ -809,7 +856,7 @@ TEST(GltfExport, PartsBecomePrimitivesSharingVerticesAndTargets) {
   scene.mesh.parts = {
       MeshPart{"lower", 0, half, 0},
       MeshPart{"upper", half, static_cast<std::uint32_t>(scene.mesh.triangles.size()) - half, 1}};
-  scene.mesh.materials.push_back(MeshMaterial{"tip", Vec4(0.1, 0.2, 0.9, 0.5), ""});
+  scene.mesh.materials.push_back(MeshMaterial{"tip", Vec4(0.1, 0.2, 0.9, 0.5), "", {}});
   for (GltfAnimationMode mode : {GltfAnimationMode::kMorph, GltfAnimationMode::kSkin}) {
     GltfExportOptions options;
     options.mode = mode;

@@ -123,7 +123,7 @@ fs::path AddTexture(Mesh* mesh, const fs::path& dir) {
   for (const Vec3& p : mesh->positions) {
     mesh->uvs.emplace_back(p.x(), 0.5 + std::atan2(p.z(), p.y()) / (2.0 * std::numbers::pi));
   }
-  mesh->materials = {MeshMaterial{"skin", Vec4(0.8, 0.4, 0.3, 1.0), "textures/logo.png"}};
+  mesh->materials = {MeshMaterial{"skin", Vec4(0.8, 0.4, 0.3, 1.0), "textures/logo.png", {}}};
   for (MeshPart& part : mesh->parts) part.material = 0;
   return dir / "src";
 }

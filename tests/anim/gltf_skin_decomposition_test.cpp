@@ -211,6 +211,23 @@ TEST(SkinDecomposition, ADeformablePartGetsAChainWithinItsBudget) {
   EXPECT_FALSE(fs::exists(dir.path() / "x.glb"));
 }
 
+// Key thinning: the elbow turns at a constant rate about one axis, which the reader's slerp
+// reproduces between any two keys, and the lower part does not move: each track keeps its first
+// and last key, within the tolerance. Without thinning every key is stored.
+TEST(SkinDecomposition, AJointTurningAtAConstantRateKeepsTwoKeys) {
+  const Elbow elbow = MakeElbow(0.0, /*true_weights=*/true);
+  GltfExportOptions options = SkinOptions();
+  options.fit_skin = false;
+  const GltfExportReport every_key = Export(elbow, options, "every.glb");
+  options.key_tolerance = 1e-4;
+  const GltfExportReport thinned = Export(elbow, options, "thinned.glb");
+  EXPECT_EQ(every_key.joint_keys, 2u * kKeys);
+  EXPECT_EQ(thinned.joint_keys, 4u);
+  EXPECT_LT(thinned.skin_max_error, kStoredRounding + 1e-4);
+  std::printf("[ measured ] elbow skin error: every key %.3g m, thinned to 4 keys %.3g m\n",
+              every_key.skin_max_error, thinned.skin_max_error);
+}
+
 // A swelling no joint makes, of rank one over the keys (a fixed shape times a weight per key),
 // on the elbow's exact skin (its true weights and frames, nothing fitted): one corrective
 // shape carries it to the rounding of the stored skin; without correctives the skin misses it.

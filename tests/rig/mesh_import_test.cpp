@@ -182,6 +182,12 @@ TEST(MeshImport, HumanZaeIsYUpMetresWithClosedBodyAndOpenEyes) {
   EXPECT_EQ(mesh.materials[mesh.parts[0].material].name, "DefaultSkin");
   EXPECT_EQ(mesh.materials[mesh.parts[1].material].name, "Eye_brown");
   EXPECT_EQ(mesh.materials[mesh.parts[1].material].base_color_texture, "./textures/brown_eye.png");
+  // The eye texture lives inside the .zae archive (no file next to it): its bytes are read from
+  // the archive, the whole PNG (610,817 bytes, as `unzip -l` lists it). The skin has none.
+  const std::vector<unsigned char>& eye = mesh.materials[mesh.parts[1].material].base_color_image;
+  ASSERT_EQ(eye.size(), 610817u);
+  EXPECT_EQ(std::string(eye.begin() + 1, eye.begin() + 4), "PNG");
+  EXPECT_TRUE(mesh.materials[mesh.parts[0].material].base_color_image.empty());
   EXPECT_NEAR(mesh.materials[mesh.parts[0].material].base_color.x(), 0.5903, 1e-6);
 
   const MeshStatistics body = ComputeMeshStatistics(PartMesh(mesh, mesh.parts[0]));

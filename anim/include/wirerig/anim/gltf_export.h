@@ -63,7 +63,8 @@ struct GltfExportOptions {
   // Folder the mesh's MeshMaterial::base_color_texture paths are relative to (the source file's
   // folder). Textures are referenced, not copied: the image URI is the texture's path relative
   // to the output file's folder. A texture that does not exist, is not PNG or JPEG, or whose
-  // mesh has no UVs is left out with a report warning. Empty: no textures are exported.
+  // mesh has no UVs is left out with a report warning. Empty: no texture files are exported.
+  // Textures the source held itself (MeshMaterial::base_color_image) are embedded in the buffer.
   std::filesystem::path texture_dir;
   // Morph targets (kMorph, and kSkin's residual targets) as KHR_mesh_quantization normalized
   // signed shorts (value / 32767, at an 8-byte stride) instead of float: a key's POSITION
@@ -84,6 +85,7 @@ struct GltfExportReport {
   std::size_t key_count = 0;                 // #K
   std::size_t morph_target_count = 0;        // #K in kMorph; #K, the correctives or 0 in kSkin
   std::size_t joint_count = 0;               // kSkin: the skeleton's joints
+  std::size_t joint_keys = 0;  // kSkin: keys stored over all joints' tracks (#J x #K unthinned)
   std::size_t material_count = 0;
   std::size_t texture_count = 0;
   std::vector<std::string> warnings;  // what was left out, and why

@@ -32,6 +32,9 @@ struct MeshMaterial {
   std::string name;
   Vec4 base_color = Vec4::Ones();  // linear RGBA
   std::string base_color_texture;  // path relative to the source file, or empty
+  // The texture's PNG or JPEG bytes when the source holds them itself (an entry of a .zae
+  // archive, a texture embedded in the file); then base_color_texture only names it.
+  std::vector<unsigned char> base_color_image;
 };
 
 // A joint of the source skeleton. Parents come before their children.
