@@ -8,6 +8,8 @@
 //  * BM_ExportQuantized: BM_Export with GltfExportOptions::quantize (KHR_mesh_quantization);
 //    reports the file size, the quantized position / normal targets and the largest position
 //    rounding error (mm).
+//  * BM_ExportSkin: ExportGltf in skin mode (the CLI's default: fitted joints, corrective
+//    shapes); reports the file size, joints, correctives and the max error against the bake.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -56,9 +58,11 @@ std::filesystem::path Output(const std::string& name) {
 }
 
 GltfExportReport ExportReport(const BuiltScene& scene, const BakedAnimation& bake,
-                              const std::filesystem::path& out, bool quantize) {
+                              const std::filesystem::path& out, bool quantize,
+                              GltfAnimationMode mode = GltfAnimationMode::kMorph) {
   GltfExportOptions options;
   options.quantize = quantize;
+  options.mode = mode;
   Result<GltfExportReport> report = ExportGltf(scene.mesh, bake, options, out);
   if (!report) {
     std::cerr << report.error() << "\n";
@@ -107,6 +111,19 @@ void BM_ExportQuantized(benchmark::State& state, const char* name) {
   state.counters["q_error_mm"] = report.quantization_max_error * 1e3;
 }
 
+void BM_ExportSkin(benchmark::State& state, const char* name) {
+  const BuiltScene& scene = Scene(name);
+  const BakedAnimation bake = Bake(scene);
+  const auto out = Output(name);
+  GltfExportReport report;
+  for (auto _ : state) report = ExportReport(scene, bake, out, false, GltfAnimationMode::kSkin);
+  std::filesystem::remove(out);
+  SetCounters(state, scene, report.bytes_written);
+  state.counters["joints"] = double(report.joint_count);
+  state.counters["correctives"] = double(report.corrective_count);
+  state.counters["max_error_mm"] = report.corrected_max_error * 1e3;
+}
+
 void BM_BakeAndExport(benchmark::State& state, const char* name) {
   const BuiltScene& scene = Scene(name);
   const auto out = Output(name);
@@ -118,6 +135,7 @@ void BM_BakeAndExport(benchmark::State& state, const char* name) {
 
 constexpr const char* kHuman = "human/human_wave.scene.json";
 constexpr const char* kOctopus = "octopus/octopus.scene.json";
+constexpr const char* kWalk = "walk/walk.scene.json";
 
 BENCHMARK_CAPTURE(BM_Bake, human, kHuman)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_Bake, octopus, kOctopus)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -127,6 +145,9 @@ BENCHMARK_CAPTURE(BM_ExportQuantized, human, kHuman)->Unit(benchmark::kMilliseco
 BENCHMARK_CAPTURE(BM_ExportQuantized, octopus, kOctopus)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+BENCHMARK_CAPTURE(BM_ExportSkin, human, kHuman)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_ExportSkin, walk, kWalk)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_ExportSkin, octopus, kOctopus)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_BakeAndExport, human, kHuman)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_BakeAndExport, octopus, kOctopus)
     ->Unit(benchmark::kMillisecond)
