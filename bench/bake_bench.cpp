@@ -42,9 +42,12 @@ const BuiltScene& Scene(const std::string& name) {
   return scenes.emplace(name, std::move(built).value()).first->second;
 }
 
-BakedAnimation Bake(const BuiltScene& scene) {
-  Result<BakedAnimation> bake =
-      BakeClip(scene.mesh, scene.model, scene.clips.front(), scene.description.playback);
+// `skin`: with the skin weights skin-mode export needs (BakeOptions::skin).
+BakedAnimation Bake(const BuiltScene& scene, bool skin = false) {
+  BakeOptions options;
+  options.skin = skin;
+  Result<BakedAnimation> bake = BakeClip(scene.mesh, scene.model, scene.clips.front(),
+                                         scene.description.playback, options);
   if (!bake) {
     std::cerr << bake.error() << "\n";
     std::exit(1);
@@ -113,7 +116,7 @@ void BM_ExportQuantized(benchmark::State& state, const char* name) {
 
 void BM_ExportSkin(benchmark::State& state, const char* name) {
   const BuiltScene& scene = Scene(name);
-  const BakedAnimation bake = Bake(scene);
+  const BakedAnimation bake = Bake(scene, /*skin=*/true);
   const auto out = Output(name);
   GltfExportReport report;
   for (auto _ : state) report = ExportReport(scene, bake, out, false, GltfAnimationMode::kSkin);
