@@ -87,6 +87,11 @@ TEST(WirerigExitCodes, UsageErrorsExitTwo) {
   // Options that do not apply to the chosen mode are refused, not ignored.
   ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--mode", "morph", "--max-joints", "8"}),
              2, "--max-joints: applies to --mode skin only");
+  ExpectExit(
+      RunWirerig({"bake", kOctopus, "-o", "x.glb", "--mode", "morph", "--key-tolerance", "1e-4"}),
+      2, "--key-tolerance: applies to --mode skin only");
+  ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--key-tolerance", "-1"}), 2,
+             "--key-tolerance");
   ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--mode", "skin", "--quantize",
                          "--max-correctives", "0"}),
              2, "--quantize: quantizes morph targets: this skin has none");
