@@ -41,14 +41,15 @@ void StoreRestLocals(const std::vector<int>& parent, std::span<const Rigid> worl
   }
 }
 
-// One joint's track. `exact` (#K) are the locals wanted; `stored_t` / `stored_q` what would be
-// stored at each key. Fills `keys` and the values a reader has at every key.
+// One joint's track: the keys it stores, and the locals a reader has at every key (#K).
 struct Track {
   std::vector<std::uint32_t> keys;
   std::vector<Vec3f> translations;
   std::vector<Quatf> rotations;
 };
 
+// The track of a joint whose wanted locals are `exact` (#K): every key stored (translation
+// float, rotation shorts), then thinned within `tolerance` (KeyThinning).
 Track ThinTrack(std::span<const Rigid> exact, std::span<const float> times, double tolerance,
                 double reach) {
   const std::size_t count = exact.size();
