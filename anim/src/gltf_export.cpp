@@ -82,6 +82,7 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::An
   fit_options.max_joints = options.max_joints;
   fit_options.max_joints_per_part = options.max_joints_per_part;
   fit_options.key_tolerance = options.key_tolerance;
+  fit_options.bridge_joints = options.bridge_joints;
   if (!options.fit_skin) fit_options.iterations = fit_options.weight_rounds = 0;
   Result<gltf::FittedSkin> fitted = gltf::FitSkeleton(bake, base, fit_options);
   if (!fitted) return Error{fitted.error()};

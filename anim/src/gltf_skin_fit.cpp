@@ -269,6 +269,21 @@ Result<FittedSkin> FitSkeleton(const BakedAnimation& bake, const BaseVertices& b
       joint_sample.emplace_back(i, samples[i][m]);
     }
   }
+  // Bridge joints: where a part hangs from its parent, a leaf joint under the parent's joint
+  // starts half-way between the two sides (the helper joint games put at elbows and knees), so
+  // the fitted skin can bend across the joint as the rig's bridge does. Added after every part's
+  // own joints, while the budget allows.
+  std::vector<std::pair<std::size_t, std::size_t>> bridges;  // (bridge joint, child's first)
+  for (std::size_t i = 0; options.bridge_joints && i < bake.spines.size(); ++i) {
+    if (bake.spines[i].parent < 0 || parent.size() >= options.max_joints) continue;
+    const std::size_t child = first_joint[i];
+    bridges.emplace_back(parent.size(), child);
+    parent.push_back(parent[child]);
+    names.push_back(
+        (bake.spines[i].name.empty() ? "spine" + std::to_string(i) : bake.spines[i].name) +
+        "_bridge");
+    joint_sample.push_back(joint_sample[child]);  // at the child's root
+  }
   const std::size_t joints = parent.size(), keys = bake.KeyCount();
 
   FittedSkin fitted;
@@ -286,6 +301,18 @@ Result<FittedSkin> FitSkeleton(const BakedAnimation& bake, const BaseVertices& b
       rotation[k * joints + j] = (now.rotation * rest[j].rotation.conjugate()).toRotationMatrix();
       translation[k * joints + j] =
           now.translation - rotation[k * joints + j] * rest[j].translation;
+    }
+  }
+  for (const auto& [bridge, child] : bridges) {
+    const auto up = static_cast<std::size_t>(parent[bridge]);
+    const Vec3 x = rest[bridge].translation;  // the joint's place: both sides agree on it
+    for (std::size_t k = 0; k < keys; ++k) {
+      const Quat half =
+          Quat(rotation[k * joints + up]).slerp(0.5, Quat(rotation[k * joints + child]));
+      rotation[k * joints + bridge] = half.toRotationMatrix();
+      translation[k * joints + bridge] = rotation[k * joints + child] * x +
+                                         translation[k * joints + child] -
+                                         rotation[k * joints + bridge] * x;
     }
   }
   auto fit_transforms = [&] {

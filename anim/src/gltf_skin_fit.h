@@ -8,7 +8,11 @@
 // deformable part gets up to `max_joints_per_part` joints spread evenly over its samples from
 // the first to the last ("arm_0" ... "arm_6"), fewer when the skin's budget `max_joints` would
 // be exceeded (every part keeps at least one). A part's first joint hangs from the joint of its
-// parent part nearest before the attachment; the others from the joint before them.
+// parent part nearest before the attachment; the others from the joint before them. With
+// bridge_joints, and while max_joints allows once every part has its joints, each attached
+// part adds a bridge joint ("forearm_l_bridge"): a leaf under the parent's joint, at the
+// child's root, starting half-way (slerp) between the two sides' transforms, so the fitted
+// skin can bend across the joint as the rig's bridge does.
 //
 // Weights: a vertex's bake weights on spine samples (BakedAnimation::skin_joints / weights),
 // each sample's weight split between the two chosen joints around it in proportion to its
@@ -40,6 +44,7 @@ struct SkinFitOptions {
   int iterations = 2;                   // fitting passes per key; 0: the baked spine frames
   int weight_rounds = 2;       // weight solves (gltf_skin_weights.h), each followed by the passes
   double key_tolerance = 0.0;  // m: joint keys thinned within it (KeyThinning); 0 keeps all
+  bool bridge_joints = true;   // a joint at each part's attachment, within max_joints
 };
 
 struct FittedSkin {

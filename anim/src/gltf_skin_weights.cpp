@@ -81,7 +81,10 @@ SkinInfluences FitWeights(const SkinInfluences& start, const std::vector<int>& p
       if (start.weights[v * 4 + c] <= 0.0f) continue;
       const std::uint32_t j = start.joints[v * 4 + c];
       add(j);
-      if (parent[j] >= 0) add(std::uint32_t(parent[j]));
+      if (parent[j] >= 0) {
+        add(std::uint32_t(parent[j]));
+        for (std::uint32_t sibling : children[std::size_t(parent[j])]) add(sibling);
+      }
       for (std::uint32_t child : children[j]) add(child);
     }
     const auto n = static_cast<Eigen::Index>(candidates.size());

@@ -1,7 +1,8 @@
 // The weight step of the skin's decomposition (as in Dem Bones): with every joint's skinning
 // transform at every key held, each vertex's weights are solved to reproduce its baked path.
-// Candidates are the joints the vertex has and their parents and children (so the skin across a
-// joint can blend both sides, as the wire rig's bridges do); the weights are the non-negative
+// Candidates are the joints the vertex has and their parents, children and siblings (so the
+// skin across a joint can blend both sides and the joint's bridge joint, as the wire rig's
+// bridges do); the weights are the non-negative
 // least squares solution over all keys with their sum held to 1, a faint pull towards the
 // starting weights where the path cannot tell joints apart, and the 4 largest kept.
 #pragma once

@@ -561,7 +561,7 @@ TEST_P(GltfExportRoundTrip, ReimportsValidatesAndReproducesTheBake) {
   if (param.mode == GltfAnimationMode::kSkin) {
     // The report's error is the file's skin with its correctives (without residuals):
     // recompute it independently; the correctives bring it within their 1 mm.
-    EXPECT_EQ(r.joint_count, 6u);
+    EXPECT_EQ(r.joint_count, 7u);  // two parts of 3 joints each, and the bridge joint between
     if (!param.residuals) {
       EXPECT_NEAR(r.corrected_max_error, errors.max, 1e-6 * scene.diagonal);
       EXPECT_NEAR(r.corrected_rms_error, errors.rms, 1e-6 * scene.diagonal);
@@ -610,7 +610,7 @@ TEST(GltfExport, SkinIsExactWhenEveryRingHasAJoint) {
   const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
   ASSERT_TRUE(report.ok()) << report.error();
   EXPECT_LE(report.value().skin_max_error, 1e-5 * scene.diagonal);
-  EXPECT_EQ(report.value().joint_count, 10u);
+  EXPECT_EQ(report.value().joint_count, 11u);  // and the bridge joint
   const Errors errors = ReconstructionErrors(LoadWithTinygltf(out), scene.bake);
   EXPECT_LE(errors.max, 1e-4 * scene.diagonal);
 }

@@ -42,8 +42,11 @@ double Blend(double y) {
 
 // `bulge`: a swelling of the middle, in the rest pose (before the joints move it), growing
 // and shrinking with the keys: rank one over the keys. `true_weights`: the bake carries the
-// blend itself instead of the own-part weights.
-Elbow MakeElbow(double bulge = 0.0, bool true_weights = false) {
+// blend itself instead of the own-part weights. `swept`: each vertex turns about the joint by
+// the blended angle b * angle (a bend that keeps the elbow's section, as a wire bridge does)
+// instead of moving by the blended positions, which linear blend skinning of the two sides
+// cannot do (halfway through a 90 degree bend their blend shrinks the section to 71 %).
+Elbow MakeElbow(double bulge = 0.0, bool true_weights = false, bool swept = false) {
   Elbow e;
   e.mesh = MakeCylinder(0.08, kLength, 16, 20);
   const Vec3 joint(0.0, kLength / 2.0, 0.0);
@@ -59,7 +62,8 @@ Elbow MakeElbow(double bulge = 0.0, bool true_weights = false) {
       const Vec3 p = rest + bulge * std::sin(std::numbers::pi * s * 3.0) *
                                 std::exp(-std::pow((rest.y() - 0.5) / 0.1, 2)) * radial;
       const double b = Blend(rest.y());
-      const Vec3 moved = (1.0 - b) * p + b * (joint + turn * (p - joint));
+      const Vec3 moved = swept ? Vec3(joint + Bend(b * s * std::numbers::pi / 2.0) * (p - joint))
+                               : Vec3((1.0 - b) * p + b * (joint + turn * (p - joint)));
       bake.positions.push_back(moved.cast<float>());
     }
   }
@@ -113,8 +117,9 @@ GltfExportOptions SkinOptions() {
   return options;
 }
 
-// Two rigid parts: a joint each. The bake's weights (own part only) leave the elbow's skin
-// 6 cm off; the decomposition recovers the known blend to the rounding of the stored skin.
+// Two rigid parts: a joint each, and a bridge joint at the elbow. The bake's weights (own part
+// only) leave the elbow's skin 6 cm off; the decomposition recovers the known blend to the
+// rounding of the stored skin.
 TEST(SkinDecomposition, RecoversAnElbowMadeByLinearBlendSkinning) {
   const Elbow elbow = MakeElbow();
   GltfExportOptions options = SkinOptions();
@@ -122,12 +127,28 @@ TEST(SkinDecomposition, RecoversAnElbowMadeByLinearBlendSkinning) {
   const GltfExportReport unfitted = Export(elbow, options, "unfitted.glb");
   options.fit_skin = true;
   const GltfExportReport fitted = Export(elbow, options, "fitted.glb");
-  EXPECT_EQ(unfitted.joint_count, 2u);
-  EXPECT_EQ(fitted.joint_count, 2u);
+  EXPECT_EQ(unfitted.joint_count, 3u);
+  EXPECT_EQ(fitted.joint_count, 3u);
   EXPECT_GT(unfitted.skin_max_error, 0.03);
   EXPECT_LT(fitted.skin_max_error, kStoredRounding);
   std::printf("[ measured ] elbow skin error: bake's weights %.3g m, fitted %.3g m\n",
               unfitted.skin_max_error, fitted.skin_max_error);
+}
+
+// A swept elbow: the bridge joint, starting at half the turn, carries the bend the two sides'
+// blend cannot: the fitted skin's error drops by more than half.
+TEST(SkinDecomposition, ABridgeJointCarriesASweptElbow) {
+  const Elbow elbow = MakeElbow(0.0, false, /*swept=*/true);
+  GltfExportOptions options = SkinOptions();
+  options.bridge_joints = false;
+  const GltfExportReport sides = Export(elbow, options, "sides.glb");
+  options.bridge_joints = true;
+  const GltfExportReport bridged = Export(elbow, options, "bridged.glb");
+  EXPECT_EQ(sides.joint_count, 2u);
+  EXPECT_EQ(bridged.joint_count, 3u);
+  EXPECT_LT(bridged.skin_max_error, 0.5 * sides.skin_max_error);
+  std::printf("[ measured ] swept elbow skin error: two joints %.3g m, with the bridge %.3g m\n",
+              sides.skin_max_error, bridged.skin_max_error);
 }
 
 // A bend along the whole tube: both parts deform (no rigid part), so each gets a chain of
@@ -191,12 +212,13 @@ TEST(SkinDecomposition, ADeformablePartGetsAChainWithinItsBudget) {
     GltfExportOptions options = SkinOptions();
     options.max_joints_per_part = per_part;
     const GltfExportReport report = Export(e, options, "chain.glb");
-    EXPECT_EQ(report.joint_count, 2 * per_part);
+    EXPECT_EQ(report.joint_count, 2 * per_part + 1);  // and the bridge joint between the parts
     EXPECT_LT(report.skin_max_error, previous);
     previous = report.skin_max_error;
   }
   EXPECT_LT(previous, 2e-3);  // a joint at every sample
-  // The budget: 6 joints for two parts, 3 each; fewer joints than parts is refused.
+  // The budget: 6 joints for two parts, 3 each (no room left for the bridge); fewer joints than
+  // parts is refused.
   GltfExportOptions options = SkinOptions();
   options.max_joints = 6;
   EXPECT_EQ(Export(e, options, "budget.glb").joint_count, 6u);
@@ -212,8 +234,9 @@ TEST(SkinDecomposition, ADeformablePartGetsAChainWithinItsBudget) {
 }
 
 // Key thinning: the elbow turns at a constant rate about one axis, which the reader's slerp
-// reproduces between any two keys, and the lower part does not move: each track keeps its first
-// and last key, within the tolerance. Without thinning every key is stored.
+// reproduces between any two keys (so does its bridge joint, at half the rate), and the lower
+// part does not move: each track keeps its first and last key, within the tolerance. Without
+// thinning every key is stored.
 TEST(SkinDecomposition, AJointTurningAtAConstantRateKeepsTwoKeys) {
   const Elbow elbow = MakeElbow(0.0, /*true_weights=*/true);
   GltfExportOptions options = SkinOptions();
@@ -221,8 +244,9 @@ TEST(SkinDecomposition, AJointTurningAtAConstantRateKeepsTwoKeys) {
   const GltfExportReport every_key = Export(elbow, options, "every.glb");
   options.key_tolerance = 1e-4;
   const GltfExportReport thinned = Export(elbow, options, "thinned.glb");
-  EXPECT_EQ(every_key.joint_keys, 2u * kKeys);
-  EXPECT_EQ(thinned.joint_keys, 4u);
+  EXPECT_EQ(every_key.joint_count, 3u);  // the two parts' joints and the elbow's bridge joint
+  EXPECT_EQ(every_key.joint_keys, 3u * kKeys);
+  EXPECT_EQ(thinned.joint_keys, 6u);  // the bridge turns at half the rate: two keys too
   EXPECT_LT(thinned.skin_max_error, kStoredRounding + 1e-4);
   std::printf("[ measured ] elbow skin error: every key %.3g m, thinned to 4 keys %.3g m\n",
               every_key.skin_max_error, thinned.skin_max_error);

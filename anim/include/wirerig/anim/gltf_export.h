@@ -46,6 +46,9 @@ struct GltfExportOptions {
   // (0: a joint at every spine sample, within max_joints). A rigid part gets one joint.
   std::size_t max_joints = 64;
   std::size_t max_joints_per_part = 8;
+  // kSkin: a bridge joint where each part hangs from its parent ("forearm_l_bridge", starting
+  // half-way between the two sides), while max_joints allows once every part has its joints.
+  bool bridge_joints = true;
   // kSkin: fit the joints' transforms and the weights to the bake (gltf_skin_fit.h); false:
   // the baked spine frames and the bake's weights (BuildSpineSkin) as they are.
   bool fit_skin = true;
