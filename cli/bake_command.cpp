@@ -66,6 +66,9 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
                    "skin mode: correctives are added until the error is below this, m")
       ->check(Above(0))
       ->capture_default_str();
+  bake->add_flag("--compress", options.compress,
+                 "skin mode: EXT_meshopt_compression (smaller; needs a reader with a meshopt "
+                 "decoder: three.js, Babylon.js; not Assimp 5.2 or Blender 3.4)");
   bake->add_option("--key-tolerance", options.key_tolerance,
                    "skin mode: a joint key is left out when interpolating its neighbours moves "
                    "the joint's vertices by at most this, m (0: every key)")
@@ -74,8 +77,9 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
   // Options that do not apply to the chosen mode are refused, not ignored.
   bake->callback([bake, &options] {
     if (options.mode == "morph") {
-      for (const char* name : {"--residual", "--max-joints", "--joints-per-part",
-                               "--max-correctives", "--corrective-error", "--key-tolerance"}) {
+      for (const char* name :
+           {"--residual", "--max-joints", "--joints-per-part", "--max-correctives",
+            "--corrective-error", "--key-tolerance", "--compress"}) {
         if (bake->count(name) > 0) throw CLI::ValidationError(name, "applies to --mode skin only");
       }
     } else if (options.residual &&
@@ -124,6 +128,7 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   export_options.max_correctives = options.max_correctives;
   export_options.corrective_error = options.corrective_error;
   export_options.key_tolerance = options.key_tolerance;
+  export_options.compress = options.compress;
   export_options.node_name = scene.description.name;
   // An export too large to write is refused with its numbers before anything is baked.
   {

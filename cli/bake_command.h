@@ -27,6 +27,7 @@ struct BakeCommandOptions {
   std::size_t max_correctives = 16;  // skin mode: GltfExportOptions::max_correctives
   double corrective_error = 1e-3;    // skin mode: GltfExportOptions::corrective_error, m
   double key_tolerance = 0.0;        // skin mode: GltfExportOptions::key_tolerance, m
+  bool compress = false;             // skin mode: GltfExportOptions::compress
   bool progress = false;             // set by main when stderr is a terminal
   ImportLimitOptions import_limits;
 };

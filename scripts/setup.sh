@@ -15,7 +15,7 @@ packages=(
   # libclang-rt-14-dev, only recommended by clang) and llvm-symbolizer (llvm) for the reports.
   clang libclang-rt-14-dev llvm
   libeigen3-dev libglm-dev nlohmann-json3-dev libcli11-dev libassimp-dev libminizip-dev libcgal-dev
-  libtinygltf-dev libstb-dev
+  libtinygltf-dev libstb-dev libmeshoptimizer-dev
   libglfw3-dev libimgui-dev libegl-dev libgl-dev xvfb xauth
   libegl-mesa0 libglx-mesa0 libgl1-mesa-dri
   libgtest-dev libgmock-dev libbenchmark-dev

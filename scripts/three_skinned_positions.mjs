@@ -55,10 +55,12 @@ async function importThree() {
   // The loader imports 'three' by name, which resolves inside the package to this same module.
   const entry = path.join(threeDir, 'build', 'three.module.js');
   const loader = path.join(threeDir, 'examples', 'jsm', 'loaders', 'GLTFLoader.js');
+  const meshopt = path.join(threeDir, 'examples', 'jsm', 'libs', 'meshopt_decoder.module.js');
   try {
     const THREE = await import(pathToFileURL(entry).href);
     const {GLTFLoader} = await import(pathToFileURL(loader).href);
-    return {THREE, GLTFLoader};
+    const {MeshoptDecoder} = await import(pathToFileURL(meshopt).href);
+    return {THREE, GLTFLoader, MeshoptDecoder};
   } catch (error) {
     fail(
         `cannot load three.js from ${threeDir} (run scripts/setup.sh, or set WIRERIG_THREE): ` +
@@ -91,7 +93,7 @@ function nodeFilesPlugin(directory) {
   };
 }
 
-function loadGltf(GLTFLoader, file) {
+function loadGltf(GLTFLoader, MeshoptDecoder, file) {
   let bytes;
   try {
     bytes = fs.readFileSync(file);
@@ -100,6 +102,7 @@ function loadGltf(GLTFLoader, file) {
   }
   const data = arrayBuffer(bytes);
   const loader = new GLTFLoader();
+  loader.setMeshoptDecoder(MeshoptDecoder);  // EXT_meshopt_compression (wirerig bake --compress)
   loader.register(nodeFilesPlugin(path.dirname(file)));
   return new Promise((resolve, reject) => loader.parse(data, '', resolve, reject))
       .catch((error) => fail(`${file}: GLTFLoader could not read the asset: ${error?.message ?? error}`));
@@ -151,8 +154,8 @@ function primitiveSpread(THREE, first, others) {
 }
 
 const {file, times} = parseArguments(process.argv.slice(2));
-const {THREE, GLTFLoader} = await importThree();
-const gltf = await loadGltf(GLTFLoader, file);
+const {THREE, GLTFLoader, MeshoptDecoder} = await importThree();
+const gltf = await loadGltf(GLTFLoader, MeshoptDecoder, file);
 const scene = gltf.scene;
 const clip = gltf.animations.length > 0 ? gltf.animations[0] : null;
 const mixer = new THREE.AnimationMixer(scene);

@@ -5,6 +5,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "gltf_meshopt.h"
+
 namespace wirerig::gltf {
 namespace {
 
@@ -58,6 +60,7 @@ Correctives FitCorrectives(const Skeleton& skeleton, const SkinInfluences& influ
     ++out.shape_count;
   }
   const std::size_t shapes = out.shape_count;
+  if (options.delta_bits > 0) RoundLikeExpFilter(out.positions, 3, options.delta_bits);
   out.weights.assign(keys * shapes, 0.0f);
   for (std::size_t s = 0; s < shapes; ++s)
     for (std::size_t k = 0; k < keys; ++k)

@@ -24,6 +24,7 @@ namespace wirerig::gltf {
 struct CorrectiveOptions {
   std::size_t max_shapes = 16;
   double max_error = 1e-3;  // m
+  int delta_bits = 0;       // > 0: the shapes stored through the EXPONENTIAL filter
 };
 
 struct Correctives {

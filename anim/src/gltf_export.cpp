@@ -14,6 +14,7 @@
 #include "gltf_input.h"
 #include "gltf_material.h"
 #include "gltf_mesh.h"
+#include "gltf_meshopt.h"
 #include "gltf_morph.h"
 #include "gltf_paths.h"
 #include "gltf_skin.h"
@@ -83,6 +84,7 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::An
   fit_options.max_joints_per_part = options.max_joints_per_part;
   fit_options.key_tolerance = options.key_tolerance;
   fit_options.bridge_joints = options.bridge_joints;
+  if (options.compress) fit_options.translation_bits = gltf::kTranslationBits;
   if (!options.fit_skin) fit_options.iterations = fit_options.weight_rounds = 0;
   Result<gltf::FittedSkin> fitted = gltf::FitSkeleton(bake, base, fit_options);
   if (!fitted) return Error{fitted.error()};
@@ -120,6 +122,7 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::An
   gltf::CorrectiveOptions corrective_options;
   corrective_options.max_shapes = options.max_correctives;
   corrective_options.max_error = options.corrective_error;
+  if (options.compress) corrective_options.delta_bits = gltf::kDeltaBits;
   auto correctives = std::make_shared<const gltf::Correctives>(
       gltf::FitCorrectives(skeleton, influences, base, bake, fit, corrective_options));
   report->corrective_count = correctives->shape_count;
@@ -183,6 +186,11 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
   if (auto problem = gltf::CheckExportInput(mesh, bake, options.mode)) {
     return Error{out.string() + ": " + *problem};
   }
+  if (options.compress && options.mode != GltfAnimationMode::kSkin) {
+    return Error{out.string() +
+                 ": compress applies to skin mode (morph files are for offline tools, which lack "
+                 "a meshopt decoder)"};
+  }
   // The size before any buffer is built: a long morph export grows with keys^2 (the weights).
   std::size_t joints = 0;
   for (const BakedSpine& spine : bake.spines) joints += spine.SampleCount();
@@ -201,7 +209,12 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
   model.asset.generator = "wirerig";
   const gltf::MaterialsAdded materials =
       gltf::AddMaterials(model, mesh, options.texture_dir, out_dir, &report.warnings);
-  const gltf::BaseVertices base = gltf::MakeBaseVertices(mesh);
+  gltf::BaseVertices base = gltf::MakeBaseVertices(mesh);
+  if (options.compress) {
+    gltf::RoundLikeExpFilter(base.positions, 3, gltf::kPositionBits);
+    gltf::RoundLikeExpFilter(base.normals, 3, gltf::kNormalBits);
+    gltf::RoundLikeExpFilter(base.uvs, 2, gltf::kUvBits);
+  }
   if (base.zero_normals > 0) {
     report.warnings.push_back(std::to_string(base.zero_normals) +
                               " zero-length normals written as +Y");
@@ -248,10 +261,15 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
   report.material_count = model.materials.size();
 
   gltf::BufferTail tail;
-  tail.size = targets.stream.Size();
-  tail.write = [&targets](const gltf::ByteSink& sink) { return targets.stream.Write(sink); };
+  gltf::MeshoptJson meshopt;
+  if (options.compress) {
+    meshopt = gltf::CompressBuffers(model, targets.stream);
+  } else {
+    tail.size = targets.stream.Size();
+    tail.write = [&targets](const gltf::ByteSink& sink) { return targets.stream.Write(sink); };
+  }
   Result<std::vector<fs::path>> files =
-      gltf::WriteModel(std::move(model), tail, out, extension == ".glb");
+      gltf::WriteModel(std::move(model), tail, out, extension == ".glb", meshopt);
   if (!files) return Error{files.error()};
   report.files = std::move(files.value());
   for (const fs::path& file : report.files) {

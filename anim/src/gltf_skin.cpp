@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "gltf_buffers.h"
+#include "gltf_meshopt.h"
 #include "gltf_skinning.h"
 
 namespace wirerig::gltf {
@@ -51,7 +52,7 @@ struct Track {
 // The track of a joint whose wanted locals are `exact` (#K): every key stored (translation
 // float, rotation shorts), then thinned within `tolerance` (KeyThinning).
 Track ThinTrack(std::span<const Rigid> exact, std::span<const float> times, double tolerance,
-                double reach) {
+                double reach, int translation_bits) {
   const std::size_t count = exact.size();
   std::vector<Vec3f> stored_t(count);
   std::vector<Quatf> stored_q(count);
@@ -61,6 +62,7 @@ Track ThinTrack(std::span<const Rigid> exact, std::span<const float> times, doub
     if (k > 0 && previous.dot(q) < 0.0) q.coeffs() = -q.coeffs();
     previous = q;
     stored_t[k] = exact[k].translation.cast<float>();
+    if (translation_bits > 0) RoundLikeExpFilter({stored_t[k].data(), 3}, 3, translation_bits);
     stored_q[k] = StoreRotation(q);
   }
   // What a reader has at key i between stored keys a and b.
@@ -134,7 +136,8 @@ Skeleton MakeSkeleton(std::vector<int> parent, std::vector<std::string> names,
       exact[k] = parent_world.LocalOf(keyed[k * joints + j]);
     }
     const double reach = j < thinning.reach.size() ? thinning.reach[j] : 0.0;
-    Track track = ThinTrack(exact, thinning.times, thinning.tolerance, reach);
+    Track track =
+        ThinTrack(exact, thinning.times, thinning.tolerance, reach, thinning.translation_bits);
     for (std::size_t k = 0; k < keys; ++k) {
       skeleton.translations[k * joints + j] = track.translations[k];
       skeleton.rotations[k * joints + j] = track.rotations[k];

@@ -352,6 +352,7 @@ Result<FittedSkin> FitSkeleton(const BakedAnimation& bake, const BaseVertices& b
   thinning.times = times;
   thinning.tolerance = options.key_tolerance;
   thinning.reach = reach;
+  thinning.translation_bits = options.translation_bits;
   fitted.skeleton = MakeSkeleton(std::move(parent), std::move(names), rest, keyed, thinning);
   return fitted;
 }

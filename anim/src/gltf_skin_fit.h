@@ -45,6 +45,7 @@ struct SkinFitOptions {
   int weight_rounds = 2;       // weight solves (gltf_skin_weights.h), each followed by the passes
   double key_tolerance = 0.0;  // m: joint keys thinned within it (KeyThinning); 0 keeps all
   bool bridge_joints = true;   // a joint at each part's attachment, within max_joints
+  int translation_bits = 0;    // > 0: translation keys rounded for the EXPONENTIAL filter
 };
 
 struct FittedSkin {

@@ -148,15 +148,34 @@ bool WriteBuffer(std::span<const unsigned char> data, const BufferTail& tail,
   return tail.size == 0 || tail.write(sink);
 }
 
+// Adds EXT_meshopt_compression's view extensions and fallback buffer to `document`, whose
+// "buffers" holds buffer 0.
+void AddMeshoptJson(nlohmann::json& document, const MeshoptJson& meshopt) {
+  if (meshopt.fallback_bytes == 0) return;
+  for (const auto& [view, extension] : meshopt.views) {
+    document["bufferViews"][view]["extensions"]["EXT_meshopt_compression"] =
+        nlohmann::json::parse(extension);
+  }
+  document["buffers"].push_back(
+      {{"byteLength", meshopt.fallback_bytes},
+       {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
+}
+
 Result<std::vector<fs::path>> WriteGlb(tinygltf::Model model, const BufferTail& tail,
-                                       const fs::path& out) {
+                                       const fs::path& out, const MeshoptJson& meshopt) {
   std::vector<unsigned char> data;
   if (!model.buffers.empty()) data = std::move(model.buffers[0].data);
   const std::size_t buffer_size = data.size() + tail.size;
   Result<std::string> serialized = SerializeJson(model);
   if (!serialized) return Error{out.string() + ": " + serialized.error()};
   std::string& json = serialized.value();
-  if (buffer_size > 0) {
+  if (meshopt.fallback_bytes > 0) {
+    nlohmann::json document = nlohmann::json::parse(json, nullptr, /*allow_exceptions=*/false);
+    if (document.is_discarded()) return Error{out.string() + ": tinygltf wrote invalid JSON"};
+    document["buffers"] = nlohmann::json::array({{{"byteLength", buffer_size}}});
+    AddMeshoptJson(document, meshopt);
+    json = document.dump();
+  } else if (buffer_size > 0) {
     json.pop_back();
     json.append(R"(,"buffers":[{"byteLength":)").append(std::to_string(buffer_size)).append("}]}");
   }
@@ -237,7 +256,7 @@ std::optional<fs::path> OwnBinOf(const fs::path& out) {
       nlohmann::json::parse(text.value(), nullptr, /*allow_exceptions=*/false);
   if (!document.is_object()) return std::nullopt;
   const auto buffers = document.find("buffers");
-  if (buffers == document.end() || !buffers->is_array() || buffers->size() != 1 ||
+  if (buffers == document.end() || !buffers->is_array() || buffers->empty() ||
       !(*buffers)[0].is_object())
     return std::nullopt;
   const auto uri = (*buffers)[0].find("uri");
@@ -254,7 +273,7 @@ std::optional<fs::path> OwnBinOf(const fs::path& out) {
 // .bin and leaves the old pair as it was; a kill before it leaves at most the new .bin (removed
 // by the signal cleanup, temp_files.h).
 Result<std::vector<fs::path>> WriteGltfAndBin(tinygltf::Model model, const BufferTail& tail,
-                                              const fs::path& out) {
+                                              const fs::path& out, const MeshoptJson& meshopt) {
   const fs::path bin_path = FreshBinPath(out);
   const std::optional<fs::path> old_bin = OwnBinOf(out);
   std::vector<unsigned char> data;
@@ -268,6 +287,7 @@ Result<std::vector<fs::path>> WriteGltfAndBin(tinygltf::Model model, const Buffe
   if (buffer_size > 0) {
     document["buffers"] = nlohmann::json::array(
         {{{"byteLength", buffer_size}, {"uri", PathToUri(bin_path.filename())}}});
+    AddMeshoptJson(document, meshopt);
   }
   const std::string json = document.dump(2).append("\n");
 
@@ -300,9 +320,10 @@ Result<std::vector<fs::path>> WriteGltfAndBin(tinygltf::Model model, const Buffe
 }  // namespace
 
 Result<std::vector<fs::path>> WriteModel(tinygltf::Model model, const BufferTail& tail,
-                                         const fs::path& out, bool binary) {
-  return binary ? WriteGlb(std::move(model), tail, out)
-                : WriteGltfAndBin(std::move(model), tail, out);
+                                         const fs::path& out, bool binary,
+                                         const MeshoptJson& meshopt) {
+  return binary ? WriteGlb(std::move(model), tail, out, meshopt)
+                : WriteGltfAndBin(std::move(model), tail, out, meshopt);
 }
 
 }  // namespace wirerig::gltf

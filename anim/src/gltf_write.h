@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <functional>
 #include <span>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <tiny_gltf.h>
@@ -31,12 +33,21 @@ struct BufferTail {
   std::function<bool(const ByteSink&)> write;
 };
 
+// EXT_meshopt_compression's JSON, which tinygltf's serializer leaves out (it writes no buffer
+// view extensions): the fallback buffer 1's length (0: no compression) and each compressed
+// view's extension object, as JSON text (gltf_meshopt.h).
+struct MeshoptJson {
+  std::size_t fallback_bytes = 0;
+  std::vector<std::pair<std::size_t, std::string>> views;
+};
+
 // Writes `model` (buffer 0 = its in-memory data followed by `tail`) to `out`: binary when
 // `binary`, else JSON plus "<stem>.bin" (the .bin first, then the .gltf; if the .gltf cannot be
 // written the new .bin is removed). A .glb over 4 GiB is refused (its lengths are 32-bit).
-// Returns the files written.
+// With `meshopt.fallback_bytes` > 0 the JSON gets the compressed views' extensions and buffer 1,
+// the extension's fallback buffer of that length with no data. Returns the files written.
 Result<std::vector<std::filesystem::path>> WriteModel(tinygltf::Model model, const BufferTail& tail,
-                                                      const std::filesystem::path& out,
-                                                      bool binary);
+                                                      const std::filesystem::path& out, bool binary,
+                                                      const MeshoptJson& meshopt = {});
 
 }  // namespace wirerig::gltf

@@ -28,8 +28,10 @@
 
 #include <assimp/scene.h>
 #include <gtest/gtest.h>
+#include <meshoptimizer.h>
 #include <tiny_gltf.h>
 #include <assimp/Importer.hpp>
+#include <nlohmann/json.hpp>
 
 #include "support/test_folder.h"
 #include "wirerig/rig/procedural_mesh.h"
@@ -222,6 +224,81 @@ tinygltf::Model LoadWithTinygltf(const fs::path& file) {
                       : loader.LoadASCIIFromFile(&model, &error, &warning, file.string());
   EXPECT_TRUE(ok) << file << ": " << error;
   EXPECT_EQ(warning, "") << file;
+  return model;
+}
+
+// A .glb written with EXT_meshopt_compression, decompressed by meshoptimizer's own decoders
+// into a plain .glb in memory and loaded by tinygltf (which has no meshopt decoder): every view
+// carrying the extension is decoded (its EXPONENTIAL filter undone) into its byte range of the
+// fallback buffer, which becomes the one buffer; views stored plainly (embedded images) follow.
+tinygltf::Model LoadCompressedGlb(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  const std::vector<unsigned char> glb{std::istreambuf_iterator<char>(in), {}};
+  std::uint32_t json_length = 0;
+  std::memcpy(&json_length, glb.data() + 12, 4);
+  nlohmann::json document = nlohmann::json::parse(glb.begin() + 20, glb.begin() + 20 + json_length);
+  const unsigned char* packed = glb.data() + 20 + json_length + 8;
+  nlohmann::json& buffers = document["buffers"];
+  EXPECT_EQ(buffers.size(), 2u);
+  EXPECT_EQ(buffers[1]["extensions"]["EXT_meshopt_compression"]["fallback"], true);
+  EXPECT_FALSE(buffers[1].contains("uri"));
+  std::vector<unsigned char> plain(buffers[1]["byteLength"].get<std::size_t>());
+  for (nlohmann::json& view : document["bufferViews"]) {
+    if (!view.contains("extensions")) {  // stored as it is, in buffer 0
+      EXPECT_EQ(view.value("buffer", 0), 0);
+      const std::size_t offset = view.value("byteOffset", std::size_t{0});
+      const std::size_t length = view["byteLength"].get<std::size_t>();
+      view["byteOffset"] = plain.size();
+      plain.insert(plain.end(), packed + offset, packed + offset + length);
+      plain.resize((plain.size() + 3) / 4 * 4, 0);
+      continue;
+    }
+    const nlohmann::json& extension = view["extensions"]["EXT_meshopt_compression"];
+    EXPECT_EQ(view["buffer"], 1);
+    const unsigned char* source = packed + extension["byteOffset"].get<std::size_t>();
+    const auto length = extension["byteLength"].get<std::size_t>();
+    const auto count = extension["count"].get<std::size_t>();
+    const auto stride = extension["byteStride"].get<std::size_t>();
+    unsigned char* target = plain.data() + view.value("byteOffset", std::size_t{0});
+    EXPECT_EQ(count * stride, view["byteLength"].get<std::size_t>());
+    if (extension["mode"] == "TRIANGLES") {
+      EXPECT_EQ(meshopt_decodeIndexBuffer(target, count, stride, source, length), 0);
+    } else {
+      EXPECT_EQ(extension["mode"], "ATTRIBUTES");
+      EXPECT_EQ(meshopt_decodeVertexBuffer(target, count, stride, source, length), 0);
+      if (extension.value("filter", "NONE") == "EXPONENTIAL")
+        meshopt_decodeFilterExp(target, count, stride);
+    }
+    view.erase("extensions");
+    view["buffer"] = 0;
+  }
+  document["buffers"] = nlohmann::json::array({{{"byteLength", plain.size()}}});
+  document.erase("extensionsUsed");
+  document.erase("extensionsRequired");
+  std::string json = document.dump();
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  std::vector<unsigned char> out(20);
+  auto put = [&out](std::size_t at, std::size_t value) {
+    const auto v = static_cast<std::uint32_t>(value);
+    std::memcpy(out.data() + at, &v, 4);
+  };
+  put(0, 0x46546C67u);
+  put(4, 2);
+  put(12, json.size());
+  put(16, 0x4E4F534Au);
+  out.insert(out.end(), json.begin(), json.end());
+  const std::size_t bin_header = out.size();
+  out.resize(out.size() + 8);
+  put(bin_header, plain.size());
+  put(bin_header + 4, 0x004E4942u);
+  out.insert(out.end(), plain.begin(), plain.end());
+  put(8, out.size());
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string error, warning;
+  EXPECT_TRUE(loader.LoadBinaryFromMemory(&model, &error, &warning, out.data(),
+                                          static_cast<unsigned>(out.size())))
+      << error;
   return model;
 }
 
@@ -710,6 +787,52 @@ TEST(GltfExport, ReportsMissingTexturesAndExportsWithoutThem) {
   const tinygltf::Model model = LoadWithTinygltf(out);
   EXPECT_TRUE(model.images.empty());
   EXPECT_EQ(model.materials.size(), 1u);
+}
+
+// EXT_meshopt_compression: smaller; decoded by meshoptimizer's own decoders, the file plays back
+// within the error the report gives (which is measured on the rounded values the filter keeps);
+// the validator passes it; a .gltf declares the same fallback buffer; morph mode refuses it.
+TEST(GltfExport, CompressedSkinDecodesToWhatTheReportMeasures) {
+  TempDir dir;
+  const Scene scene = MakeScene(BendCase{});
+  GltfExportOptions options;
+  options.mode = GltfAnimationMode::kSkin;
+  const Result<GltfExportReport> plain =
+      ExportGltf(scene.mesh, scene.bake, options, dir.path() / "plain.glb");
+  ASSERT_TRUE(plain.ok()) << plain.error();
+  options.compress = true;
+  const fs::path out = dir.path() / "compressed.glb";
+  const Result<GltfExportReport> compressed = ExportGltf(scene.mesh, scene.bake, options, out);
+  ASSERT_TRUE(compressed.ok()) << compressed.error();
+  const GltfExportReport& r = compressed.value();
+  EXPECT_LT(r.bytes_written, plain.value().bytes_written);
+  EXPECT_GT(r.corrective_count, 0u);
+  const Errors errors = ReconstructionErrors(LoadCompressedGlb(out), scene.bake);
+  EXPECT_NEAR(r.corrected_max_error, errors.max, 1e-6 * scene.diagonal);
+  EXPECT_NEAR(r.corrected_rms_error, errors.rms, 1e-6 * scene.diagonal);
+  EXPECT_LE(r.corrected_max_error, 1e-3);
+  std::printf("[ measured ] compressed skin: %ju bytes (plain %ju), decoded error max %.3g m\n",
+              r.bytes_written, plain.value().bytes_written, errors.max);
+  const Validation validation = Validate(out);
+  EXPECT_NE(validation.output.find(": 0 errors, 0 warnings"), std::string::npos)
+      << validation.output;
+
+  const fs::path gltf = dir.path() / "compressed.gltf";
+  ASSERT_TRUE(ExportGltf(scene.mesh, scene.bake, options, gltf).ok());
+  std::ifstream in(gltf);
+  const nlohmann::json document = nlohmann::json::parse(in);
+  ASSERT_EQ(document["buffers"].size(), 2u);
+  EXPECT_EQ(document["buffers"][0]["uri"], "compressed.bin");
+  EXPECT_EQ(document["buffers"][1]["extensions"]["EXT_meshopt_compression"]["fallback"], true);
+  EXPECT_EQ(document["extensionsRequired"][0], "EXT_meshopt_compression");
+
+  options.mode = GltfAnimationMode::kMorph;
+  const Result<GltfExportReport> refused =
+      ExportGltf(scene.mesh, scene.bake, options, dir.path() / "morph.glb");
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().find("compress applies to skin mode"), std::string::npos)
+      << refused.error();
+  EXPECT_FALSE(fs::exists(dir.path() / "morph.glb"));
 }
 
 // A texture the source held itself (an archive entry, an embedded texture) is embedded in the

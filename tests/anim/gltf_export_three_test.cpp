@@ -94,6 +94,7 @@ struct Variant {
   // playback reference models a joint per spine sample on the baked frames, so a fitted skin
   // is compared with the bake at the keys only.
   bool fitted = false;
+  bool compressed = false;  // EXT_meshopt_compression (fitted skins only)
 };
 
 GltfExportOptions ExportOptions(const Variant& variant) {
@@ -102,6 +103,7 @@ GltfExportOptions ExportOptions(const Variant& variant) {
                                                           : GltfAnimationMode::kSkin;
   options.residual_morph_targets = variant.playback == GltfPlayback::kSkinResidual;
   options.quantize = variant.quantize;
+  options.compress = variant.compressed;
   if (!variant.fitted) {  // what the reference models: a joint per sample, the baked frames
     options.max_joints = 65535;
     options.max_joints_per_part = 0;
@@ -278,6 +280,7 @@ TEST(GltfExportThree, OctopusPlaysInThreeAsWirerigBakedIt) {
       {"skin", GltfPlayback::kSkin},
       {"skin_residual", GltfPlayback::kSkinResidual},
       {"skin_fitted", GltfPlayback::kSkin, false, false, true},
+      {"skin_fitted_compressed", GltfPlayback::kSkin, false, false, true, true},
   };
   for (const Variant& variant : variants) CheckVariant(baked, variant, dir.path());
 }

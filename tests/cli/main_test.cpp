@@ -92,6 +92,8 @@ TEST(WirerigExitCodes, UsageErrorsExitTwo) {
       2, "--key-tolerance: applies to --mode skin only");
   ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--key-tolerance", "-1"}), 2,
              "--key-tolerance");
+  ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--mode", "morph", "--compress"}), 2,
+             "--compress: applies to --mode skin only");
   ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--mode", "skin", "--quantize",
                          "--max-correctives", "0"}),
              2, "--quantize: quantizes morph targets: this skin has none");

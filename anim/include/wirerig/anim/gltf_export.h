@@ -77,6 +77,12 @@ struct GltfExportOptions {
   // stay float. The extension is then required: readers without it (Assimp 5.2) cannot load the
   // file. Off by default: exact float deltas, readable everywhere.
   bool quantize = false;
+  // kSkin only: EXT_meshopt_compression (meshoptimizer's codecs on every buffer view; float
+  // positions, normals, UVs, corrective deltas and translation keys rounded first to what its
+  // EXPONENTIAL filter stores, so the reported errors are the decoded file's). The extension is
+  // required: readers without a meshopt decoder (Assimp 5.2, Blender 3.4) cannot load the
+  // file; three.js, Babylon.js and gltfpack can. Off by default.
+  bool compress = false;
 };
 
 struct GltfExportReport {
@@ -139,7 +145,8 @@ std::string GltfTooLargeMessage(double bytes);
 // (also once rounded to float), vertex_count or positions/normals sizes that do not match the
 // mesh, non-finite positions or normals; in kSkin: missing or mis-sized spines, skin_joints or
 // skin_weights, joint indices out of range, negative or non-finite weights or ones summing to
-// zero, non-finite spine points or rotations, a parent or parent_joint out of range.
+// zero, non-finite spine points or rotations, a parent or parent_joint out of range; `compress`
+// in kMorph.
 Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake,
                                     const GltfExportOptions& options,
                                     const std::filesystem::path& out);

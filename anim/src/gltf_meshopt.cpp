@@ -1,0 +1,182 @@
+#include "gltf_meshopt.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <meshoptimizer.h>
+#include <nlohmann/json.hpp>
+
+namespace wirerig::gltf {
+namespace {
+
+constexpr const char* kExtension = "EXT_meshopt_compression";
+
+std::size_t Padded4(std::size_t size) { return (size + 3) / 4 * 4; }
+
+// How a view is read: its first accessor's layout, and the filter bits its role allows (0: none).
+struct ViewUse {
+  int component_type = -1;
+  std::size_t element = 0;  // bytes per element
+  std::size_t components = 0;
+  int filter_bits = 0;
+};
+
+std::map<int, ViewUse> ViewUses(const tinygltf::Model& model) {
+  std::map<int, int> bits_of_accessor;
+  for (const tinygltf::Mesh& mesh : model.meshes) {
+    for (const tinygltf::Primitive& primitive : mesh.primitives) {
+      for (const auto& [name, accessor] : primitive.attributes) {
+        if (name == "POSITION") bits_of_accessor[accessor] = kPositionBits;
+        if (name == "NORMAL") bits_of_accessor[accessor] = kNormalBits;
+        if (name == "TEXCOORD_0") bits_of_accessor[accessor] = kUvBits;
+      }
+      for (const auto& target : primitive.targets) {
+        const auto position = target.find("POSITION");
+        if (position != target.end()) bits_of_accessor[position->second] = kDeltaBits;
+      }
+    }
+  }
+  for (const tinygltf::Animation& animation : model.animations) {
+    for (const tinygltf::AnimationChannel& channel : animation.channels) {
+      if (channel.target_path == "translation") {
+        bits_of_accessor[animation.samplers[static_cast<std::size_t>(channel.sampler)].output] =
+            kTranslationBits;
+      }
+    }
+  }
+  std::map<int, ViewUse> uses;
+  for (std::size_t a = 0; a < model.accessors.size(); ++a) {
+    const tinygltf::Accessor& accessor = model.accessors[a];
+    if (accessor.bufferView < 0 || uses.count(accessor.bufferView) > 0) continue;
+    ViewUse use;
+    use.component_type = accessor.componentType;
+    use.components = static_cast<std::size_t>(
+        tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type)));
+    const tinygltf::BufferView& view =
+        model.bufferViews[static_cast<std::size_t>(accessor.bufferView)];
+    use.element = view.byteStride != 0
+                      ? view.byteStride
+                      : use.components * static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(
+                                             static_cast<std::uint32_t>(accessor.componentType)));
+    const auto bits = bits_of_accessor.find(static_cast<int>(a));
+    if (bits != bits_of_accessor.end() && accessor.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT &&
+        view.byteStride == 0)
+      use.filter_bits = bits->second;
+    uses[accessor.bufferView] = use;
+  }
+  return uses;
+}
+
+// The view's elements encoded by the EXPONENTIAL filter, when decoding them gives `raw` back bit
+// for bit (the data was rounded for it); else empty.
+std::vector<unsigned char> ExpFiltered(std::span<const unsigned char> raw, const ViewUse& use) {
+  const std::size_t count = raw.size() / use.element;
+  std::vector<float> values(raw.size() / sizeof(float));
+  std::memcpy(values.data(), raw.data(), raw.size());
+  std::vector<unsigned char> encoded(raw.size());
+  meshopt_encodeFilterExp(encoded.data(), count, use.element, use.filter_bits, values.data());
+  std::vector<unsigned char> decoded = encoded;
+  meshopt_decodeFilterExp(decoded.data(), count, use.element);
+  if (std::memcmp(decoded.data(), raw.data(), raw.size()) != 0) return {};
+  return encoded;
+}
+
+std::string Extension(std::size_t offset, std::size_t length, std::size_t stride, std::size_t count,
+                      const char* mode, bool filtered) {
+  nlohmann::json o = {{"buffer", 0},          {"byteOffset", offset}, {"byteLength", length},
+                      {"byteStride", stride}, {"count", count},       {"mode", mode}};
+  if (filtered) o["filter"] = "EXPONENTIAL";
+  return o.dump();
+}
+
+}  // namespace
+
+void RoundLikeExpFilter(std::span<float> values, std::size_t components, int bits) {
+  const std::size_t count = values.size() / components;
+  const std::size_t stride = components * sizeof(float);
+  std::vector<unsigned char> encoded(values.size_bytes());
+  // Until encoding gives the values back: a component rounded up to a power of two raises its
+  // vector's exponent the next time, so one round trip is not always a fixed point.
+  for (int pass = 0; pass < 8; ++pass) {
+    meshopt_encodeFilterExp(encoded.data(), count, stride, bits, values.data());
+    meshopt_decodeFilterExp(encoded.data(), count, stride);
+    if (std::memcmp(values.data(), encoded.data(), values.size_bytes()) == 0) return;
+    std::memcpy(values.data(), encoded.data(), values.size_bytes());
+  }
+}
+
+MeshoptJson CompressBuffers(tinygltf::Model& model, const StreamedTargets& tail) {
+  MeshoptJson json;
+  std::vector<unsigned char> data;
+  if (!model.buffers.empty()) data = std::move(model.buffers[0].data);
+  data.reserve(data.size() + tail.Size());
+  tail.Write([&data](std::span<const unsigned char> block) {
+    data.insert(data.end(), block.begin(), block.end());
+    return true;
+  });
+  const std::map<int, ViewUse> uses = ViewUses(model);
+  std::vector<unsigned char> packed;
+  std::vector<unsigned char> scratch;
+  for (std::size_t v = 0; v < model.bufferViews.size(); ++v) {
+    tinygltf::BufferView& view = model.bufferViews[v];
+    const std::span<const unsigned char> raw(data.data() + view.byteOffset, view.byteLength);
+    packed.resize(Padded4(packed.size()), 0);
+    const std::size_t offset = packed.size();
+    const auto use = uses.find(static_cast<int>(v));
+    const bool indices = view.target == TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER && use != uses.end() &&
+                         (use->second.element == 2 || use->second.element == 4);
+    const bool attributes = use != uses.end() && !indices && use->second.element % 4 == 0 &&
+                            use->second.element <= 256 && raw.size() % use->second.element == 0;
+    if (indices && raw.size() / use->second.element % 3 == 0) {
+      const std::size_t count = raw.size() / use->second.element;
+      std::vector<unsigned int> widened(count);
+      for (std::size_t i = 0; i < count; ++i) {
+        std::uint16_t narrow = 0;
+        if (use->second.element == 2) {
+          std::memcpy(&narrow, raw.data() + 2 * i, 2);
+          widened[i] = narrow;
+        } else {
+          std::memcpy(&widened[i], raw.data() + 4 * i, 4);
+        }
+      }
+      scratch.resize(meshopt_encodeIndexBufferBound(count, data.size()));
+      scratch.resize(
+          meshopt_encodeIndexBuffer(scratch.data(), scratch.size(), widened.data(), count));
+      packed.insert(packed.end(), scratch.begin(), scratch.end());
+      json.views.emplace_back(
+          v, Extension(offset, scratch.size(), use->second.element, count, "TRIANGLES", false));
+    } else if (attributes) {
+      const std::size_t element = use->second.element, count = raw.size() / element;
+      std::vector<unsigned char> filtered;
+      if (use->second.filter_bits > 0) filtered = ExpFiltered(raw, use->second);
+      const unsigned char* source = filtered.empty() ? raw.data() : filtered.data();
+      scratch.resize(meshopt_encodeVertexBufferBound(count, element));
+      scratch.resize(
+          meshopt_encodeVertexBuffer(scratch.data(), scratch.size(), source, count, element));
+      packed.insert(packed.end(), scratch.begin(), scratch.end());
+      json.views.emplace_back(
+          v, Extension(offset, scratch.size(), element, count, "ATTRIBUTES", !filtered.empty()));
+    } else {
+      // Read by no accessor (an embedded image), or not encodable: stored as it is.
+      packed.insert(packed.end(), raw.begin(), raw.end());
+      view.byteOffset = offset;
+      continue;
+    }
+    view.buffer = 1;  // the fallback: its byte range, no data
+  }
+  packed.resize(Padded4(packed.size()), 0);
+  model.buffers.resize(1);
+  model.buffers[0].data = std::move(packed);
+  for (auto* list : {&model.extensionsUsed, &model.extensionsRequired}) {
+    if (std::find(list->begin(), list->end(), kExtension) == list->end())
+      list->push_back(kExtension);
+  }
+  json.fallback_bytes = data.size();
+  return json;
+}
+
+}  // namespace wirerig::gltf

@@ -1,0 +1,42 @@
+// EXT_meshopt_compression (GltfExportOptions::compress): every buffer view of the finished model
+// is encoded with meshoptimizer's codecs (triangle indices with the index codec, everything else
+// with the vertex codec) into buffer 0, while the views point into a fallback buffer 1 that holds
+// no data, as the extension asks. Float data that tolerates rounding (positions, normals, UVs,
+// corrective deltas, translation keys) is first rounded the way the EXPONENTIAL filter stores it
+// (RoundLikeExpFilter), before anything is fitted to or measured on it, so every error the export
+// reports is the decoded file's; the filter then stores it with no further loss.
+#pragma once
+
+#include <cstddef>
+#include <span>
+
+#include <tiny_gltf.h>
+
+#include "gltf_morph.h"
+#include "gltf_write.h"
+
+namespace wirerig::gltf {
+
+// Mantissa bits the EXPONENTIAL filter keeps (a vector's components share the exponent of its
+// largest): relative precision 2^(1 - bits) of that component.
+inline constexpr int kPositionBits = 16;     // 2 m from the origin: within 3.1e-5 m
+inline constexpr int kNormalBits = 10;       // unit vectors: within 2e-3
+inline constexpr int kUvBits = 16;           // within 3e-5 of the texture
+inline constexpr int kDeltaBits = 10;        // a 2 cm corrective delta: within 2e-5 m
+inline constexpr int kTranslationBits = 18;  // 10 m from the parent joint: within 4e-5 m
+
+// Rounds `values` (vectors of `components` floats, 1 to 4) to what the EXPONENTIAL filter with
+// `bits` mantissa bits stores and a reader decodes (meshoptimizer's own encoder and decoder),
+// repeated until the filter gives the values back unchanged.
+void RoundLikeExpFilter(std::span<float> values, std::size_t components, int bits);
+
+// Compresses every view of `model`, whose buffer 0 is its in-memory data followed by `tail`'s
+// bytes, into a new buffer 0; views keep their byte ranges in the fallback buffer 1 and carry
+// the extension (mode, count, byteStride, and the EXPONENTIAL filter where the data is rounded
+// for it). Views no accessor reads (embedded images) are copied into buffer 0 as they are.
+// Adds EXT_meshopt_compression to extensionsUsed and extensionsRequired. Returns what the writer
+// adds to the JSON: the fallback buffer's byte length (the uncompressed size) and the views'
+// extension objects.
+MeshoptJson CompressBuffers(tinygltf::Model& model, const StreamedTargets& tail);
+
+}  // namespace wirerig::gltf
