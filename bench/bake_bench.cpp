@@ -9,7 +9,8 @@
 //    reports the file size, the quantized position / normal targets and the largest position
 //    rounding error (mm).
 //  * BM_ExportSkin: ExportGltf in skin mode (the CLI's default: fitted joints, corrective
-//    shapes); reports the file size, joints, correctives and the max error against the bake.
+//    shapes), plain and with EXT_meshopt_compression (*_compressed); reports the file size,
+//    joints, correctives and the max error against the bake.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -46,8 +47,8 @@ const BuiltScene& Scene(const std::string& name) {
 BakedAnimation Bake(const BuiltScene& scene, bool skin = false) {
   BakeOptions options;
   options.skin = skin;
-  Result<BakedAnimation> bake = BakeClip(scene.mesh, scene.model, scene.clips.front(),
-                                         scene.description.playback, options);
+  Result<BakedAnimation> bake =
+      BakeClip(scene.mesh, scene.model, scene.clips.front(), scene.description.playback, options);
   if (!bake) {
     std::cerr << bake.error() << "\n";
     std::exit(1);
@@ -62,10 +63,12 @@ std::filesystem::path Output(const std::string& name) {
 
 GltfExportReport ExportReport(const BuiltScene& scene, const BakedAnimation& bake,
                               const std::filesystem::path& out, bool quantize,
-                              GltfAnimationMode mode = GltfAnimationMode::kMorph) {
+                              GltfAnimationMode mode = GltfAnimationMode::kMorph,
+                              bool compress = false) {
   GltfExportOptions options;
   options.quantize = quantize;
   options.mode = mode;
+  options.compress = compress;
   Result<GltfExportReport> report = ExportGltf(scene.mesh, bake, options, out);
   if (!report) {
     std::cerr << report.error() << "\n";
@@ -114,12 +117,14 @@ void BM_ExportQuantized(benchmark::State& state, const char* name) {
   state.counters["q_error_mm"] = report.quantization_max_error * 1e3;
 }
 
-void BM_ExportSkin(benchmark::State& state, const char* name) {
+// `compress`: GltfExportOptions::compress (EXT_meshopt_compression).
+void BM_ExportSkin(benchmark::State& state, const char* name, bool compress) {
   const BuiltScene& scene = Scene(name);
   const BakedAnimation bake = Bake(scene, /*skin=*/true);
   const auto out = Output(name);
   GltfExportReport report;
-  for (auto _ : state) report = ExportReport(scene, bake, out, false, GltfAnimationMode::kSkin);
+  for (auto _ : state)
+    report = ExportReport(scene, bake, out, false, GltfAnimationMode::kSkin, compress);
   std::filesystem::remove(out);
   SetCounters(state, scene, report.bytes_written);
   state.counters["joints"] = double(report.joint_count);
@@ -148,9 +153,22 @@ BENCHMARK_CAPTURE(BM_ExportQuantized, human, kHuman)->Unit(benchmark::kMilliseco
 BENCHMARK_CAPTURE(BM_ExportQuantized, octopus, kOctopus)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
-BENCHMARK_CAPTURE(BM_ExportSkin, human, kHuman)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_ExportSkin, walk, kWalk)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_ExportSkin, octopus, kOctopus)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_ExportSkin, human, kHuman, false)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_ExportSkin, walk, kWalk, false)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_ExportSkin, octopus, kOctopus, false)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_ExportSkin, human_compressed, kHuman, true)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_ExportSkin, walk_compressed, kWalk, true)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_ExportSkin, octopus_compressed, kOctopus, true)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_BakeAndExport, human, kHuman)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_BakeAndExport, octopus, kOctopus)
     ->Unit(benchmark::kMillisecond)
