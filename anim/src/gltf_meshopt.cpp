@@ -96,6 +96,7 @@ std::string Extension(std::size_t offset, std::size_t length, std::size_t stride
 }  // namespace
 
 void RoundLikeExpFilter(std::span<float> values, std::size_t components, int bits) {
+  if (values.empty()) return;  // a mesh without normals or UVs
   const std::size_t count = values.size() / components;
   const std::size_t stride = components * sizeof(float);
   std::vector<unsigned char> encoded(values.size_bytes());
