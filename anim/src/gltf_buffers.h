@@ -40,6 +40,9 @@ int AddNormalizedShortAccessor(tinygltf::Model& model, std::span<const std::uint
 // A view of `bytes` in buffer 0 (an embedded image: no target). Returns the view's index.
 int AddBytesView(tinygltf::Model& model, std::span<const unsigned char> bytes);
 
+// `size` rounded up to a multiple of 4 (glTF's alignment of views and GLB chunks).
+inline std::size_t Padded4(std::size_t size) { return (size + 3) / 4 * 4; }
+
 // Pads buffer 0's in-memory data (created when missing) to a multiple of 4 bytes and returns
 // its size: the offset at which reserved views may start.
 std::size_t AlignedBufferEnd(tinygltf::Model& model);

@@ -32,7 +32,6 @@ Correctives FitCorrectives(const Skeleton& skeleton, const SkinInfluences& influ
   const Eigen::MatrixXd residuals =
       Eigen::Map<const RowMatrixf>(fit.residual_positions.data(), rows, columns).cast<double>();
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(residuals * residuals.transpose());
-  const bool normals = !fit.residual_normals.empty();
 
   Correctives out;
   Eigen::MatrixXd left = residuals;  // what the shapes so far do not carry
@@ -48,14 +47,6 @@ Correctives FitCorrectives(const Skeleton& skeleton, const SkinInfluences& influ
     const Eigen::VectorXd weight = u * std::sqrt(lambda);
     left.noalias() -= weight * shape.transpose();
     for (Eigen::Index c = 0; c < columns; ++c) out.positions.push_back(float(shape(c)));
-    if (normals) {
-      const Eigen::VectorXd normal_shape =
-          Eigen::Map<const RowMatrixf>(fit.residual_normals.data(), rows, columns)
-              .cast<double>()
-              .transpose() *
-          u / std::sqrt(lambda);
-      for (Eigen::Index c = 0; c < columns; ++c) out.normals.push_back(float(normal_shape(c)));
-    }
     weights.push_back(weight);
     ++out.shape_count;
   }

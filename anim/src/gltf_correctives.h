@@ -7,10 +7,8 @@
 // lambda_i first) give shapes X^T u_i / sqrt(lambda_i) and weights u_i sqrt(lambda_i) per key
 // (the SVD of X). Shapes are added until every vertex at every key is within `max_error` of its
 // exact residual (in bind space: the skinning matrix blends rotations, so the skinned error is
-// no larger up to the blend's shrinkage), or `max_shapes` are used. Normal deltas, when the fit
-// has normal residuals, are projected on the same weights (least squares); the export's
-// correctives carry positions only (millimetres of bulge: the skinned normals stand, and each
-// shape costs half the bytes).
+// no larger up to the blend's shrinkage), or `max_shapes` are used. The shapes carry positions
+// only (millimetres of bulge: the skinned normals stand, and each shape costs half the bytes).
 #pragma once
 
 #include <cstddef>
@@ -30,7 +28,6 @@ struct CorrectiveOptions {
 struct Correctives {
   std::size_t shape_count = 0;
   std::vector<float> positions;  // #S x #V x 3 bind-space deltas
-  std::vector<float> normals;    // #S x #V x 3, or empty
   std::vector<float> weights;    // #K x #S, key-major
   double max_error = 0.0;        // m: skinned, shapes applied, against the bake at the keys
   double rms_error = 0.0;        // m

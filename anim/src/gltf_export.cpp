@@ -134,15 +134,11 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::An
   gltf::MorphTargetSet set;
   set.key_count = correctives->shape_count;
   set.vertex_count = base.Count();
-  set.normals = !correctives->normals.empty();
-  set.name_prefix = "corrective_";
-  set.deltas = [correctives](std::size_t s, std::span<float> positions, std::span<float> normals) {
+  set.name_prefix = "corrective_";  // POSITION deltas only (gltf_correctives.h)
+  set.deltas = [correctives](std::size_t s, std::span<float> positions, std::span<float>) {
     const std::size_t values = positions.size();
     std::copy_n(correctives->positions.begin() + static_cast<std::ptrdiff_t>(s * values), values,
                 positions.begin());
-    if (normals.empty()) return;
-    std::copy_n(correctives->normals.begin() + static_cast<std::ptrdiff_t>(s * values), values,
-                normals.begin());
   };
   return gltf::AddMorphTargets(model, mesh_index, std::move(set), quantization);
 }

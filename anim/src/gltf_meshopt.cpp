@@ -10,12 +10,12 @@
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
+#include "gltf_buffers.h"
+
 namespace wirerig::gltf {
 namespace {
 
 constexpr const char* kExtension = "EXT_meshopt_compression";
-
-std::size_t Padded4(std::size_t size) { return (size + 3) / 4 * 4; }
 
 // How a view is read: its first accessor's layout, and the filter bits its role allows (0: none).
 struct ViewUse {

@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gltf_buffers.h"
 #include "gltf_paths.h"
 #include "wirerig/rig/atomic_file.h"
 #include "wirerig/rig/input_file.h"
@@ -36,8 +37,6 @@ constexpr std::uint32_t kJsonChunk = 0x4E4F534Au;  // "JSON"
 constexpr std::uint32_t kBinChunk = 0x004E4942u;   // "BIN\0"
 constexpr std::size_t kGlbHeader = 12;
 constexpr std::size_t kChunkHeader = 8;
-
-std::size_t Padded4(std::size_t size) { return (size + 3) / 4 * 4; }
 
 // The model's JSON without buffers (buffer 0 is written by the caller), compact.
 Result<std::string> SerializeJson(tinygltf::Model& model) {
