@@ -69,6 +69,11 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
   bake->add_flag("--compress", options.compress,
                  "skin mode: EXT_meshopt_compression (smaller; needs a reader with a meshopt "
                  "decoder: three.js, Babylon.js; not Assimp 5.2 or Blender 3.4)");
+  bake->add_option("--influences", options.influences,
+                   "skin mode: joints per vertex, 4 or 8 (8 adds JOINTS_1/WEIGHTS_1, which "
+                   "three.js does not read)")
+      ->check(CLI::IsMember({4, 8}))
+      ->capture_default_str();
   bake->add_option("--key-tolerance", options.key_tolerance,
                    "skin mode: a joint key is left out when interpolating its neighbours moves "
                    "the joint's vertices by at most this, m (0: every key)")
@@ -79,7 +84,7 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
     if (options.mode == "morph") {
       for (const char* name :
            {"--residual", "--max-joints", "--joints-per-part", "--max-correctives",
-            "--corrective-error", "--key-tolerance", "--compress"}) {
+            "--corrective-error", "--key-tolerance", "--compress", "--influences"}) {
         if (bake->count(name) > 0) throw CLI::ValidationError(name, "applies to --mode skin only");
       }
     } else if (options.residual &&
@@ -129,6 +134,7 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   export_options.corrective_error = options.corrective_error;
   export_options.key_tolerance = options.key_tolerance;
   export_options.compress = options.compress;
+  export_options.influences = options.influences;
   export_options.node_name = scene.description.name;
   // An export too large to write is refused with its numbers before anything is baked.
   {

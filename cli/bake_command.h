@@ -28,6 +28,7 @@ struct BakeCommandOptions {
   double corrective_error = 1e-3;    // skin mode: GltfExportOptions::corrective_error, m
   double key_tolerance = 0.0;        // skin mode: GltfExportOptions::key_tolerance, m
   bool compress = false;             // skin mode: GltfExportOptions::compress
+  std::size_t influences = 4;        // skin mode: GltfExportOptions::influences
   bool progress = false;             // set by main when stderr is a terminal
   ImportLimitOptions import_limits;
 };

@@ -84,6 +84,7 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::An
   fit_options.max_joints_per_part = options.max_joints_per_part;
   fit_options.key_tolerance = options.key_tolerance;
   fit_options.bridge_joints = options.bridge_joints;
+  fit_options.influences = options.influences;
   if (options.compress) fit_options.translation_bits = gltf::kTranslationBits;
   if (!options.fit_skin) fit_options.iterations = fit_options.weight_rounds = 0;
   Result<gltf::FittedSkin> fitted = gltf::FitSkeleton(bake, base, fit_options);
@@ -181,6 +182,13 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
   }
   if (auto problem = gltf::CheckExportInput(mesh, bake, options.mode)) {
     return Error{out.string() + ": " + *problem};
+  }
+  if (options.influences != 4 && options.influences != gltf::kMaxInfluences) {
+    return Error{out.string() + ": influences must be 4 or 8, not " +
+                 std::to_string(options.influences)};
+  }
+  if (options.influences != 4 && options.mode != GltfAnimationMode::kSkin) {
+    return Error{out.string() + ": influences applies to skin mode (morph files have no skin)"};
   }
   if (options.compress && options.mode != GltfAnimationMode::kSkin) {
     return Error{out.string() +

@@ -164,18 +164,19 @@ void AppendInfluences(std::vector<std::pair<std::uint32_t, double>> pairs,
   std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) {
     return a.second != b.second ? a.second > b.second : a.first < b.first;
   });
-  if (pairs.size() > 4) pairs.resize(4);
+  const std::size_t slots = influences->slots;
+  if (pairs.size() > slots) pairs.resize(slots);
   double sum = 0.0;
   for (const auto& pair : pairs) sum += pair.second;
   // Shorts summing to exactly 65535; the largest takes what rounding leaves.
-  std::array<std::uint32_t, 4> quantized{};
+  std::array<std::uint32_t, kMaxInfluences> quantized{};
   std::uint32_t rest = kWeightTotal;
   for (std::size_t c = 1; c < pairs.size(); ++c) {
     quantized[c] = static_cast<std::uint32_t>(std::lround(pairs[c].second / sum * kWeightScale));
     rest -= quantized[c];
   }
   quantized[0] = rest;
-  for (std::size_t c = 0; c < 4; ++c) {
+  for (std::size_t c = 0; c < slots; ++c) {
     // A slot whose weight rounded to zero is unused (joint 0), as glTF asks.
     const bool used = c < pairs.size() && quantized[c] > 0;
     influences->joints.push_back(used ? static_cast<std::uint16_t>(pairs[c].first)
@@ -258,16 +259,25 @@ int AddSkeleton(tinygltf::Model& model, tinygltf::Animation& animation, const Sk
 
 void AddSkinAttributes(tinygltf::Model& model, int mesh_index, const SkinInfluences& influences,
                        std::size_t joint_count) {
-  const int joints = AddJointAccessor(model, influences.joints, joint_count);
-  std::vector<std::uint16_t> stored(influences.weights.size());
-  std::transform(influences.weights.begin(), influences.weights.end(), stored.begin(),
-                 [](float w) { return static_cast<std::uint16_t>(std::lround(w * kWeightScale)); });
-  const int weights =
-      AddNormalizedShortAccessor(model, stored, TINYGLTF_TYPE_VEC4, TINYGLTF_TARGET_ARRAY_BUFFER);
-  for (tinygltf::Primitive& primitive :
-       model.meshes[static_cast<std::size_t>(mesh_index)].primitives) {
-    primitive.attributes["JOINTS_0"] = joints;
-    primitive.attributes["WEIGHTS_0"] = weights;
+  const std::size_t slots = influences.slots, vertices = influences.joints.size() / slots;
+  for (std::size_t set = 0; set * 4 < slots; ++set) {
+    std::vector<std::uint16_t> set_joints, set_weights;
+    for (std::size_t v = 0; v < vertices; ++v) {
+      for (std::size_t c = set * 4; c < set * 4 + 4; ++c) {
+        set_joints.push_back(influences.joints[v * slots + c]);
+        set_weights.push_back(
+            static_cast<std::uint16_t>(std::lround(influences.weights[v * slots + c] * kWeightScale)));
+      }
+    }
+    const int joints = AddJointAccessor(model, set_joints, joint_count);
+    const int weights = AddNormalizedShortAccessor(model, set_weights, TINYGLTF_TYPE_VEC4,
+                                                   TINYGLTF_TARGET_ARRAY_BUFFER);
+    const std::string suffix = std::to_string(set);
+    for (tinygltf::Primitive& primitive :
+         model.meshes[static_cast<std::size_t>(mesh_index)].primitives) {
+      primitive.attributes["JOINTS_" + suffix] = joints;
+      primitive.attributes["WEIGHTS_" + suffix] = weights;
+    }
   }
 }
 

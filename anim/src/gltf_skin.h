@@ -69,15 +69,18 @@ Skeleton MakeSkeleton(std::vector<int> parent, std::vector<std::string> names,
                       std::span<const RigidTransform> rest, std::span<const RigidTransform> keyed,
                       const KeyThinning& thinning);
 
-// Per vertex 4 joints and weights as written: sorted by decreasing weight, stored as normalized
-// unsigned shorts that sum to exactly 65535 (weights q / 65535); unused slots are joint 0 with
-// weight 0.
+// Per vertex `slots` (4 or 8) joints and weights as written: sorted by decreasing weight, stored
+// as normalized unsigned shorts that sum to exactly 65535 over all slots (weights q / 65535);
+// unused slots are joint 0 with weight 0. Slots 0-3 are JOINTS_0 / WEIGHTS_0, 4-7 JOINTS_1 /
+// WEIGHTS_1.
+inline constexpr std::size_t kMaxInfluences = 8;  // slots per vertex: 4 (default) or 8
 struct SkinInfluences {
-  std::vector<std::uint16_t> joints;  // #V x 4
-  std::vector<float> weights;         // #V x 4, the stored q / 65535
+  std::size_t slots = 4;
+  std::vector<std::uint16_t> joints;  // #V x slots
+  std::vector<float> weights;         // #V x slots, the stored q / 65535
 };
 // Appends one vertex's influences from (joint, weight) pairs (distinct joints, weights >= 0,
-// some positive): the 4 largest kept and normalized.
+// some positive): the `influences->slots` largest kept and normalized.
 void AppendInfluences(std::vector<std::pair<std::uint32_t, double>> pairs,
                       SkinInfluences* influences);
 
@@ -88,7 +91,7 @@ void AppendInfluences(std::vector<std::pair<std::uint32_t, double>> pairs,
 int AddSkeleton(tinygltf::Model& model, tinygltf::Animation& animation, const Skeleton& skeleton,
                 std::span<const float> times, int time_accessor, std::vector<int>* roots);
 
-// Adds JOINTS_0 and WEIGHTS_0 to every primitive of mesh `mesh_index`.
+// Adds JOINTS_0 and WEIGHTS_0 (and JOINTS_1, WEIGHTS_1 with 8 slots) to every primitive of mesh `mesh_index`.
 void AddSkinAttributes(tinygltf::Model& model, int mesh_index, const SkinInfluences& influences,
                        std::size_t joint_count);
 

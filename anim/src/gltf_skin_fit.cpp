@@ -105,12 +105,13 @@ Result<std::vector<std::vector<std::size_t>>> ChooseSamples(const BakedAnimation
 // Per vertex, its bake weights on samples moved to the chosen joints (see the header).
 SkinInfluences MapInfluences(const BakedAnimation& bake,
                              const std::vector<std::vector<std::size_t>>& samples,
-                             const std::vector<std::size_t>& first_joint) {
+                             const std::vector<std::size_t>& first_joint, std::size_t slots) {
   // Global sample index -> (spine, sample).
   std::vector<std::pair<std::size_t, std::size_t>> sample_of;
   for (std::size_t i = 0; i < bake.spines.size(); ++i)
     for (std::size_t s = 0; s < bake.spines[i].SampleCount(); ++s) sample_of.emplace_back(i, s);
   SkinInfluences influences;
+  influences.slots = slots;
   std::vector<std::pair<std::uint32_t, double>> pairs;
   auto add = [&pairs](std::size_t joint, double w) {
     if (!(w > 0.0)) return;
@@ -151,11 +152,12 @@ SkinInfluences MapInfluences(const BakedAnimation& bake,
 class KeyFit {
  public:
   KeyFit(const SkinInfluences& influences, const BaseVertices& base, std::size_t joints)
-      : influences_(influences), base_(base), members_(joints) {
+      : influences_(influences), slots_(influences.slots), base_(base), members_(joints) {
     for (std::size_t v = 0; v < base.Count(); ++v)
-      for (std::uint8_t c = 0; c < 4; ++c)
-        if (influences.weights[v * 4 + c] > 0.0f)
-          members_[influences.joints[v * 4 + c]].push_back({static_cast<std::uint32_t>(v), c});
+      for (std::size_t c = 0; c < slots_; ++c)
+        if (influences.weights[v * slots_ + c] > 0.0f)
+          members_[influences.joints[v * slots_ + c]].push_back(
+              {static_cast<std::uint32_t>(v), static_cast<std::uint8_t>(c)});
   }
 
   // Improves rotation / translation (#J, the start) for the baked positions `target` (#V).
@@ -189,13 +191,13 @@ class KeyFit {
       const std::size_t v = members[i].vertex;
       const Vec3 r = Rest(v);
       Vec3 e = target[v].cast<double>();
-      for (std::size_t c = 0; c < 4; ++c) {
-        const float w = influences_.weights[v * 4 + c];
+      for (std::size_t c = 0; c < slots_; ++c) {
+        const float w = influences_.weights[v * slots_ + c];
         if (c == members[i].slot || w == 0.0f) continue;
-        const std::size_t other = influences_.joints[v * 4 + c];
+        const std::size_t other = influences_.joints[v * slots_ + c];
         e -= double(w) * (rotation[other] * r + translation[other]);
       }
-      const double w = influences_.weights[v * 4 + members[i].slot];
+      const double w = influences_.weights[v * slots_ + members[i].slot];
       residual_[i] = e;
       sum_w2 += w * w;
       sum_w2r += w * w * r;
@@ -205,7 +207,7 @@ class KeyFit {
     Mat3 covariance = Mat3::Zero();  // sum target' source'^T
     double spread = 0.0;
     for (std::size_t i = 0; i < members.size(); ++i) {
-      const double w = influences_.weights[members[i].vertex * 4 + members[i].slot];
+      const double w = influences_.weights[members[i].vertex * slots_ + members[i].slot];
       const Vec3 source = w * (Rest(members[i].vertex) - center_rest);
       covariance += (residual_[i] - w * center_target) * source.transpose();
       spread += source.squaredNorm();
@@ -219,7 +221,7 @@ class KeyFit {
     double before = 0.0, after = 0.0;
     for (std::size_t i = 0; i < members.size(); ++i) {
       const std::size_t v = members[i].vertex;
-      const double w = influences_.weights[v * 4 + members[i].slot];
+      const double w = influences_.weights[v * slots_ + members[i].slot];
       const Vec3 r = Rest(v);
       before += (residual_[i] - w * (rotation[j] * r + translation[j])).squaredNorm();
       after += (residual_[i] - w * (r_new * r + t_new)).squaredNorm();
@@ -231,6 +233,7 @@ class KeyFit {
   }
 
   const SkinInfluences& influences_;
+  const std::size_t slots_;
   const BaseVertices& base_;
   std::vector<std::vector<Member>> members_;
   std::vector<Vec3> residual_;
@@ -287,7 +290,7 @@ Result<FittedSkin> FitSkeleton(const BakedAnimation& bake, const BaseVertices& b
   const std::size_t joints = parent.size(), keys = bake.KeyCount();
 
   FittedSkin fitted;
-  fitted.influences = MapInfluences(bake, samples, first_joint);
+  fitted.influences = MapInfluences(bake, samples, first_joint, options.influences);
   std::vector<Rigid> rest(joints), keyed(keys * joints);
   for (std::size_t j = 0; j < joints; ++j)
     rest[j] = RestSampleAt(bake.spines[joint_sample[j].first], joint_sample[j].second);
@@ -340,9 +343,10 @@ Result<FittedSkin> FitSkeleton(const BakedAnimation& bake, const BaseVertices& b
   std::vector<double> reach(joints, 0.0);
   for (std::size_t v = 0; v < base.Count(); ++v) {
     const Vec3 p = Eigen::Map<const Eigen::Vector3f>(&base.positions[v * 3]).cast<double>();
-    for (std::size_t c = 0; c < 4; ++c) {
-      if (fitted.influences.weights[v * 4 + c] == 0.0f) continue;
-      const std::size_t j = fitted.influences.joints[v * 4 + c];
+    const std::size_t slots = fitted.influences.slots;
+    for (std::size_t c = 0; c < slots; ++c) {
+      if (fitted.influences.weights[v * slots + c] == 0.0f) continue;
+      const std::size_t j = fitted.influences.joints[v * slots + c];
       reach[j] = std::max(reach[j], (p - rest[j].translation).norm());
     }
   }

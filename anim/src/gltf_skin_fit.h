@@ -16,7 +16,7 @@
 //
 // Weights: a vertex's bake weights on spine samples (BakedAnimation::skin_joints / weights),
 // each sample's weight split between the two chosen joints around it in proportion to its
-// place between them (all of it when it is a chosen joint); the 4 largest kept.
+// place between them (all of it when it is a chosen joint); the `influences` largest kept.
 //
 // Fit: every key starts from the baked spine frames at the chosen samples; `iterations` passes
 // update each joint's transform in turn to minimise the squared distance of its vertices'
@@ -41,6 +41,7 @@ namespace wirerig::gltf {
 struct SkinFitOptions {
   std::size_t max_joints = 64;          // per skin
   std::size_t max_joints_per_part = 8;  // deformable parts; 0: a joint at every spine sample
+  std::size_t influences = 4;           // joints per vertex: 4 or 8 (kMaxInfluences)
   int iterations = 2;                   // fitting passes per key; 0: the baked spine frames
   int weight_rounds = 2;       // weight solves (gltf_skin_weights.h), each followed by the passes
   double key_tolerance = 0.0;  // m: joint keys thinned within it (KeyThinning); 0 keeps all

@@ -68,7 +68,10 @@ SkinInfluences FitWeights(const SkinInfluences& start, const std::vector<int>& p
   std::vector<std::vector<std::uint32_t>> children(joints);
   for (std::size_t j = 0; j < joints; ++j)
     if (parent[j] >= 0) children[std::size_t(parent[j])].push_back(std::uint32_t(j));
+  const std::size_t slots = start.slots;
+  const auto kept_count = static_cast<Eigen::Index>(slots);
   SkinInfluences fitted;
+  fitted.slots = slots;
   std::vector<std::uint32_t> candidates;
   std::vector<std::pair<std::uint32_t, double>> pairs;
   for (std::size_t v = 0; v < vertices; ++v) {
@@ -77,9 +80,9 @@ SkinInfluences FitWeights(const SkinInfluences& start, const std::vector<int>& p
       if (std::find(candidates.begin(), candidates.end(), j) == candidates.end())
         candidates.push_back(j);
     };
-    for (std::size_t c = 0; c < 4; ++c) {
-      if (start.weights[v * 4 + c] <= 0.0f) continue;
-      const std::uint32_t j = start.joints[v * 4 + c];
+    for (std::size_t c = 0; c < slots; ++c) {
+      if (start.weights[v * slots + c] <= 0.0f) continue;
+      const std::uint32_t j = start.joints[v * slots + c];
       add(j);
       if (parent[j] >= 0) {
         add(std::uint32_t(parent[j]));
@@ -89,10 +92,10 @@ SkinInfluences FitWeights(const SkinInfluences& start, const std::vector<int>& p
     }
     const auto n = static_cast<Eigen::Index>(candidates.size());
     Eigen::VectorXd start_weights = Eigen::VectorXd::Zero(n);
-    for (std::size_t c = 0; c < 4; ++c) {
-      if (start.weights[v * 4 + c] <= 0.0f) continue;  // unused slots name joint 0, not a candidate
-      const auto at = std::find(candidates.begin(), candidates.end(), start.joints[v * 4 + c]);
-      start_weights(at - candidates.begin()) += start.weights[v * 4 + c];
+    for (std::size_t c = 0; c < slots; ++c) {
+      if (start.weights[v * slots + c] <= 0.0f) continue;  // unused slots name joint 0
+      const auto at = std::find(candidates.begin(), candidates.end(), start.joints[v * slots + c]);
+      start_weights(at - candidates.begin()) += start.weights[v * slots + c];
     }
     // Normal equations of sum over keys |sum_j w_j (R_jk r + t_jk) - p_k|^2.
     const Vec3 r = Eigen::Map<const Eigen::Vector3f>(&base.positions[v * 3]).cast<double>();
@@ -115,22 +118,22 @@ SkinInfluences FitWeights(const SkinInfluences& start, const std::vector<int>& p
     gram.diagonal().array() += faint;
     g += faint * start_weights;
     Eigen::VectorXd w = NonNegative(gram, g);
-    if ((w.array() > 0.0).count() > 4) {  // the 4 largest, solved again on their own
+    if ((w.array() > 0.0).count() > kept_count) {  // the largest, solved again on their own
       std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
       for (Eigen::Index a = 0; a < n; ++a) order[std::size_t(a)] = a;
-      std::partial_sort(order.begin(), order.begin() + 4, order.end(),
+      std::partial_sort(order.begin(), order.begin() + kept_count, order.end(),
                         [&w](Eigen::Index a, Eigen::Index b) { return w(a) > w(b); });
-      order.resize(4);
-      Eigen::MatrixXd sub(4, 4);
-      Eigen::VectorXd rhs(4);
-      for (Eigen::Index a = 0; a < 4; ++a) {
+      order.resize(slots);
+      Eigen::MatrixXd sub(kept_count, kept_count);
+      Eigen::VectorXd rhs(kept_count);
+      for (Eigen::Index a = 0; a < kept_count; ++a) {
         rhs(a) = g(order[std::size_t(a)]);
-        for (Eigen::Index b = 0; b < 4; ++b)
+        for (Eigen::Index b = 0; b < kept_count; ++b)
           sub(a, b) = gram(order[std::size_t(a)], order[std::size_t(b)]);
       }
       const Eigen::VectorXd kept = NonNegative(sub, rhs);
       w.setZero();
-      for (Eigen::Index a = 0; a < 4; ++a) w(order[std::size_t(a)]) = kept(a);
+      for (Eigen::Index a = 0; a < kept_count; ++a) w(order[std::size_t(a)]) = kept(a);
     }
     pairs.clear();
     for (Eigen::Index a = 0; a < n; ++a)

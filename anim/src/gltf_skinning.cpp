@@ -31,9 +31,10 @@ std::vector<Mat4d> SkinMatrices(const Skeleton& skeleton, std::size_t key) {
 Mat4d BlendedSkinMatrix(const SkinInfluences& influences, std::span<const Mat4d> skin_matrices,
                         std::size_t v) {
   Mat4d m = Mat4d::Zero();
-  for (std::size_t c = 0; c < 4; ++c) {
-    const float w = influences.weights[v * 4 + c];
-    if (w != 0.0f) m += static_cast<double>(w) * skin_matrices[influences.joints[v * 4 + c]];
+  const std::size_t slots = influences.slots;
+  for (std::size_t c = 0; c < slots; ++c) {
+    const float w = influences.weights[v * slots + c];
+    if (w != 0.0f) m += static_cast<double>(w) * skin_matrices[influences.joints[v * slots + c]];
   }
   return m;
 }

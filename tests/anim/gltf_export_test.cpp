@@ -494,14 +494,19 @@ std::vector<Vec3> Reconstruct(const tinygltf::Model& model, double t) {
     joint[j] = global[static_cast<std::size_t>(skin.joints[j])] *
                Eigen::Map<const Eigen::Matrix4f>(&ibm[j * 16]).cast<double>();
   }
-  const std::vector<std::uint32_t> joints = ReadUints(model, primitive.attributes.at("JOINTS_0"));
-  const std::vector<float> weights = ReadFloats(model, primitive.attributes.at("WEIGHTS_0"));
-  for (std::size_t v = 0; v < positions.size(); ++v) {
-    Mat4d m = Mat4d::Zero();
-    for (std::size_t c = 0; c < 4; ++c)
-      m += static_cast<double>(weights[v * 4 + c]) * joint.at(joints[v * 4 + c]);
-    positions[v] = (m * positions[v].homogeneous()).head<3>();
+  // Every influence set a reader finds: JOINTS_0 / WEIGHTS_0, JOINTS_1 / WEIGHTS_1, ...
+  std::vector<Mat4d> blended(positions.size(), Mat4d::Zero());
+  for (int set = 0; primitive.attributes.count("JOINTS_" + std::to_string(set)) > 0; ++set) {
+    const std::string suffix = std::to_string(set);
+    const std::vector<std::uint32_t> joints =
+        ReadUints(model, primitive.attributes.at("JOINTS_" + suffix));
+    const std::vector<float> weights = ReadFloats(model, primitive.attributes.at("WEIGHTS_" + suffix));
+    for (std::size_t v = 0; v < positions.size(); ++v)
+      for (std::size_t c = 0; c < 4; ++c)
+        blended[v] += static_cast<double>(weights[v * 4 + c]) * joint.at(joints[v * 4 + c]);
   }
+  for (std::size_t v = 0; v < positions.size(); ++v)
+    positions[v] = (blended[v] * positions[v].homogeneous()).head<3>();
   return positions;
 }
 
@@ -576,6 +581,7 @@ struct RoundTrip {
   const char* extension;
   GltfAnimationMode mode;
   bool residuals;
+  std::size_t influences = 4;
 };
 
 class GltfExportRoundTrip : public ::testing::TestWithParam<RoundTrip> {};
@@ -587,6 +593,7 @@ TEST_P(GltfExportRoundTrip, ReimportsValidatesAndReproducesTheBake) {
   GltfExportOptions options;
   options.mode = param.mode;
   options.residual_morph_targets = param.residuals;
+  options.influences = param.influences;
   options.texture_dir = InstallTexture(dir.path());
   fs::create_directories(dir.path() / "out");
   const fs::path out = dir.path() / "out" / (std::string("bend") + param.extension);
@@ -670,7 +677,9 @@ INSTANTIATE_TEST_SUITE_P(
                       RoundTrip{"skin_glb", ".glb", GltfAnimationMode::kSkin, false},
                       RoundTrip{"skin_gltf", ".gltf", GltfAnimationMode::kSkin, false},
                       RoundTrip{"skin_residual_glb", ".glb", GltfAnimationMode::kSkin, true},
-                      RoundTrip{"skin_residual_gltf", ".gltf", GltfAnimationMode::kSkin, true}),
+                      RoundTrip{"skin_residual_gltf", ".gltf", GltfAnimationMode::kSkin, true},
+                      RoundTrip{"skin_8_influences_glb", ".glb", GltfAnimationMode::kSkin, false,
+                                8}),
     [](const ::testing::TestParamInfo<RoundTrip>& p) { return std::string(p.param.name); });
 
 // ---------------------------------------------------------------------------------------------
@@ -735,6 +744,58 @@ TEST(GltfExport, SkinWeightsAreMergedSortedAndStoredAsShortsSummingToOne) {
       if (stored[v * 4 + c] == 0) {
         EXPECT_EQ(joints[v * 4 + c], 0u) << v;
       }
+    }
+  }
+}
+
+// A vertex weighted on samples that lie between joints gets both joints around each sample: six
+// joints here. Four slots keep the four largest (renormalized); eight keep all six, the last
+// four in JOINTS_1 / WEIGHTS_1, and the eight stored shorts sum to 65535.
+TEST(GltfExport, EightInfluencesKeepWhatFourCannot) {
+  BendCase c;
+  c.samples_per_spine = 5;  // samples 0-4 on spine 0, 5-9 on spine 1
+  Scene scene = MakeScene(c);
+  scene.bake.skin_joints[20] = {1, 3, 6, 8};  // each half-way between two chosen joints
+  scene.bake.skin_weights[20] = Vec4f(0.25f, 0.25f, 0.25f, 0.25f);
+  for (std::size_t slots : {std::size_t{4}, std::size_t{8}}) {
+    SCOPED_TRACE(slots);
+    TempDir dir;
+    GltfExportOptions options;
+    options.mode = GltfAnimationMode::kSkin;
+    options.max_joints_per_part = 3;  // samples 0, 2, 4 of each spine: joints 0-2 and 3-5
+    options.bridge_joints = false;
+    options.fit_skin = false;
+    options.max_correctives = 0;
+    options.influences = slots;
+    const fs::path out = dir.path() / "influences.glb";
+    ASSERT_TRUE(ExportGltf(scene.mesh, scene.bake, options, out).ok());
+    const tinygltf::Model model = LoadWithTinygltf(out);
+    const tinygltf::Primitive& primitive = model.meshes.at(0).primitives.at(0);
+    EXPECT_EQ(primitive.attributes.count("JOINTS_1"), slots == 8 ? 1u : 0u);
+    EXPECT_EQ(primitive.attributes.count("WEIGHTS_1"), slots == 8 ? 1u : 0u);
+    std::map<std::uint32_t, double> kept;
+    std::uint32_t sum = 0;
+    for (std::size_t set = 0; set * 4 < slots; ++set) {
+      const std::string suffix = std::to_string(set);
+      const std::vector<std::uint32_t> joints =
+          ReadUints(model, primitive.attributes.at("JOINTS_" + suffix));
+      const std::vector<std::uint32_t> stored =
+          ReadUints(model, primitive.attributes.at("WEIGHTS_" + suffix));
+      for (std::size_t s = 20 * 4; s < 21 * 4; ++s) {
+        sum += stored[s];
+        if (stored[s] > 0) kept[joints[s]] += stored[s] / 65535.0;
+      }
+    }
+    EXPECT_EQ(sum, 65535u);
+    if (slots == 8) {
+      const std::map<std::uint32_t, double> expected = {{0, 0.125}, {1, 0.25}, {2, 0.125},
+                                                        {3, 0.125}, {4, 0.25}, {5, 0.125}};
+      ASSERT_EQ(kept.size(), expected.size());
+      for (const auto& [joint, weight] : expected) EXPECT_NEAR(kept[joint], weight, 1e-4) << joint;
+    } else {
+      ASSERT_EQ(kept.size(), 4u);  // the two of 0.25 and two of 0.125, renormalized
+      EXPECT_NEAR(kept[1], 1.0 / 3.0, 1e-4);
+      EXPECT_NEAR(kept[4], 1.0 / 3.0, 1e-4);
     }
   }
 }
@@ -1346,6 +1407,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"NanSpineRotation", "bake.spines[0].rotations[4]: not a finite rotation",
                  [](Scene& s, GltfExportOptions&, fs::path&) {
                    s.bake.spines[0].rotations[4].w() = std::numeric_limits<double>::infinity();
+                 }},
+        BadInput{"Influences", "influences must be 4 or 8, not 5",
+                 [](Scene&, GltfExportOptions& o, fs::path&) { o.influences = 5; }},
+        BadInput{"InfluencesInMorphMode", "influences applies to skin mode",
+                 [](Scene&, GltfExportOptions& o, fs::path&) {
+                   o.mode = GltfAnimationMode::kMorph;
+                   o.influences = 8;
                  }},
         BadInput{"TriangleIndex", "mesh.triangles[0]: vertex index out of range",
                  [](Scene& s, GltfExportOptions&, fs::path&) { s.mesh.triangles[0][1] = 100000; }}),
