@@ -1,5 +1,6 @@
 #include "rig_command.h"
 #include "option_checks.h"
+#include "text_format.h"
 
 #include <cstdio>
 #include <ostream>
@@ -18,12 +19,6 @@
 
 namespace wirerig::cli {
 namespace {
-
-std::string Format(const char* format, auto... args) {
-  char buffer[512];
-  std::snprintf(buffer, sizeof buffer, format, args...);
-  return buffer;
-}
 
 void PrintMeshSummary(std::ostream& out, const std::string& path, const ImportedMesh& imported) {
   const Mesh& mesh = imported.mesh;

@@ -1,19 +1,11 @@
 #include "wire_table.h"
+#include "text_format.h"
 
 #include <cstdio>
 #include <ostream>
 #include <string>
 
 namespace wirerig::cli {
-namespace {
-
-std::string Format(const char* format, auto... args) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof buffer, format, args...);
-  return buffer;
-}
-
-}  // namespace
 
 void PrintWireTable(std::ostream& out, const WireProblem& problem, const WireSolution& solution) {
   const Material& m = problem.material;

@@ -1,3 +1,12 @@
+# wirerig_unity_batches(<target>): with WIRERIG_UNITY_BUILD, the target's sources compiled 8 to a
+# batch. Its files must not define the same name at namespace scope (helpers shared by several
+# files live in a header of the folder).
+function(wirerig_unity_batches target)
+  if(WIRERIG_UNITY_BUILD)
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
+  endif()
+endfunction()
+
 # wirerig_target_options(<target>): warnings and sanitizers as PRIVATE options of
 # one target, so nothing leaks into consumers of the installed package.
 function(wirerig_target_options target)

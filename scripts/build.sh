@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Configures and builds wirerig. Usage: scripts/build.sh [release|asan|nocgal|fuzz] [TARGET...]
-#   release  ->  build/        optimised, with tests (compiled in batches: WIRERIG_UNITY_TESTS),
+#   release  ->  build/        optimised, with tests (tests and libraries compiled in batches: WIRERIG_UNITY_BUILD),
 #                              benchmarks and the CLI
 #   asan     ->  build-asan/   clang, AddressSanitizer + UndefinedBehaviorSanitizer, with the
 #                              libFuzzer targets (fuzz/); no benchmarks or viewer
@@ -22,14 +22,14 @@ jobs=${WIRERIG_JOBS:-$(nproc)}
 clang_flags=(-DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang)
 case "$kind" in
   release) dir=$repo_root/build
-           flags=(-DCMAKE_BUILD_TYPE=Release -DWIRERIG_UNITY_TESTS=ON) ;;
+           flags=(-DCMAKE_BUILD_TYPE=Release -DWIRERIG_UNITY_BUILD=ON) ;;
   # The sanitizer pass covers the libraries, the CLI and their tests; the OpenGL viewer and
   # the benchmarks are left to the release pass (Mesa's own code is not ours to sanitize).
   # -O1 -g1 (line tables only) keeps the build quick and the reports symbolized.
   asan)    dir=$repo_root/build-asan
            flags=("${clang_flags[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo
                   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1"
-                  -DWIRERIG_SANITIZE=ON -DWIRERIG_BUILD_FUZZERS=ON -DWIRERIG_UNITY_TESTS=ON
+                  -DWIRERIG_SANITIZE=ON -DWIRERIG_BUILD_FUZZERS=ON -DWIRERIG_UNITY_BUILD=ON
                   -DWIRERIG_BUILD_BENCHMARKS=OFF -DWIRERIG_BUILD_VIEWER=OFF) ;;
   nocgal)  dir=$repo_root/build-nocgal
            flags=(-DCMAKE_BUILD_TYPE=Release -DWIRERIG_WITH_CGAL=OFF -DWIRERIG_BUILD_TESTS=OFF

@@ -6,6 +6,8 @@
 #include <numbers>
 #include <string>
 
+#include "wirerig/rig/finite.h"
+
 namespace wirerig {
 namespace {
 
@@ -20,8 +22,6 @@ ArticulatedJointType TypeOf(JointType type) {
   }
   return ArticulatedJointType::kBall;
 }
-
-bool IsFinite(const Vec3& v) { return v.allFinite(); }
 
 }  // namespace
 

@@ -29,6 +29,10 @@ int AddIndexAccessor(tinygltf::Model& model, std::span<const std::uint32_t> indi
 int AddJointAccessor(tinygltf::Model& model, std::span<const std::uint16_t> joints,
                      std::size_t joint_count);
 
+// What a normalized short stores: value = q / kShortScale (signed), q / kUnsignedShortScale.
+inline constexpr double kShortScale = 32767.0;
+inline constexpr double kUnsignedShortScale = 65535.0;
+
 // Normalized 16-bit accessor (#values / components elements, components from `type`): signed
 // shorts (value = max(q / 32767, -1)) or unsigned (value = q / 65535), as glTF allows for
 // rotation keys and WEIGHTS_0 without any extension.

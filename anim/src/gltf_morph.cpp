@@ -21,7 +21,6 @@ constexpr const char* kQuantization = "KHR_mesh_quantization";
 constexpr std::size_t kFloatStride = 3 * sizeof(float);         // 12 bytes
 constexpr std::size_t kShortStride = 4 * sizeof(std::int16_t);  // 8: 4-byte aligned
 constexpr std::size_t kBlockBytes = std::size_t{4} << 20;       // write blocks, ~4 MB
-constexpr double kShortScale = 32767.0;
 
 // Threads for `jobs` independent jobs: up to 2 (the machines wirerig runs on share few cores).
 std::size_t ThreadCount(std::size_t jobs) {

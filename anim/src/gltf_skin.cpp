@@ -15,8 +15,7 @@ namespace {
 
 using Rigid = RigidTransform;
 
-constexpr double kShortScale = 32767.0;   // normalized signed short
-constexpr double kWeightScale = 65535.0;  // normalized unsigned short
+constexpr double kWeightScale = kUnsignedShortScale;
 constexpr std::uint32_t kWeightTotal = 65535;
 
 // A unit quaternion as stored: each component a normalized signed short.
@@ -265,8 +264,8 @@ void AddSkinAttributes(tinygltf::Model& model, int mesh_index, const SkinInfluen
     for (std::size_t v = 0; v < vertices; ++v) {
       for (std::size_t c = set * 4; c < set * 4 + 4; ++c) {
         set_joints.push_back(influences.joints[v * slots + c]);
-        set_weights.push_back(
-            static_cast<std::uint16_t>(std::lround(influences.weights[v * slots + c] * kWeightScale)));
+        set_weights.push_back(static_cast<std::uint16_t>(
+            std::lround(influences.weights[v * slots + c] * kWeightScale)));
       }
     }
     const int joints = AddJointAccessor(model, set_joints, joint_count);

@@ -6,6 +6,7 @@
 
 #include "wirerig/anim/clip_json.h"
 #include "wirerig/anim/scene.h"
+#include "wirerig/rig/finite.h"
 
 #include "wirerig/rig/atomic_file.h"
 #include "wirerig/rig/input_file.h"
@@ -22,11 +23,6 @@ constexpr const char* kFormat = "wirerig.scene";
 // The duration a clip with a motion holds until BuildScene reads the motion (long enough for
 // any key of its own tracks; BuildClip checks them against the motion's duration).
 constexpr double kMotionPlaceholderDuration = 1e9;
-
-// Component-wise, so no arithmetic touches an infinity (tests trap floating-point exceptions).
-bool IsFinite(const Vec3& v) {
-  return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
-}
 
 // The generators and the parameters each accepts.
 const std::map<std::string, std::vector<std::string>>& ProceduralParameters() {

@@ -4,13 +4,10 @@
 #include <cmath>
 #include <type_traits>
 
+#include "wirerig/rig/finite.h"
+
 namespace wirerig {
 namespace {
-
-bool IsFinite(double x) { return std::isfinite(x); }
-bool IsFinite(const Vec3& v) {
-  return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
-}
 
 template <typename T>
 T ZeroValue() {

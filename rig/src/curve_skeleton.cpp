@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "finite.h"
+#include "wirerig/rig/finite.h"
 
 namespace wirerig {
 namespace {
@@ -149,7 +149,7 @@ class Sets {
 
 // The skeleton as an editable graph: pruned, then split into a spanning forest (tree edges)
 // plus the edges that close cycles.
-struct Edge {
+struct SkeletonEdge {
   int a = -1, b = -1;
   std::vector<Vec3> points;  // from nodes[a] to nodes[b]
   double length = 0.0;
@@ -166,7 +166,7 @@ struct Edge {
   }
 };
 
-struct Part {
+struct SkeletonPart {
   std::vector<int> nodes;  // skeleton nodes the curve passes, in order
   std::vector<Vec3> curve;
   int parent = -1;
@@ -197,12 +197,12 @@ class Describer {
   void MergeAt(int node, int e1, int e2);
   void BuildForest();
   double Farthest(int node, int via) const;
-  int WalkChain(int start, int first_edge, Part& part);
+  int WalkChain(int start, int first_edge, SkeletonPart& part);
   void AddChildren(int part_index);
   int ChooseTorsoEdge(int component) const;
   void ComputeMass();
   double SideMass(int node, int excluded) const;
-  void ExtendEnds(Part& part) const;
+  void ExtendEnds(SkeletonPart& part) const;
   void Name();
   std::size_t LimbSplit(const std::vector<Vec3>& curve) const;
 
@@ -214,7 +214,7 @@ class Describer {
   Vec3 low_ = Vec3::Zero(), high_ = Vec3::Zero();
 
   std::vector<Vec3> nodes_;
-  std::vector<Edge> edges_;
+  std::vector<SkeletonEdge> edges_;
   std::vector<double> node_radius_;  // negative until computed
   std::vector<int> degree_;          // alive edge ends per node
   std::vector<int> region_;          // junction region (node index of its representative)
@@ -222,7 +222,7 @@ class Describer {
   std::vector<std::vector<int>> tree_edges_;  // per node
   std::vector<int> owner_;                    // part holding each node
   std::vector<double> mass_;                  // surface area nearest to each edge
-  std::vector<Part> parts_;
+  std::vector<SkeletonPart> parts_;
 };
 
 std::string Describer::Validate() const {
@@ -272,8 +272,8 @@ std::vector<std::vector<int>> Describer::Incident() const {
 
 // Joins the two edges e1 and e2 that meet at `node` (of degree 2) into e1.
 void Describer::MergeAt(int node, int e1, int e2) {
-  Edge& first = edges_[e1];
-  Edge& second = edges_[e2];
+  SkeletonEdge& first = edges_[e1];
+  SkeletonEdge& second = edges_[e2];
   std::vector<Vec3> points = first.From(first.Other(node));
   const std::vector<Vec3> tail = second.From(node);
   points.insert(points.end(), tail.begin() + 1, tail.end());
@@ -314,7 +314,7 @@ void Describer::PruneSpurs() {
     int best = -1, best_junction = -1;
     double best_key = std::numeric_limits<double>::infinity();
     for (std::size_t e = 0; e < edges_.size(); ++e) {
-      const Edge& edge = edges_[e];
+      const SkeletonEdge& edge = edges_[e];
       if (!edge.alive || edge.a == edge.b) continue;
       int junction = -1;
       if (incident[edge.a].size() == 1 && incident[edge.b].size() >= 3) junction = edge.b;
@@ -372,7 +372,7 @@ void Describer::BuildForest() {
   Sets regions(nodes_.size());
   tree_edges_.assign(nodes_.size(), {});
   for (std::size_t e = 0; e < edges_.size(); ++e) {
-    Edge& edge = edges_[e];
+    SkeletonEdge& edge = edges_[e];
     if (!edge.tree) continue;
     tree_edges_[edge.a].push_back(static_cast<int>(e));
     tree_edges_[edge.b].push_back(static_cast<int>(e));
@@ -466,10 +466,10 @@ double Describer::SideMass(int node, int excluded) const {
 
 // Appends edges to `part` from `start` through `first_edge`, then always on along the unused
 // tree edge leading farthest, until a leaf or a used end. Returns the last node.
-int Describer::WalkChain(int start, int first_edge, Part& part) {
+int Describer::WalkChain(int start, int first_edge, SkeletonPart& part) {
   int at = start, via = first_edge;
   for (;;) {
-    Edge& edge = edges_[via];
+    SkeletonEdge& edge = edges_[via];
     edge.used = true;
     part.mass += mass_[via];
     const std::vector<Vec3> points = edge.From(at);
@@ -510,7 +510,7 @@ void Describer::AddChildren(int part_index) {
       stack.pop_back();
       std::vector<int> exits = tree_edges_[visit.node];
       for (auto it = exits.rbegin(); it != exits.rend(); ++it) {
-        Edge& edge = edges_[*it];
+        SkeletonEdge& edge = edges_[*it];
         if (edge.used || !edge.link) continue;
         edge.used = true;
         Visit next{edge.Other(visit.node), visit.prefix, visit.nodes};
@@ -522,7 +522,7 @@ void Describer::AddChildren(int part_index) {
       }
       for (int e : exits) {
         if (edges_[e].used) continue;
-        Part child;
+        SkeletonPart child;
         child.parent = part_index;
         child.curve = visit.prefix;
         child.nodes.push_back(w);
@@ -547,7 +547,7 @@ int Describer::ChooseTorsoEdge(int component) const {
   int best = -1;
   double best_score = -1.0;
   for (std::size_t e = 0; e < edges_.size(); ++e) {
-    const Edge& edge = edges_[e];
+    const SkeletonEdge& edge = edges_[e];
     if (!edge.tree || edge.link || component_[edge.a] != component) continue;
     const int ra = region_[edge.a], rb = region_[edge.b];
     if (ra == rb || region_degree[ra] < 3 || region_degree[rb] < 3) continue;
@@ -566,7 +566,7 @@ int Describer::ChooseTorsoEdge(int component) const {
   return best;
 }
 
-void Describer::ExtendEnds(Part& part) const {
+void Describer::ExtendEnds(SkeletonPart& part) const {
   auto extend_back = [&](std::vector<Vec3>& curve) {
     if (curve.size() < 2) return;
     const Vec3 end = curve.back();
@@ -598,7 +598,7 @@ void Describer::ExtendEnds(Part& part) const {
   }
 }
 
-void Reverse(Part& part) {
+void Reverse(SkeletonPart& part) {
   std::reverse(part.curve.begin(), part.curve.end());
   std::reverse(part.nodes.begin(), part.nodes.end());
   std::swap(part.free_start, part.free_end);
@@ -606,7 +606,7 @@ void Reverse(Part& part) {
 
 // Names the torso's children by shape (quadruped or biped, +Y up) and orients the torso.
 void Describer::Name() {
-  Part& torso = parts_[0];
+  SkeletonPart& torso = parts_[0];
   torso.name = "torso";
   const Vec3 up = Vec3::UnitY();
   const double height = high_.y() - low_.y();
@@ -798,7 +798,7 @@ Result<RigDescription> Describer::Run() {
   nodes_ = skeleton_.nodes;
   node_radius_.assign(nodes_.size(), -1.0);
   for (const CurveSkeleton::Branch& branch : skeleton_.branches) {
-    Edge edge;
+    SkeletonEdge edge;
     edge.a = branch.from;
     edge.b = branch.to;
     edge.points = branch.points;
@@ -818,7 +818,7 @@ Result<RigDescription> Describer::Run() {
 
   // The main component has the longest skeleton.
   std::map<int, double> component_length;
-  for (const Edge& edge : edges_) {
+  for (const SkeletonEdge& edge : edges_) {
     if (edge.alive) component_length[component_[edge.a]] += edge.length;
   }
   int main = component_.empty() ? 0 : component_[0];
@@ -832,7 +832,7 @@ Result<RigDescription> Describer::Run() {
   }
   owner_.assign(nodes_.size(), -1);
 
-  Part torso;
+  SkeletonPart torso;
   if (const int e = ChooseTorsoEdge(main); e >= 0) {
     edges_[e].used = true;
     torso.mass = mass_[e];
@@ -843,7 +843,7 @@ Result<RigDescription> Describer::Run() {
     int best = -1;
     double best_score = -1.0;
     for (std::size_t i = 0; i < edges_.size(); ++i) {
-      const Edge& edge = edges_[i];
+      const SkeletonEdge& edge = edges_[i];
       if (!edge.alive || edge.link || component_[edge.a] != main) continue;
       const double radius = MeanRadius(edge.points);
       const double score =
@@ -854,7 +854,7 @@ Result<RigDescription> Describer::Run() {
       }
     }
     if (best >= 0) {
-      Edge& edge = edges_[best];
+      SkeletonEdge& edge = edges_[best];
       edge.used = true;
       torso.mass = mass_[best];
       const int start = degree_[edge.b] >= 3 && degree_[edge.a] < 3 ? edge.b : edge.a;
@@ -887,10 +887,10 @@ Result<RigDescription> Describer::Run() {
   // Branches that close cycles hang from the part holding one of their ends.
   auto add_cycle_edges = [&](int component) {
     for (std::size_t e = 0; e < edges_.size(); ++e) {
-      Edge& edge = edges_[e];
+      SkeletonEdge& edge = edges_[e];
       if (!edge.alive || edge.used || edge.tree || component_[edge.a] != component) continue;
       edge.used = true;
-      Part part;
+      SkeletonPart part;
       part.mass = mass_[e];
       part.cycle = true;
       part.parent = owner_[edge.a] >= 0 ? owner_[edge.a] : std::max(owner_[edge.b], 0);
@@ -928,7 +928,7 @@ Result<RigDescription> Describer::Run() {
       add_cycle_edges(c);
       continue;
     }
-    Part part;
+    SkeletonPart part;
     part.nodes.push_back(start);
     const int last = WalkChain(start, first_edge, part);
     part.free_start = true;
@@ -954,7 +954,7 @@ Result<RigDescription> Describer::Run() {
   }
 
   // Thickness of a part: its outer half, past the junction blob it starts in.
-  for (Part& part : parts_) {
+  for (SkeletonPart& part : parts_) {
     const double half = 0.5 * PolylineLength(part.curve);
     double walked = 0.0;
     std::size_t i = 1;
@@ -969,7 +969,7 @@ Result<RigDescription> Describer::Run() {
     if (parts_[i].parent >= 0) parts_[parts_[i].parent].subtree_mass += parts_[i].subtree_mass;
   }
   Name();
-  for (Part& part : parts_) ExtendEnds(part);
+  for (SkeletonPart& part : parts_) ExtendEnds(part);
 
   // Output order: torso, the named parts in a fixed order, the rest as found (parents first).
   static const char* const kOrder[] = {
@@ -990,7 +990,7 @@ Result<RigDescription> Describer::Run() {
   std::vector<int> kept(parts_.size(), -1);  // index into description.parts
   int branch_number = 0;
   for (int i : order) {
-    Part& part = parts_[i];
+    SkeletonPart& part = parts_[i];
     std::vector<Vec3> curve;
     for (const Vec3& p : part.curve) {
       if (curve.empty() || (p - curve.back()).norm() > 1e-9 * diagonal_) curve.push_back(p);
@@ -998,7 +998,7 @@ Result<RigDescription> Describer::Run() {
     if (curve.size() < 2) {
       if (part.parent < 0) return Error{context + "the torso branch has no length"};
       // Degenerate: its children hang from its parent instead.
-      for (Part& other : parts_) {
+      for (SkeletonPart& other : parts_) {
         if (other.parent == i) other.parent = part.parent;
       }
       continue;

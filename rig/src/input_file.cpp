@@ -1,4 +1,5 @@
 #include "wirerig/rig/input_file.h"
+#include "path_messages.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -10,9 +11,7 @@
 namespace wirerig {
 namespace {
 
-Error Fail(const std::filesystem::path& path, std::string_view problem) {
-  return Error{path.string() + ": " + std::string(problem)};
-}
+using detail::PathError;
 
 // What is wrong with a file of this status for a `what` of at most max_bytes, if anything.
 std::string Problem(const struct stat& status, std::string_view what, std::uintmax_t max_bytes) {
@@ -34,11 +33,11 @@ Result<std::uintmax_t> CheckInputFile(const std::filesystem::path& path, std::st
   struct stat status {};
   if (::stat(path.c_str(), &status) != 0) {
     const int error = errno;
-    if (error == ENOENT || error == ENOTDIR) return Fail(path, "no such file");
-    return Fail(path, "cannot access (" + std::string(std::strerror(error)) + ")");
+    if (error == ENOENT || error == ENOTDIR) return PathError(path, "no such file");
+    return PathError(path, "cannot access (" + std::string(std::strerror(error)) + ")");
   }
   if (std::string problem = Problem(status, what, max_bytes); !problem.empty())
-    return Fail(path, problem);
+    return PathError(path, problem);
   return static_cast<std::uintmax_t>(status.st_size);
 }
 
@@ -48,7 +47,7 @@ Result<std::string> ReadInputFile(const std::filesystem::path& path, std::string
   Result<std::uintmax_t> checked = CheckInputFile(path, what, max_bytes);
   if (!checked) return Error{checked.error()};
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
-  if (fd < 0) return Fail(path, "cannot open (" + std::string(std::strerror(errno)) + ")");
+  if (fd < 0) return PathError(path, "cannot open (" + std::string(std::strerror(errno)) + ")");
   struct stat status {};
   std::string problem;
   if (::fstat(fd, &status) != 0) {
@@ -81,7 +80,7 @@ Result<std::string> ReadInputFile(const std::filesystem::path& path, std::string
                 " may have";
   }
   ::close(fd);
-  if (!problem.empty()) return Fail(path, problem);
+  if (!problem.empty()) return PathError(path, problem);
   return bytes;
 }
 

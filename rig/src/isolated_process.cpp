@@ -1,4 +1,5 @@
 #include "wirerig/rig/isolated_process.h"
+#include "path_messages.h"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -30,9 +31,7 @@ namespace fs = std::filesystem;
 constexpr char kPayload = 'P';
 constexpr char kError = 'E';
 
-Error Fail(const fs::path& path, const std::string& problem) {
-  return Error{path.string() + ": " + problem};
-}
+using detail::PathError;
 
 std::string Seconds(double seconds) {
   char buffer[32];
@@ -141,13 +140,13 @@ std::string HowItEnded(int status) {
 Result<std::string> RunIsolated(const fs::path& path, const ImportIsolation& limits,
                                 const std::function<Result<std::string>()>& work) {
   if (!std::isfinite(limits.time_limit_seconds) || !(limits.time_limit_seconds > 0.0)) {
-    return Fail(path, "ImportIsolation::time_limit_seconds must be a number > 0 (got " +
-                          Seconds(limits.time_limit_seconds) + ")");
+    return PathError(path, "ImportIsolation::time_limit_seconds must be a number > 0 (got " +
+                               Seconds(limits.time_limit_seconds) + ")");
   }
   int pipe_fds[2];
   if (::pipe2(pipe_fds, O_CLOEXEC) != 0) {
-    return Fail(path, std::string("cannot start the importer process (pipe: ") +
-                          std::strerror(errno) + ")");
+    return PathError(path, std::string("cannot start the importer process (pipe: ") +
+                               std::strerror(errno) + ")");
   }
   const pid_t parent = ::getpid();
   const pid_t child = ::fork();
@@ -155,8 +154,8 @@ Result<std::string> RunIsolated(const fs::path& path, const ImportIsolation& lim
     const int error = errno;
     ::close(pipe_fds[0]);
     ::close(pipe_fds[1]);
-    return Fail(path, std::string("cannot start the importer process (fork: ") +
-                          std::strerror(error) + ")");
+    return PathError(path, std::string("cannot start the importer process (fork: ") +
+                               std::strerror(error) + ")");
   }
   if (child == 0) {
     ::close(pipe_fds[0]);
@@ -175,16 +174,16 @@ Result<std::string> RunIsolated(const fs::path& path, const ImportIsolation& lim
   while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
   }
   if (!finished) {
-    return Fail(path, "the importer timed out on this file (still running after " +
-                          Seconds(limits.time_limit_seconds) +
-                          " s, ImportIsolation::time_limit_seconds); it was stopped");
+    return PathError(path, "the importer timed out on this file (still running after " +
+                               Seconds(limits.time_limit_seconds) +
+                               " s, ImportIsolation::time_limit_seconds); it was stopped");
   }
 
   std::uint64_t size = 0;
   if (answer.size() < sizeof(size) + 1 ||
       (std::memcpy(&size, answer.data(), sizeof(size)), size != answer.size() - sizeof(size))) {
-    return Fail(path, "the importer crashed on this file (" + HowItEnded(status) +
-                          "); the file is corrupted or Assimp cannot read it");
+    return PathError(path, "the importer crashed on this file (" + HowItEnded(status) +
+                               "); the file is corrupted or Assimp cannot read it");
   }
   const std::string_view body = std::string_view(answer).substr(sizeof(size) + 1);
   if (answer[sizeof(size)] == kError) {

@@ -1,5 +1,6 @@
 // Welding render vertices by position, and bounds.
 #include "wirerig/rig/mesh.h"
+#include "wirerig/rig/finite.h"
 
 #include <algorithm>
 #include <bit>
@@ -29,10 +30,6 @@ struct PositionKeyHash {
 
 PositionKey KeyOf(const Vec3& p) {
   return {CoordinateBits(p.x()), CoordinateBits(p.y()), CoordinateBits(p.z())};
-}
-
-bool IsFinite(const Vec3& p) {
-  return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
 }
 
 struct CellKey {

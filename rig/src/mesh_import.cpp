@@ -1,6 +1,7 @@
 // Importing meshes with Assimp: bad-input checks before Assimp runs, node transforms, up axis
 // and units, materials, skeleton and skin, then welding.
 #include "wirerig/rig/mesh_import.h"
+#include "path_messages.h"
 
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
@@ -45,9 +46,8 @@ constexpr std::string_view kNoMeshes =
 // How much of a file is read to check the sizes its header claims.
 constexpr std::size_t kHeadBytes = 64 * 1024;
 
-Error Fail(const fs::path& path, std::string_view problem) {
-  return Error{path.string() + ": " + std::string(problem)};
-}
+using detail::Lowercase;
+using detail::PathError;
 
 std::string FormatDouble(double x) {
   char buffer[32];
@@ -66,14 +66,6 @@ std::uint64_t SaturatingAdd(std::uint64_t a, std::uint64_t b) {
   return a > std::numeric_limits<std::uint64_t>::max() - b
              ? std::numeric_limits<std::uint64_t>::max()
              : a + b;
-}
-
-std::string Lowercase(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) {
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  }
-  return out;
 }
 
 // Assimp is not written for trapped floating-point exceptions (its smooth normals divide by a
@@ -548,9 +540,9 @@ class SceneConverter {
         vertices = SaturatingAdd(vertices, mesh->mNumVertices);
         triangles = SaturatingAdd(triangles, mesh->mNumFaces);
         if (vertices > options_.max_elements || triangles > options_.max_elements) {
-          return Fail(path_, "its mesh instances hold more than the limit of " +
-                                 std::to_string(options_.max_elements) +
-                                 " vertices or triangles (ImportOptions::max_elements)");
+          return PathError(path_, "its mesh instances hold more than the limit of " +
+                                      std::to_string(options_.max_elements) +
+                                      " vertices or triangles (ImportOptions::max_elements)");
         }
         Instance instance;
         instance.node = static_cast<int>(n);
@@ -614,8 +606,8 @@ class SceneConverter {
       const std::string mesh_label = "mesh '" + std::string(mesh.mName.C_Str()) + "'";
       for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
         if (!IsFinite(mesh.mVertices[v])) {
-          return Fail(path_, "vertex " + std::to_string(v) + " of " + mesh_label +
-                                 " has a non-finite position");
+          return PathError(path_, "vertex " + std::to_string(v) + " of " + mesh_label +
+                                      " has a non-finite position");
         }
       }
       // Triangles whose corners are three distinct positions; points, lines and collapsed
@@ -638,8 +630,8 @@ class SceneConverter {
       }
       if (kept.empty()) continue;
       if (!instance.placement_sane) {
-        return Fail(path_, "the transform of node '" + std::string(node.node->mName.C_Str()) +
-                               "' is not finite or absurdly large");
+        return PathError(path_, "the transform of node '" + std::string(node.node->mName.C_Str()) +
+                                    "' is not finite or absurdly large");
       }
 
       const Mat4 transform = conversion_ * instance.placement;
@@ -660,10 +652,10 @@ class SceneConverter {
         const Vec3 p = linear * Vec3(source.x, source.y, source.z) + translation;
         const double extent = p.cwiseAbs().maxCoeff();
         if (!(extent <= kMaxCoordinate)) {
-          return Fail(path_, "vertex " + std::to_string(v) + " of " + mesh_label + " lies " +
-                                 FormatDouble(extent) +
-                                 " m from the origin, beyond the limit of 1e7 m (wrong unit "
-                                 "scale?)");
+          return PathError(path_, "vertex " + std::to_string(v) + " of " + mesh_label + " lies " +
+                                      FormatDouble(extent) +
+                                      " m from the origin, beyond the limit of 1e7 m (wrong unit "
+                                      "scale?)");
         }
         mesh_.positions.push_back(p);
 
@@ -707,9 +699,9 @@ class SceneConverter {
       mesh_.parts.push_back(std::move(part));
     }
     if (mesh_.triangles.empty()) {
-      if (faces_seen == 0) return Fail(path_, "no triangles (the file holds no faces)");
-      return Fail(path_, "no usable triangles: all " + std::to_string(faces_seen) +
-                             " faces are degenerate (repeated or coincident corners)");
+      if (faces_seen == 0) return PathError(path_, "no triangles (the file holds no faces)");
+      return PathError(path_, "no usable triangles: all " + std::to_string(faces_seen) +
+                                  " faces are degenerate (repeated or coincident corners)");
     }
     RepairNormals();
     return std::nullopt;
@@ -892,8 +884,8 @@ class SceneConverter {
       Mat4& bind = mesh_.joints[j].bind_global;
       if (!known[j] || !(MaxAbs(bind) <= kMaxTransformEntry) ||
           !(bind.topRightCorner<3, 1>().cwiseAbs().maxCoeff() <= kMaxCoordinate)) {
-        return Fail(path_, "joint '" + mesh_.joints[j].name +
-                               "' has no usable bind pose (singular or absurd transforms)");
+        return PathError(path_, "joint '" + mesh_.joints[j].name +
+                                    "' has no usable bind pose (singular or absurd transforms)");
       }
       bind = Rigid(bind);
     }
@@ -1048,8 +1040,9 @@ Result<FrameChoice> ChooseFrame(const fs::path& path, const aiScene& scene,
   if (options.unit_scale) {
     const double scale = *options.unit_scale;
     if (!std::isfinite(scale) || !(scale >= 1e-12 && scale <= 1e12)) {
-      return Fail(path, "the unit_scale option must be a finite number in [1e-12, 1e12] (got " +
-                            FormatDouble(scale) + ")");
+      return PathError(path,
+                       "the unit_scale option must be a finite number in [1e-12, 1e12] (got " +
+                           FormatDouble(scale) + ")");
     }
     report.unit_scale = scale;
     report.unit_source = "option";
@@ -1068,7 +1061,7 @@ Result<FrameChoice> ChooseFrame(const fs::path& path, const aiScene& scene,
     report.unit_source = "assumed";
   }
   if (!(frame.scale >= 1e-12 && frame.scale <= 1e12)) {
-    return Fail(path, "unit scale " + FormatDouble(frame.scale) + " is absurd");
+    return PathError(path, "unit scale " + FormatDouble(frame.scale) + " is absurd");
   }
   return frame;
 }
@@ -1115,20 +1108,20 @@ Result<ImportedMesh> ImportMesh(const fs::path& path, const ImportOptions& optio
     std::FILE* file = std::fopen(path.c_str(), "rb");
     if (file == nullptr) {
       const int error = errno;
-      return Fail(path, "cannot open (" + std::string(std::strerror(error)) + ")");
+      return PathError(path, "cannot open (" + std::string(std::strerror(error)) + ")");
     }
     head.resize(static_cast<std::size_t>(std::min<std::uintmax_t>(file_size, kHeadBytes)));
     const std::size_t read = std::fread(head.data(), 1, head.size(), file);
     const bool failed = std::ferror(file) != 0;
     std::fclose(file);
-    if (failed) return Fail(path, "cannot read (I/O error)");
+    if (failed) return PathError(path, "cannot read (I/O error)");
     head.resize(read);
   }
-  if (file_size == 0) return Fail(path, "file is empty (0 bytes)");
+  if (file_size == 0) return PathError(path, "file is empty (0 bytes)");
 
   const std::string extension = Lowercase(path.extension().string());
   if (const auto problem = CheckClaimedSizes(head, extension, file_size, options.max_elements)) {
-    return Fail(path, *problem);
+    return PathError(path, *problem);
   }
   // What was cheap to check is checked here; the rest runs in a child when asked.
   if (options.isolation) return ImportMeshIsolated(path, options);
@@ -1152,30 +1145,30 @@ Result<ImportedMesh> ImportMesh(const fs::path& path, const ImportOptions& optio
     scene = importer.ReadFile(path.string(), flags);
     if (scene == nullptr) assimp_error = importer.GetErrorString();
   } catch (const std::bad_alloc&) {
-    return Fail(path, "cannot import: out of memory");
+    return PathError(path, "cannot import: out of memory");
   } catch (const std::exception& e) {
-    return Fail(path, std::string("cannot import: ") + e.what());
+    return PathError(path, std::string("cannot import: ") + e.what());
   }
   if (scene == nullptr) {
     if (assimp_error.find("No suitable reader") != std::string::npos) {
-      return Fail(path,
-                  "unknown or unsupported file format" +
-                      (extension.empty() ? std::string() : " (extension '" + extension + "')"));
+      return PathError(
+          path, "unknown or unsupported file format" +
+                    (extension.empty() ? std::string() : " (extension '" + extension + "')"));
     }
     if (assimp_error.find("mNumMeshes is 0") != std::string::npos ||
         assimp_error.find("No meshes remaining") != std::string::npos) {
-      return Fail(path, kNoMeshes);
+      return PathError(path, kNoMeshes);
     }
     // Assimp catches its own allocation failures and reports their what().
     if (assimp_error.find("bad_alloc") != std::string::npos) {
-      return Fail(path, "cannot import: out of memory");
+      return PathError(path, "cannot import: out of memory");
     }
     if (assimp_error.empty()) assimp_error = "unknown Assimp error";
-    return Fail(path, "cannot import: " + assimp_error);
+    return PathError(path, "cannot import: " + assimp_error);
   }
   if (scene->mRootNode == nullptr || scene->mNumMeshes == 0 ||
       (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0) {
-    return Fail(path, kNoMeshes);
+    return PathError(path, kNoMeshes);
   }
 
   ImportedMesh imported;

@@ -1,4 +1,5 @@
 #include "wirerig/rig/output_file.h"
+#include "path_messages.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -13,16 +14,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Lowercase(std::string s) {
-  for (char& c : s) {
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  }
-  return s;
-}
-
-Error Fail(const fs::path& path, const std::string& reason) {
-  return Error{path.string() + ": " + reason};
-}
+using detail::Lowercase;
+using detail::PathError;
 
 }  // namespace
 
@@ -49,19 +42,19 @@ Result<bool> CheckOutputFile(const fs::path& path,
       listed += allowed;
     }
     if (!known) {
-      return Fail(path, "the output must be a " + listed + " file" +
-                            (extension.empty() ? std::string(" (it has no extension)")
-                                               : " (not " + extension + ")"));
+      return PathError(path, "the output must be a " + listed + " file" +
+                                 (extension.empty() ? std::string(" (it has no extension)")
+                                                    : " (not " + extension + ")"));
     }
   }
   std::error_code error;
-  if (fs::is_directory(path, error)) return Fail(path, "is a directory, not a file to write");
-  if (std::optional<std::string> reason = NotARegularTarget(path)) return Fail(path, *reason);
+  if (fs::is_directory(path, error)) return PathError(path, "is a directory, not a file to write");
+  if (std::optional<std::string> reason = NotARegularTarget(path)) return PathError(path, *reason);
   // Writing goes through "<name>.tmp<pid>" beside the target: that name must fit as well.
   constexpr std::size_t kLongestName = 255 - 12;
   if (const std::size_t length = path.filename().string().size(); length > kLongestName) {
-    return Fail(path, "the file name is too long (" + std::to_string(length) + " bytes; at most " +
-                          std::to_string(kLongestName) + ")");
+    return PathError(path, "the file name is too long (" + std::to_string(length) +
+                               " bytes; at most " + std::to_string(kLongestName) + ")");
   }
   const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
   if (!fs::exists(folder, error)) {
@@ -71,20 +64,20 @@ Result<bool> CheckOutputFile(const fs::path& path,
            !fs::exists(missing.parent_path(), error)) {
       missing = missing.parent_path();
     }
-    return Fail(path, "the folder " + missing.string() + " does not exist");
+    return PathError(path, "the folder " + missing.string() + " does not exist");
   }
   if (!fs::is_directory(folder, error)) {
-    return Fail(path, folder.string() + " is not a folder");
+    return PathError(path, folder.string() + " is not a folder");
   }
   if (::faccessat(AT_FDCWD, folder.c_str(), W_OK | X_OK, AT_EACCESS) != 0) {
-    return Fail(path, "the folder " + folder.string() + " is not writable");
+    return PathError(path, "the folder " + folder.string() + " is not writable");
   }
   // Permission bits do not tell everything (root in /sys, a read-only mount): an empty probe
   // file is made and removed.
   const fs::path probe = folder / (".wirerig-probe-" + std::to_string(::getpid()));
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
   if (fd < 0 && errno != EEXIST) {
-    return Fail(
+    return PathError(
         path, "the folder " + folder.string() + " is not writable (" + std::strerror(errno) + ")");
   }
   if (fd >= 0) {

@@ -29,8 +29,6 @@
 namespace wirerig {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 struct ProfilePoint {
   double radius;  // 0: a pole on the axis
   double y;
@@ -79,7 +77,7 @@ Mesh Revolve(const std::vector<ProfilePoint>& profile, int segments, const std::
       continue;
     }
     for (std::size_t i = 0; i < n; ++i) {
-      const double phi = 2.0 * kPi * static_cast<double>(i) / static_cast<double>(n);
+      const double phi = 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(n);
       mesh.positions.emplace_back(p.radius * std::cos(phi), p.y, -p.radius * std::sin(phi));
     }
   }
@@ -146,7 +144,7 @@ Mesh MakeCapsule(double radius, double height, int radial_segments, int height_s
   // with the body) and its pole; the body has height_segments bands (none when height is 0).
   std::vector<ProfilePoint> profile;
   for (int l = cap_rings; l >= 1; --l) {  // south pole (l = cap_rings) up to above the equator
-    const double elevation = -0.5 * kPi * Fraction(l, cap_rings);
+    const double elevation = -0.5 * std::numbers::pi * Fraction(l, cap_rings);
     profile.push_back({l == cap_rings ? 0.0 : radius * std::cos(elevation),
                        l == cap_rings ? -radius : radius * std::sin(elevation)});
   }
@@ -154,7 +152,7 @@ Mesh MakeCapsule(double radius, double height, int radial_segments, int height_s
   for (int j = 0; j <= body_segments; ++j)
     profile.push_back({radius, body_segments == 0 ? 0.0 : height * Fraction(j, body_segments)});
   for (int l = 1; l <= cap_rings; ++l) {
-    const double elevation = 0.5 * kPi * Fraction(l, cap_rings);
+    const double elevation = 0.5 * std::numbers::pi * Fraction(l, cap_rings);
     profile.push_back({l == cap_rings ? 0.0 : radius * std::cos(elevation),
                        l == cap_rings ? height + radius : height + radius * std::sin(elevation)});
   }
@@ -172,12 +170,13 @@ Mesh MakeTorus(double major_radius, double minor_radius, int ring_segments, int 
   Mesh mesh;
   std::vector<double> cos_theta(tube), sin_theta(tube);
   for (std::size_t l = 0; l < tube; ++l) {
-    const double theta = 2.0 * kPi * static_cast<double>(l) / static_cast<double>(tube);
+    const double theta =
+        2.0 * std::numbers::pi * static_cast<double>(l) / static_cast<double>(tube);
     cos_theta[l] = std::cos(theta);
     sin_theta[l] = std::sin(theta);
   }
   for (std::size_t k = 0; k < rings; ++k) {
-    const double phi = 2.0 * kPi * static_cast<double>(k) / static_cast<double>(rings);
+    const double phi = 2.0 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(rings);
     const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
     for (std::size_t l = 0; l < tube; ++l) {
       const double rho = major_radius + minor_radius * cos_theta[l];
@@ -227,7 +226,7 @@ Mesh MakeSweptTube(const std::vector<Vec3>& centres, const std::vector<double>& 
     }
     const Frame frame = curve.FrameAt(v[k] / total);
     for (std::size_t i = 0; i < n; ++i) {
-      const double phi = 2.0 * kPi * static_cast<double>(i) / static_cast<double>(n);
+      const double phi = 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(n);
       mesh.positions.push_back(
           centres[k] + radii[k] * (std::cos(phi) * frame.normal + std::sin(phi) * frame.binormal));
     }

@@ -10,8 +10,6 @@
 namespace wirerig {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // The mantle's centre line and radii: an egg from a pole at y = 0 to a pole at the top,
 // fuller below its middle.
 void MantleShape(const OctopusParameters& p, std::vector<Vec3>* centres,
@@ -20,21 +18,22 @@ void MantleShape(const OctopusParameters& p, std::vector<Vec3>* centres,
     const double s = static_cast<double>(k) / p.rings;
     centres->emplace_back(0.0, p.mantle_height * s, 0.0);
     // sin(pi s)^0.7 rounds both ends; the (1.15 - 0.3 s) factor fattens the lower half.
-    const double shape = std::pow(std::sin(kPi * s), 0.7) * (1.15 - 0.3 * s) / 1.15;
+    const double shape = std::pow(std::sin(std::numbers::pi * s), 0.7) * (1.15 - 0.3 * s) / 1.15;
     radii->push_back(k == 0 || k == p.rings ? 0.0 : p.mantle_radius * shape);
   }
 }
 
 // Tentacle i's centre line, root (inside the mantle's lower half) to tip.
 Vec3 TentaclePoint(const OctopusParameters& p, int i, double s) {
-  const double angle = 2.0 * kPi * (i + 0.5) / p.tentacle_count;
+  const double angle = 2.0 * std::numbers::pi * (i + 0.5) / p.tentacle_count;
   const Vec3 out(std::cos(angle), 0.0, -std::sin(angle));
   const double root_radius = 0.45 * p.mantle_radius;
   const double root_height = 0.22 * p.mantle_height;
   const double l = p.tentacle_length;
   // Outwards quickly near the root, then mostly downwards: a quarter-ellipse arc.
-  const double reach = p.spread * l * std::sin(0.5 * kPi * s);
-  const double drop = (1.0 - p.spread) * l * (1.0 - std::cos(0.5 * kPi * s)) + 0.25 * l * s;
+  const double reach = p.spread * l * std::sin(0.5 * std::numbers::pi * s);
+  const double drop =
+      (1.0 - p.spread) * l * (1.0 - std::cos(0.5 * std::numbers::pi * s)) + 0.25 * l * s;
   return out * (root_radius + reach) + Vec3(0.0, root_height - drop, 0.0);
 }
 

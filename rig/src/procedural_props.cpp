@@ -11,8 +11,6 @@
 namespace wirerig {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 bool Positive(double x) { return std::isfinite(x) && x > 0.0 && x < 1e6; }
 
 std::string CheckCounts(int radial_segments, int profile_count, int points_per_profile) {
@@ -189,7 +187,7 @@ Result<ProceduralRigSource> MakeTrunk(const TrunkParameters& p) {
     const double s = 0.01 + 0.97 * k / (inner - 1.0);
     double r = p.top_radius + (p.base_radius - p.top_radius) * (1.0 - s);
     r += p.flare * p.base_radius * std::exp(-s / 0.05);
-    r *= 1.0 + 0.04 * std::sin(2.0 * kPi * 3.0 * s) * SmoothStep(0.05, 0.2, s);
+    r *= 1.0 + 0.04 * std::sin(2.0 * std::numbers::pi * 3.0 * s) * SmoothStep(0.05, 0.2, s);
     if (s > 0.94) r *= std::sqrt(std::max(1.0 - std::pow((s - 0.94) / 0.06, 2.0), 0.05));
     centres.emplace_back(0.0, s * p.height, 0.0);
     radii.push_back(r);
@@ -243,7 +241,8 @@ Result<ProceduralRigSource> MakeLampPost(const LampPostParameters& p) {
                            bottom, top, std::max(p.rings / 3, 8), p.radial_segments,
                            [&](double s) {
                              if (s == 0.0 || s == 1.0) return 0.0;  // the poles
-                             return p.lantern_radius * std::pow(std::sin(kPi * s), 0.7) *
+                             return p.lantern_radius *
+                                    std::pow(std::sin(std::numbers::pi * s), 0.7) *
                                     (1.0 - 0.25 * s);
                            },
                            Vec3::UnitX(), 1.0, "lantern"));

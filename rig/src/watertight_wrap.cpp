@@ -11,7 +11,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/alpha_wrap_3.h>
 
-#include "finite.h"
+#include "wirerig/rig/finite.h"
 #include "wirerig/rig/floating_point_hold.h"
 #include "wirerig/rig/watertight_proxy.h"
 
