@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Configures and builds wirerig. Usage: scripts/build.sh [release|asan|nocgal|fuzz] [TARGET...]
-#   release  ->  build/        optimised, with tests (tests and libraries compiled in batches: WIRERIG_UNITY_BUILD),
-#                              benchmarks and the CLI
+#   release  ->  build/        optimised, with tests, benchmarks and the CLI (tests and the
+#                              larger libraries compiled in batches: WIRERIG_UNITY_BUILD)
 #   asan     ->  build-asan/   clang, AddressSanitizer + UndefinedBehaviorSanitizer, with the
 #                              libFuzzer targets (fuzz/); no benchmarks or viewer
 #   nocgal   ->  build-nocgal/ optimised, without CGAL (WIRERIG_WITH_CGAL=OFF): libraries and CLI
@@ -31,8 +31,11 @@ case "$kind" in
                   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1"
                   -DWIRERIG_SANITIZE=ON -DWIRERIG_BUILD_FUZZERS=ON -DWIRERIG_UNITY_BUILD=ON
                   -DWIRERIG_BUILD_BENCHMARKS=OFF -DWIRERIG_BUILD_VIEWER=OFF) ;;
+  # Batched like the release build, so that with ccache (below) every object the two share
+  # (runtime, anim, most of rig) comes from the cache.
   nocgal)  dir=$repo_root/build-nocgal
-           flags=(-DCMAKE_BUILD_TYPE=Release -DWIRERIG_WITH_CGAL=OFF -DWIRERIG_BUILD_TESTS=OFF
+           flags=(-DCMAKE_BUILD_TYPE=Release -DWIRERIG_UNITY_BUILD=ON -DWIRERIG_WITH_CGAL=OFF
+                  -DWIRERIG_BUILD_TESTS=OFF
                   -DWIRERIG_BUILD_BENCHMARKS=OFF -DWIRERIG_BUILD_VIEWER=OFF) ;;
   fuzz)    dir=$repo_root/build-fuzz
            flags=("${clang_flags[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo
@@ -45,6 +48,12 @@ esac
 
 generator=()
 command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
+# ccache (scripts/setup.sh installs it) when present: paths hashed relative to the repository,
+# so build/ and build-nocgal/ share objects compiled alike.
+if command -v ccache >/dev/null 2>&1; then
+  flags+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+  export CCACHE_BASEDIR=$repo_root CCACHE_NOHASHDIR=true
+fi
 flags+=(-DWIRERIG_WARNINGS_AS_ERRORS=ON)
 stamp="${generator[*]} ${flags[*]}"
 if [ -f "$dir/CMakeCache.txt" ]; then

@@ -11,6 +11,8 @@ asset_dir=${WIRERIG_ASSET_DIR:-$repo_root/.cache/assets}
 # Build toolchain, libraries the targets link, test and benchmark frameworks.
 packages=(
   cmake ninja-build g++ pkg-config git ca-certificates
+  # Compiler cache: the build without CGAL reuses what the optimised build compiled.
+  ccache
   # The sanitizer build and the fuzzers: clang 14, its runtimes (ASan, UBSan and libFuzzer are in
   # libclang-rt-14-dev, only recommended by clang) and llvm-symbolizer (llvm) for the reports.
   clang libclang-rt-14-dev llvm

@@ -5,14 +5,12 @@
 #include <utility>
 #include <vector>
 
+#include "procedural_generators.h"
 #include "wirerig/anim/scene.h"
 #include "wirerig/rig/automatic_description.h"
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/mesh_subdivision.h"
 #include "wirerig/rig/name_hint.h"
-#include "wirerig/rig/procedural_mesh.h"
-#include "wirerig/rig/procedural_octopus.h"
-#include "wirerig/rig/procedural_props.h"
 #include "wirerig/rig/rig_file.h"
 #include "wirerig/rig/rig_model_builder.h"
 
@@ -21,202 +19,6 @@ namespace {
 
 std::filesystem::path Resolve(const SceneDescription& scene, const std::filesystem::path& p) {
   return p.is_absolute() ? p : scene.folder / p;
-}
-
-double Parameter(const MeshSource& source, const std::string& name, double fallback) {
-  const auto it = source.parameters.find(name);
-  return it == source.parameters.end() ? fallback : it->second;
-}
-
-// A parameter that must be a positive length (m) or a count in [lo, hi].
-std::string CheckLength(double value, const char* name) {
-  if (std::isfinite(value) && value > 0.0 && value < 1e6) return {};
-  return std::string("/mesh/parameters/") + name + ": must be a positive length (m)";
-}
-std::string CheckCount(double value, const char* name, double lo, double hi) {
-  if (value >= lo && value <= hi && value == std::floor(value)) return {};
-  return std::string("/mesh/parameters/") + name + ": must be a whole number in [" +
-         std::to_string(int(lo)) + ", " + std::to_string(int(hi)) + "]";
-}
-
-// A procedural mesh's material: one matte colour per generator (linear RGB), so exports and
-// engines show it as the sample means it rather than as their default grey.
-MeshMaterial ProceduralMaterial(const std::string& generator) {
-  static const std::pair<const char*, Vec4> kColors[] = {
-      {"octopus", Vec4(0.62, 0.16, 0.09, 1.0)}, {"candles", Vec4(0.85, 0.78, 0.60, 1.0)},
-      {"trunk", Vec4(0.23, 0.13, 0.06, 1.0)},   {"lamp_post", Vec4(0.05, 0.06, 0.06, 1.0)},
-      {"chair", Vec4(0.40, 0.22, 0.10, 1.0)},   {"beam", Vec4(0.50, 0.52, 0.55, 1.0)},
-  };
-  MeshMaterial material;
-  material.name = generator;
-  material.base_color = Vec4(0.60, 0.60, 0.62, 1.0);  // shapes: a light clay
-  for (const auto& [name, color] : kColors)
-    if (generator == name) material.base_color = color;
-  return material;
-}
-
-struct Generated {
-  Mesh mesh;
-  RigDescription description;  // the generator's own (octopus and the props)
-};
-
-// A generator of rig/procedural_props.h: lengths (m) and counts by name over its defaults,
-// then the generator, which checks them (its error names the parameter).
-template <typename Parameters>
-Result<Generated> GenerateProp(
-    const MeshSource& source, Parameters parameters,
-    std::initializer_list<std::pair<const char*, double Parameters::*>> lengths,
-    std::initializer_list<std::pair<const char*, int Parameters::*>> counts,
-    Result<ProceduralRigSource> (*make)(const Parameters&)) {
-  for (auto [name, field] : lengths) parameters.*field = Parameter(source, name, parameters.*field);
-  for (auto [name, field] : counts) {
-    const double value = Parameter(source, name, parameters.*field);
-    if (std::string e = CheckCount(value, name, 1, 4096); !e.empty()) return Error{e};
-    parameters.*field = static_cast<int>(value);
-  }
-  Result<ProceduralRigSource> made = make(parameters);
-  if (!made) return Error{"/mesh/parameters/" + made.error()};
-  return Generated{std::move(made.value().mesh), std::move(made.value().description)};
-}
-
-Result<Generated> Generate(const MeshSource& source) {
-  auto p = [&](const char* name, double fallback) { return Parameter(source, name, fallback); };
-  Generated out;
-  std::string error;
-  auto first_error = [&](std::initializer_list<std::string> errors) {
-    for (const std::string& e : errors)
-      if (!e.empty()) return e;
-    return std::string();
-  };
-  if (source.procedural == "octopus") {
-    OctopusParameters o;
-    o.mantle_radius = p("mantle_radius", o.mantle_radius);
-    o.mantle_height = p("mantle_height", o.mantle_height);
-    o.tentacle_length = p("tentacle_length", o.tentacle_length);
-    o.tentacle_radius = p("tentacle_radius", o.tentacle_radius);
-    o.tip_radius = p("tip_radius", o.tip_radius);
-    o.spread = p("spread", o.spread);
-    for (auto [name, field] :
-         {std::pair{"tentacle_count", &o.tentacle_count},
-          std::pair{"radial_segments", &o.radial_segments}, std::pair{"rings", &o.rings},
-          std::pair{"profile_count", &o.profile_count},
-          std::pair{"points_per_profile", &o.points_per_profile}}) {
-      const double value = p(name, *field);
-      if (std::string e = CheckCount(value, name, 1, 4096); !e.empty()) return Error{e};
-      *field = static_cast<int>(value);
-    }
-    Result<ProceduralRigSource> octopus = MakeOctopus(o);
-    if (!octopus) return Error{"/mesh/parameters/" + octopus.error()};
-    out.mesh = std::move(octopus.value().mesh);
-    out.description = std::move(octopus.value().description);
-    return out;
-  }
-  if (source.procedural == "candles") {
-    using P = CandleRowParameters;
-    return GenerateProp<P>(
-        source, {}, {{"radius", &P::radius}, {"height", &P::height}, {"spacing", &P::spacing}},
-        {{"count", &P::count},
-         {"radial_segments", &P::radial_segments},
-         {"height_segments", &P::height_segments},
-         {"profile_count", &P::profile_count},
-         {"points_per_profile", &P::points_per_profile}},
-        &MakeCandleRow);
-  }
-  if (source.procedural == "beam") {
-    using P = BeamParameters;
-    return GenerateProp<P>(source, {}, {{"length", &P::length}, {"radius", &P::radius}},
-                           {{"radial_segments", &P::radial_segments},
-                            {"rings", &P::rings},
-                            {"profile_count", &P::profile_count},
-                            {"points_per_profile", &P::points_per_profile}},
-                           &MakeBeam);
-  }
-  if (source.procedural == "trunk") {
-    using P = TrunkParameters;
-    return GenerateProp<P>(source, {},
-                           {{"height", &P::height},
-                            {"base_radius", &P::base_radius},
-                            {"top_radius", &P::top_radius},
-                            {"flare", &P::flare}},
-                           {{"radial_segments", &P::radial_segments},
-                            {"rings", &P::rings},
-                            {"profile_count", &P::profile_count},
-                            {"points_per_profile", &P::points_per_profile}},
-                           &MakeTrunk);
-  }
-  if (source.procedural == "lamp_post") {
-    using P = LampPostParameters;
-    return GenerateProp<P>(source, {},
-                           {{"height", &P::height},
-                            {"pole_radius", &P::pole_radius},
-                            {"base_radius", &P::base_radius},
-                            {"base_height", &P::base_height},
-                            {"lantern_radius", &P::lantern_radius},
-                            {"lantern_height", &P::lantern_height}},
-                           {{"radial_segments", &P::radial_segments},
-                            {"rings", &P::rings},
-                            {"profile_count", &P::profile_count},
-                            {"points_per_profile", &P::points_per_profile}},
-                           &MakeLampPost);
-  }
-  if (source.procedural == "chair") {
-    using P = ChairParameters;
-    return GenerateProp<P>(source, {},
-                           {{"seat_width", &P::seat_width},
-                            {"seat_depth", &P::seat_depth},
-                            {"seat_height", &P::seat_height},
-                            {"seat_thickness", &P::seat_thickness},
-                            {"leg_radius", &P::leg_radius},
-                            {"back_height", &P::back_height},
-                            {"back_thickness", &P::back_thickness}},
-                           {{"radial_segments", &P::radial_segments},
-                            {"rings", &P::rings},
-                            {"profile_count", &P::profile_count},
-                            {"points_per_profile", &P::points_per_profile}},
-                           &MakeChair);
-  }
-  const double radial = p("radial_segments", 32), height_segments = p("height_segments", 16);
-  if (source.procedural == "cylinder") {
-    error = first_error({CheckLength(p("radius", 0.1), "radius"),
-                         CheckLength(p("height", 1.0), "height"),
-                         CheckCount(radial, "radial_segments", 3, 4096),
-                         CheckCount(height_segments, "height_segments", 1, 4096)});
-    if (error.empty())
-      out.mesh =
-          MakeCylinder(p("radius", 0.1), p("height", 1.0), int(radial), int(height_segments));
-  } else if (source.procedural == "cone") {
-    const double r0 = p("r0", 0.1), r1 = p("r1", 0.05);
-    error = first_error({CheckLength(r0, "r0"), r1 == 0.0 ? std::string() : CheckLength(r1, "r1"),
-                         CheckLength(p("height", 1.0), "height"),
-                         CheckCount(radial, "radial_segments", 3, 4096),
-                         CheckCount(height_segments, "height_segments", 1, 4096)});
-    if (error.empty())
-      out.mesh = MakeCone(r0, r1, p("height", 1.0), int(radial), int(height_segments));
-  } else if (source.procedural == "capsule") {
-    const double height = p("height", 1.0), rings = p("cap_rings", 8);
-    error = first_error({CheckLength(p("radius", 0.1), "radius"),
-                         height == 0.0 ? std::string() : CheckLength(height, "height"),
-                         CheckCount(radial, "radial_segments", 3, 4096),
-                         CheckCount(height_segments, "height_segments", 1, 4096),
-                         CheckCount(rings, "cap_rings", 1, 4096)});
-    if (error.empty())
-      out.mesh =
-          MakeCapsule(p("radius", 0.1), height, int(radial), int(height_segments), int(rings));
-  } else if (source.procedural == "torus") {
-    const double major = p("major_radius", 0.5), minor = p("minor_radius", 0.1);
-    const double rings = p("ring_segments", 48), tube = p("tube_segments", 24);
-    error = first_error({CheckLength(major, "major_radius"), CheckLength(minor, "minor_radius"),
-                         minor < major ? std::string()
-                                       : std::string("/mesh/parameters/minor_radius: must be "
-                                                     "below major_radius"),
-                         CheckCount(rings, "ring_segments", 3, 4096),
-                         CheckCount(tube, "tube_segments", 3, 4096)});
-    if (error.empty()) out.mesh = MakeTorus(major, minor, int(rings), int(tube));
-  } else {
-    error = "/mesh/procedural: unknown generator";
-  }
-  if (!error.empty()) return Error{error};
-  return out;
 }
 
 std::vector<std::string> PartNames(const Rig& rig) {
@@ -273,11 +75,19 @@ Result<BuiltScene> BuildScene(const SceneDescription& scene) {
   std::string mesh_name;
   RigDescription procedural_description;
   if (!scene.mesh.procedural.empty()) {
-    Result<Generated> generated = Generate(scene.mesh);
+    const detail::ProceduralGenerator* generator =
+        detail::FindProceduralGenerator(scene.mesh.procedural);
+    if (generator == nullptr) return fail("/mesh/procedural: unknown generator");
+    Result<detail::GeneratedMesh> generated = generator->generate(scene.mesh);
     if (!generated) return fail(generated.error());
     out.mesh = std::move(generated.value().mesh);
     if (out.mesh.materials.empty()) {
-      out.mesh.materials.push_back(ProceduralMaterial(scene.mesh.procedural));
+      // A matte colour per generator, so exports and engines show the sample as it is meant
+      // rather than in their default grey.
+      MeshMaterial material;
+      material.name = scene.mesh.procedural;
+      material.base_color = generator->base_color;
+      out.mesh.materials.push_back(std::move(material));
       for (MeshPart& part : out.mesh.parts) part.material = 0;
     }
     procedural_description = std::move(generated.value().description);

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "procedural_generators.h"
 #include "wirerig/anim/clip_json.h"
 #include "wirerig/anim/scene.h"
 #include "wirerig/rig/finite.h"
@@ -23,35 +24,6 @@ constexpr const char* kFormat = "wirerig.scene";
 // The duration a clip with a motion holds until BuildScene reads the motion (long enough for
 // any key of its own tracks; BuildClip checks them against the motion's duration).
 constexpr double kMotionPlaceholderDuration = 1e9;
-
-// The generators and the parameters each accepts.
-const std::map<std::string, std::vector<std::string>>& ProceduralParameters() {
-  static const std::map<std::string, std::vector<std::string>> table = {
-      {"octopus",
-       {"mantle_radius", "mantle_height", "tentacle_count", "tentacle_length", "tentacle_radius",
-        "tip_radius", "spread", "radial_segments", "rings", "profile_count", "points_per_profile"}},
-      {"cylinder", {"radius", "height", "radial_segments", "height_segments"}},
-      {"cone", {"r0", "r1", "height", "radial_segments", "height_segments"}},
-      {"capsule", {"radius", "height", "radial_segments", "height_segments", "cap_rings"}},
-      {"torus", {"major_radius", "minor_radius", "ring_segments", "tube_segments"}},
-      // The paper's props (rig/procedural_props.h), each with its own rig description.
-      {"candles",
-       {"count", "radius", "height", "spacing", "radial_segments", "height_segments",
-        "profile_count", "points_per_profile"}},
-      {"beam",
-       {"length", "radius", "radial_segments", "rings", "profile_count", "points_per_profile"}},
-      {"trunk",
-       {"height", "base_radius", "top_radius", "flare", "radial_segments", "rings", "profile_count",
-        "points_per_profile"}},
-      {"lamp_post",
-       {"height", "pole_radius", "base_radius", "base_height", "lantern_radius", "lantern_height",
-        "radial_segments", "rings", "profile_count", "points_per_profile"}},
-      {"chair",
-       {"seat_width", "seat_depth", "seat_height", "seat_thickness", "leg_radius", "back_height",
-        "back_thickness", "radial_segments", "rings", "profile_count", "points_per_profile"}},
-  };
-  return table;
-}
 
 MeshSource ReadMeshSource(const JsonObject& o) {
   o.RejectUnknownKeys({"file", "up_axis", "unit_scale", "procedural", "parameters", "subdivide"});
@@ -78,15 +50,14 @@ MeshSource ReadMeshSource(const JsonObject& o) {
     return mesh;
   }
   mesh.procedural = o.String("procedural");
-  const auto generator = ProceduralParameters().find(mesh.procedural);
-  if (generator == ProceduralParameters().end())
+  const detail::ProceduralGenerator* generator = detail::FindProceduralGenerator(mesh.procedural);
+  if (generator == nullptr)
     throw FieldError(o.PathOf("procedural"),
-                     "unknown generator (octopus, cylinder, cone, capsule, torus, candles, "
-                     "beam, trunk, lamp_post, chair)");
+                     "unknown generator (" + detail::ProceduralGeneratorNames(false) + ")");
   if (o.Has("parameters")) {
     const JsonObject parameters = o.Object("parameters");
     for (const auto& item : o.Required("parameters").items()) {
-      const auto& names = generator->second;
+      const std::vector<std::string>& names = generator->parameters;
       if (std::find(names.begin(), names.end(), item.key()) == names.end())
         throw FieldError(
             parameters.PathOf(item.key()),
@@ -362,13 +333,14 @@ Result<SceneDescription> ParseScene(const nlohmann::json& document,
     scene.name = root.String("name");
     scene.mesh = ReadMeshSource(root.Object("mesh"));
     scene.rig = ReadRigSource(root.Object("rig"));
-    const std::string& generator = scene.mesh.procedural;
-    if (scene.rig.kind == RigSourceKind::kProcedural && generator != "octopus" &&
-        generator != "candles" && generator != "beam" && generator != "trunk" &&
-        generator != "lamp_post" && generator != "chair")
+    const detail::ProceduralGenerator* generator =
+        detail::FindProceduralGenerator(scene.mesh.procedural);
+    if (scene.rig.kind == RigSourceKind::kProcedural &&
+        (generator == nullptr || !generator->describes_rig))
       throw FieldError("/rig/from",
-                       "\"procedural\" needs a procedural octopus, candles, beam, trunk, "
-                       "lamp_post or chair mesh");
+                       "\"procedural\" needs a procedural mesh that describes its "
+                       "rig (" +
+                           detail::ProceduralGeneratorNames(true) + ")");
     scene.skin_thickness = root.Number("skin_thickness", scene.skin_thickness);
     if (!(std::isfinite(scene.skin_thickness) && scene.skin_thickness > 0.0))
       throw FieldError("/skin_thickness", "must be positive (m)");

@@ -256,6 +256,50 @@ TEST(Scene, BuildNamesWhatIsWrong) {
   EXPECT_NE(BuildError(d).find("no_such_mesh.obj"), std::string::npos);
 }
 
+// Every generator a scene may name builds with its defaults, with a material, and a rig of its
+// own exactly when the scene may take its rig from the generator.
+TEST(Scene, EveryProceduralGeneratorBuildsWithItsDefaults) {
+  const std::vector<std::pair<std::string, bool>> generators = {
+      {"octopus", true},   {"cylinder", false}, {"cone", false}, {"capsule", false},
+      {"torus", false},    {"candles", true},   {"beam", true},  {"trunk", true},
+      {"lamp_post", true}, {"chair", true}};
+  for (const auto& [name, describes_rig] : generators) {
+    SCOPED_TRACE(name);
+    json d = {{"format", "wirerig.scene"},
+              {"version", 1},
+              {"name", name},
+              {"mesh", {{"procedural", name}}},
+              {"rig", {{"from", describes_rig ? "procedural" : "automatic"}}},
+              {"clips", json::array()}};
+    if (!describes_rig) {
+      // Its rig from the procedural generator is refused, naming those that describe theirs.
+      d["rig"]["from"] = "procedural";
+      EXPECT_EQ(ParseError(d),
+                "/rig/from: \"procedural\" needs a procedural mesh that describes its rig "
+                "(octopus, candles, beam, trunk, lamp_post, chair)");
+      continue;
+    }
+    Result<SceneDescription> scene = ParseScene(d, ".");
+    ASSERT_TRUE(scene.ok()) << scene.error();
+    Result<BuiltScene> built = BuildScene(scene.value());
+    ASSERT_TRUE(built.ok()) << built.error();
+    EXPECT_GT(built.value().mesh.triangles.size(), 0u);
+    ASSERT_EQ(built.value().mesh.materials.size(), 1u);
+    EXPECT_EQ(built.value().mesh.materials[0].name, name);
+    EXPECT_GT(built.value().model.parts.size(), 0u);
+  }
+  json d = CylinderScene();
+  d["mesh"]["procedural"] = "teapot";
+  EXPECT_EQ(ParseError(d),
+            "/mesh/procedural: unknown generator (octopus, cylinder, cone, capsule, torus, "
+            "candles, beam, trunk, lamp_post, chair)");
+  d = CylinderScene();
+  d["mesh"] = {{"procedural", "octopus"}, {"parameters", {{"tentacle_count", 2.5}}}};
+  EXPECT_EQ(BuildError(d),
+            "scene \"beam\": /mesh/parameters/tentacle_count: must be a whole number in [1, "
+            "4096]");
+}
+
 TEST(Scene, TheOctopusSampleBuilds) {
   Result<SceneDescription> scene =
       LoadScene(std::string(WIRERIG_SAMPLES_DIR) + "/octopus/octopus.scene.json");
