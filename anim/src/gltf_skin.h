@@ -91,7 +91,8 @@ void AppendInfluences(std::vector<std::pair<std::uint32_t, double>> pairs,
 int AddSkeleton(tinygltf::Model& model, tinygltf::Animation& animation, const Skeleton& skeleton,
                 std::span<const float> times, int time_accessor, std::vector<int>* roots);
 
-// Adds JOINTS_0 and WEIGHTS_0 (and JOINTS_1, WEIGHTS_1 with 8 slots) to every primitive of mesh `mesh_index`.
+// Adds JOINTS_0 and WEIGHTS_0 (and JOINTS_1, WEIGHTS_1 with 8 slots) to every primitive of mesh
+// `mesh_index`.
 void AddSkinAttributes(tinygltf::Model& model, int mesh_index, const SkinInfluences& influences,
                        std::size_t joint_count);
 

@@ -500,7 +500,8 @@ std::vector<Vec3> Reconstruct(const tinygltf::Model& model, double t) {
     const std::string suffix = std::to_string(set);
     const std::vector<std::uint32_t> joints =
         ReadUints(model, primitive.attributes.at("JOINTS_" + suffix));
-    const std::vector<float> weights = ReadFloats(model, primitive.attributes.at("WEIGHTS_" + suffix));
+    const std::vector<float> weights =
+        ReadFloats(model, primitive.attributes.at("WEIGHTS_" + suffix));
     for (std::size_t v = 0; v < positions.size(); ++v)
       for (std::size_t c = 0; c < 4; ++c)
         blended[v] += static_cast<double>(weights[v * 4 + c]) * joint.at(joints[v * 4 + c]);
