@@ -1,6 +1,5 @@
 #include "procedural_generators.h"
 
-#include <array>
 #include <cmath>
 #include <utility>
 

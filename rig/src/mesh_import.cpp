@@ -752,9 +752,7 @@ class SceneConverter {
       const auto* bytes = reinterpret_cast<const unsigned char*>(embedded->pcData);
       return {bytes, bytes + embedded->mWidth};
     }
-    std::string extension = path_.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string extension = Lowercase(path_.extension().string());
     std::error_code error;
     if (extension != ".zae" || fs::exists(path_.parent_path() / texture, error)) return {};
     return ReadArchiveEntry(path_, texture);
