@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "limb_volume.h"
 #include "wirerig/rig/joint_sweep.h"
 
 namespace wirerig {
@@ -10,57 +11,15 @@ namespace {
 
 constexpr double kSectionRadius = 1.6;
 
-// Flags the vertices of part `c`'s side of its joint: its subtree's and its bridge's.
-std::vector<std::uint8_t> LimbSide(const RigModel& model, std::size_t c) {
-  std::vector<std::uint8_t> in_subtree(model.parts.size(), 0);
-  in_subtree[c] = 1;
-  for (std::size_t i = c + 1; i < model.parts.size(); ++i)
-    if (model.parts[i].parent >= 0 && in_subtree[std::size_t(model.parts[i].parent)])
-      in_subtree[i] = 1;
-  std::vector<std::uint8_t> out(model.vertices.size(), 0);
-  for (std::size_t v = 0; v < model.vertices.size(); ++v) {
-    const VertexAttachment& a = model.vertices[v];
-    out[v] = in_subtree[a.part] || a.OnJoint(int(c));
-  }
-  return out;
-}
-
-// The region's border: its vertices on a triangle that leaves it.
-std::vector<std::uint32_t> Border(const std::vector<std::uint8_t>& region,
-                                  const std::vector<Triangle>& triangles) {
-  std::vector<std::uint8_t> border(region.size(), 0);
-  for (const Triangle& t : triangles) {
-    const int inside = region[t[0]] + region[t[1]] + region[t[2]];
-    if (inside == 0 || inside == 3) continue;
-    for (std::uint32_t v : t) border[v] |= region[v];
-  }
-  std::vector<std::uint32_t> out;
-  for (std::size_t v = 0; v < border.size(); ++v)
-    if (border[v]) out.push_back(std::uint32_t(v));
-  return out;
-}
-
-Vec3 MeanOf(std::span<const Vec3> positions, const std::vector<std::uint32_t>& vertices) {
-  Vec3 sum = Vec3::Zero();
-  for (std::uint32_t v : vertices) sum += positions[v];
-  return vertices.empty() ? sum : Vec3(sum / double(vertices.size()));
-}
-
-// The region's volume is closed by the cone to the middle of its border (a nearly flat cap
-// across the limb where it meets the body), in each configuration.
 SkinMeasures Measure(const SkinQualityReference& reference, std::span<const Vec3> rest,
                      std::span<const Vec3> posed, const std::vector<CrossSection>& sections,
-                     const std::vector<std::uint8_t>& limb,
-                     const std::vector<std::uint32_t>& border,
-                     const std::vector<Triangle>& triangles) {
-  const Vec3 rest_apex = MeanOf(rest, border), apex = MeanOf(posed, border);
+                     const Limb& limb, const std::vector<Triangle>& triangles) {
   SkinMeasures m;
   const SkinQuality q = MeasureSkin(reference, posed);
   m.folded_edges = q.folded_edges;
   m.worst_stretch = q.worst_stretch;
-  const double rest_volume = RegionVolume(rest, triangles, limb, rest_apex);
-  m.volume_ratio =
-      rest_volume != 0.0 ? RegionVolume(posed, triangles, limb, apex) / rest_volume : 1.0;
+  const double rest_volume = LimbVolume(limb, rest, triangles);
+  m.volume_ratio = rest_volume != 0.0 ? LimbVolume(limb, posed, triangles) / rest_volume : 1.0;
   for (const CrossSection& s : sections) {
     const double r = CrossSectionPerimeter(s, rest);
     if (r > 0.0)
@@ -105,8 +64,7 @@ std::vector<JointSkinRow> MeasureJointSweep(const RigModel& model, std::span<con
     for (double s : {-0.5, -0.25, 0.0, 0.25, 0.5, 0.75})
       sections.push_back(MakeCrossSection(rest, reference, centre + s * h * axis, axis,
                                           kSectionRadius * joint.radius));
-    const std::vector<std::uint8_t> limb = LimbSide(model, c);
-    const std::vector<std::uint32_t> border = Border(limb, model.triangles);
+    const Limb limb = LimbOf(model, c);
     for (const JointSweepPose& pose : JointSweep(joint)) {
       std::vector<PartPose> poses(model.parts.size());
       poses[c].rotation = JointRotation(joint, pose.degrees);
@@ -117,7 +75,7 @@ std::vector<JointSkinRow> MeasureJointSweep(const RigModel& model, std::span<con
       job.positions = posed;
       if (!job.Run()) continue;
       JointSkinRow row{part.name, pose.label, {}};
-      row.methods[0] = Measure(reference, rest, posed, sections, limb, border, model.triangles);
+      row.methods[0] = Measure(reference, rest, posed, sections, limb, model.triangles);
       BoneMatricesFromWorkspace(model, workspace, bones);
       std::vector<Vec3> other(n);
       for (int m = 1; m < kSkinMethods; ++m) {
@@ -125,7 +83,7 @@ std::vector<JointSkinRow> MeasureJointSweep(const RigModel& model, std::span<con
         skinning.Run();
         for (std::size_t v = 0; v < n; ++v) other[v] = Vec3(x[v], y[v], z[v]);
         row.methods[std::size_t(m)] =
-            Measure(reference, rest, other, sections, limb, border, model.triangles);
+            Measure(reference, rest, other, sections, limb, model.triangles);
       }
       rows.push_back(std::move(row));
     }

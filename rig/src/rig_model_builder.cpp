@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "joint_growth.h"
 #include "joint_skin_spread.h"
 #include "loose_pieces.h"
 #include "wirerig/rig/spine_curves.h"
@@ -377,6 +378,7 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
   built.report.unspread_vertices = SpreadJointBindings(mesh.welded_positions, own_samples, &model);
   for (const VertexAttachment& a : model.vertices)
     built.report.bridged_vertices += a.joints[0].joint >= 0;
+  FitJointGrowth(mesh.welded_positions, &model);
   return built;
 }
 

@@ -23,6 +23,9 @@ Status ValidateJoint(const JointModel& joint) {
     return Status::Invalid("radius", "must be finite and >= 0");
   if (!(std::isfinite(joint.parent_radius) && joint.parent_radius >= 0.0))
     return Status::Invalid("parent_radius", "must be finite and >= 0");
+  if (!std::isfinite(joint.growth_scale) || joint.growth_scale < 0.0 ||
+      joint.growth_scale > kMaxGrowthScale)
+    return Status::Invalid("growth_scale", "growth_scale must be in [0, 1]");
   return Status::Ok();
 }
 

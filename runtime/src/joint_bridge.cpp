@@ -169,7 +169,8 @@ void SampleJointBridge(const JointModel& joint, const RestBridge& rest_bridge,
   SwingTwist(relative, joint.axes.col(2), &swing, &twist);
   // Area growth 1 + c bump(u), bump = 4u(1 - u): 1 at both ends (the sections meet the rigid
   // sides unscaled) and c chosen so the bridge keeps its rest volume, integral of area x speed
-  // (Simpson's rule over the samples; the rest curve is straight, of constant speed).
+  // (Simpson's rule over the samples), times the joint's growth_scale (the mesh's skin is no
+  // tube of constant section about the curve: the builder fits it).
   // The curves' velocities and accelerations at the samples, computed once.
   std::array<Vec3, kBridgeSegments + 1> velocity, acceleration;
   double bent = 0.0, bumped = 0.0;
@@ -182,7 +183,8 @@ void SampleJointBridge(const JointModel& joint, const RestBridge& rest_bridge,
     bent += simpson * speed;
     bumped += simpson * 4.0 * u * (1.0 - u) * speed;
   }
-  const double growth = bumped > 0.0 ? (rest_bridge.length - bent) / bumped : 0.0;
+  const double growth =
+      bumped > 0.0 ? joint.growth_scale * (rest_bridge.length - bent) / bumped : 0.0;
   // swing^u and twist^u at u_k = k / kBridgeSegments as powers of their first step.
   const Quat swing_step = ScaleRotation(swing, 1.0 / kBridgeSegments);
   const Quat twist_step = ScaleRotation(twist, 1.0 / kBridgeSegments);

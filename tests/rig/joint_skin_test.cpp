@@ -181,6 +181,11 @@ TEST(JointSkin, ValidateJointNamesTheField) {
   joint = {};
   joint.blend_length = -1;
   EXPECT_EQ(ValidateJoint(joint).field, "blend_length");
+  for (double growth : {-0.1, 1.5, std::nan("")}) {
+    joint = {};
+    joint.growth_scale = growth;
+    EXPECT_EQ(ValidateJoint(joint).field, "growth_scale");
+  }
   EXPECT_TRUE(ValidateJoint(JointModel{}).ok());
 }
 
@@ -315,10 +320,31 @@ TEST(JointSkin, HumanSpineNeckHeadElbowsWristsKneesAndAnklesHoldThroughTheirSwee
     EXPECT_EQ(wire.folded_edges, 0u);
     EXPECT_LT(wire.worst_stretch, 2.0);
     EXPECT_GT(wire.smallest_perimeter, 0.95);
+    // Elbows and knees keep their limb's volume (the elbow, bent at rest, gained 9% before its
+    // growth was fitted).
+    if (row.joint.starts_with("forearm") || row.joint.starts_with("shin")) {
+      EXPECT_NEAR(wire.volume_ratio, 1.0, 0.03);
+    }
     // Linear blend of the same bones and region collapses the knee's cross-section.
     if (row.joint.starts_with("shin") && row.pose == "x+120") {
       EXPECT_LT(row.methods[1].smallest_perimeter, 0.8);
     }
+  }
+}
+
+// The fitted growth of a bridge's cross-sections (FitJointGrowth): a straight tube of constant
+// section keeps its volume with the tube model's growth (Pappus: volume = area x centre-line
+// length), so the straight capsule limb and the human's knees (straight at rest) keep a scale
+// near 1; the elbow, bent by 34 degrees at rest with its flesh off the bone line, needs less.
+TEST(JointSkin, GrowthFitKeepsTheTubesGrowthForStraightLimbsAndLowersItForTheElbow) {
+  EXPECT_GT(MakeLimb().model.parts[1].joint.growth_scale, 0.9);
+  const HumanRig& human = Human();
+  for (const char* knee : {"shin_l", "shin_r"})
+    EXPECT_GT(human.model.parts[human.Part(knee)].joint.growth_scale, 0.9) << knee;
+  for (const char* elbow : {"forearm_l", "forearm_r"}) {
+    const double scale = human.model.parts[human.Part(elbow)].joint.growth_scale;
+    EXPECT_GT(scale, 0.3) << elbow;
+    EXPECT_LT(scale, 0.8) << elbow;
   }
 }
 

@@ -91,6 +91,11 @@ TEST(RigAsset, RoundTripEvaluatesBitIdentically) {
   EXPECT_EQ(std::memcmp(got.data(), expected.data(), got.size() * sizeof(float)), 0);
   // Serialising the loaded asset gives the same bytes.
   EXPECT_EQ(SerializeRigAsset(loaded), bytes);
+  // A joint's fitted growth survives the trip.
+  RigAsset fitted = asset;
+  fitted.model.parts[1].joint.growth_scale = 0.375;
+  ASSERT_TRUE(ParseRigAsset(SerializeRigAsset(fitted), &loaded).ok());
+  EXPECT_EQ(loaded.model.parts[1].joint.growth_scale, 0.375);
 }
 
 TEST(RigAsset, RefusesBadHeadersNamingTheField) {
@@ -100,7 +105,7 @@ TEST(RigAsset, RefusesBadHeadersNamingTheField) {
   EXPECT_NE(Refusal(bytes).find("magic"), std::string::npos);
   EXPECT_NE(Refusal(std::span(good).first(10)).find("magic"), std::string::npos);
   bytes = good;
-  bytes[4] = 2;  // version 2
+  bytes[4] = std::uint8_t(kRigAssetVersion + 1);
   EXPECT_NE(Refusal(bytes).find("version"), std::string::npos);
   EXPECT_NE(Refusal(std::span(good).first(good.size() - 1)).find("size"), std::string::npos);
   bytes = good;
@@ -124,6 +129,10 @@ TEST(RigAsset, RefusesModelsThatCannotBeEvaluated) {
   asset.model.parts[1].joint.min_degrees.x() = 10.0;
   asset.model.parts[1].joint.max_degrees.x() = -10.0;
   EXPECT_NE(Refusal(SerializeRigAsset(asset)).find("parts[1].joint"), std::string::npos);
+
+  asset = Limb();
+  asset.model.parts[1].joint.growth_scale = 1.5;
+  EXPECT_NE(Refusal(SerializeRigAsset(asset)).find("growth_scale"), std::string::npos);
 
   asset = Limb();
   std::size_t paired = 0;

@@ -50,7 +50,13 @@ struct JointModel {
   double radius = 0.0;
   // The same on the parent's side (a thicker upper arm above an elbow), m; 0: radius.
   double parent_radius = 0.0;
+  // How much of the bridge curve's shortening its cross-sections take up as area growth
+  // (SampleJointBridge): 1 keeps the volume of a tube of constant section along the curve; the
+  // rig builder lowers it where the limb's own skin would gain volume (FitJointGrowth: an
+  // elbow bent at rest), in [0, kMaxGrowthScale].
+  double growth_scale = 1.0;
 };
+inline constexpr double kMaxGrowthScale = 1.0;
 
 // Empty reason when the joint is valid: finite orthonormal right-handed axes, limits finite with
 // min <= max, blend_length and radius finite and >= 0. Fields named "axes", "limits",

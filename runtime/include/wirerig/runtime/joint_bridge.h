@@ -94,9 +94,9 @@ using BridgeSamples = BasicBridgeSamples<double>;
 // the child's sides have turned by (rest world axes -> world). The rotation field spreads the
 // relative turn's swing and twist (about the rest bone axis joint.axes.col(2)) evenly in u;
 // the cross-sections grow in area by 1 + c 4u(1 - u), c such that the bridge keeps its rest
-// volume (area x length), evenly or, where that would reach within joint.radius of the bend's
-// centre of curvature, across the bend. At
-// rest (posed == rest, rotations identity) every map is the identity. Allocation-free.
+// volume (area x length) times joint.growth_scale, evenly or, where that would reach within
+// joint.radius of the bend's centre of curvature, across the bend. At rest (posed == rest,
+// rotations identity) every map is the identity. Allocation-free.
 void SampleJointBridge(const JointModel& joint, const RestBridge& rest, const BridgeEnds& posed,
                        const Mat3& parent_rotation, const Mat3& child_rotation, BridgeSamples* out);
 

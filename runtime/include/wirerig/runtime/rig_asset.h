@@ -22,7 +22,7 @@
 
 namespace wirerig {
 
-inline constexpr std::uint32_t kRigAssetVersion = 1;
+inline constexpr std::uint32_t kRigAssetVersion = 2;  // 2: JointModel::growth_scale
 inline constexpr std::size_t kRigAssetHeaderSize = 20;
 
 struct RigAsset {

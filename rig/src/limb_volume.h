@@ -1,0 +1,25 @@
+// The limb of a joint and its volume, for the joint-skin report and the bridge's growth fit.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "wirerig/runtime/rig_model.h"
+
+namespace wirerig {
+
+// The child's side of the joint of part `c`: the vertices of c and its descendants and those on
+// c's bridge (`flags`), and the region's border (its vertices on a triangle that leaves it).
+struct Limb {
+  std::vector<std::uint8_t> flags;
+  std::vector<std::uint32_t> border;
+};
+Limb LimbOf(const RigModel& model, std::size_t c);
+
+// The limb's volume in `positions`, m^3: its triangles closed by the cone to the middle of its
+// border (a nearly flat cap across the limb where it meets the body).
+double LimbVolume(const Limb& limb, std::span<const Vec3> positions,
+                  std::span<const Triangle> triangles);
+
+}  // namespace wirerig
