@@ -987,6 +987,25 @@ std::string FormatName(const aiScene& scene, const fs::path& path) {
 }
 
 // Up axis and units: the option, else what the file says, else +Y and metres. Assimp's
+// Whether a mesh the file gives no up axis for is a figure standing along +Z (the other common
+// convention: Blender, 3ds Max, CAD): its extent along Z at least kTallOverWide times the
+// others (a standing person is 2-4 times as tall as wide) and its width (X) at least
+// kWideOverDeep times its depth (Y: shoulders against chest), facing -Y or +Y as Blender's
+// figures do. Bounding boxes cannot tell more: a quadruped modelled +Y up along Z (taller than
+// wide: the Wuson bison, 2.1 times as long as tall) and a spider lying flat (1.3 times as long
+// as wide) keep +Y; so do figures in a T-pose or facing X. Measured over the test assets in
+// docs/rig-formats.md: HUMAN.blend, man.off and XGL's BCN_Epileptic stand along Z; nothing else.
+constexpr double kTallOverWide = 1.8;
+constexpr double kWideOverDeep = 1.3;
+bool StandsAlongZ(const Mesh& mesh) {
+  if (mesh.positions.empty()) return false;
+  Vec3 low = mesh.positions.front(), high = low;
+  for (const Vec3& p : mesh.positions) low = low.cwiseMin(p), high = high.cwiseMax(p);
+  const Vec3 extent = high - low;
+  return extent.z() > kTallOverWide * std::max(extent.x(), extent.y()) &&
+         extent.x() > kWideOverDeep * extent.y();
+}
+
 // Collada loader already applies <up_axis> and <unit> with a transform on the root node
 // (unless told to ignore the up axis), so for Collada that transform is read back.
 Result<FrameChoice> ChooseFrame(const fs::path& path, const aiScene& scene,
@@ -1175,9 +1194,15 @@ Result<ImportedMesh> ImportMesh(const fs::path& path, const ImportOptions& optio
   Result<FrameChoice> frame = ChooseFrame(path, *scene, options, report.format, report);
   if (!frame) return Error{frame.error()};
 
-  SceneConverter converter(path, *scene, options, frame.value());
-  Result<Mesh> mesh = converter.Convert();
+  Result<Mesh> mesh = SceneConverter(path, *scene, options, frame.value()).Convert();
   if (!mesh) return Error{mesh.error()};
+  if (report.up_source == "assumed" && StandsAlongZ(mesh.value())) {
+    report.source_up = UpAxis::kZ;
+    report.up_source = "shape: a standing figure's long axis";
+    frame.value().rotation = UpRotation(UpAxis::kZ, 1);
+    mesh = SceneConverter(path, *scene, options, frame.value()).Convert();
+    if (!mesh) return Error{mesh.error()};
+  }
   imported.mesh = std::move(mesh).value();
   report.source_vertices = imported.mesh.positions.size();
   WeldByPosition(imported.mesh, 0.0);

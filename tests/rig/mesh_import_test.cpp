@@ -289,6 +289,61 @@ TEST(MeshImport, UpAxisOptionRotatesZUpAndXUpToYUp) {
   EXPECT_GT(SignedVolume(mz, mz.parts[0]), 0.0);
 }
 
+// A closed box of the given extents with a corner at the origin, as OFF (no up axis in the file).
+std::string BoxOff(const Vec3& size) {
+  std::string out = "OFF\n8 12 0\n";
+  for (int i = 0; i < 8; ++i)
+    out += std::to_string(size.x() * (i & 1)) + " " + std::to_string(size.y() * ((i >> 1) & 1)) +
+           " " + std::to_string(size.z() * ((i >> 2) & 1)) + "\n";
+  for (const char* face : {"3 0 2 1", "3 1 2 3", "3 4 5 6", "3 5 7 6", "3 0 1 4", "3 1 5 4",
+                           "3 2 6 3", "3 3 6 7", "3 0 4 2", "3 2 4 6", "3 1 3 5", "3 3 7 5"})
+    out += std::string(face) + "\n";
+  return out;
+}
+
+// With no up axis in the file, a figure standing along +Z (far taller along Z than across,
+// wider along X than deep along Y) is turned +Y up and says so; shapes a bounding box cannot
+// tell from a lying figure keep +Y (the Wuson bison's box, 2.1 times as long as tall; a spider
+// 1.3 times as long as wide; a T-pose), and an up-axis option wins over the shape.
+TEST(MeshImport, UpAxisFromTheShapeOfAFigureStandingAlongZ) {
+  const fs::path standing = WriteFile("standing.off", BoxOff({0.45, 0.3, 1.7}));
+  const Result<ImportedMesh> up = ImportMesh(standing);
+  ASSERT_TRUE(up.ok()) << up.error();
+  EXPECT_EQ(up.value().report.source_up, UpAxis::kZ);
+  EXPECT_EQ(up.value().report.up_source, "shape: a standing figure's long axis");
+  const Bounds b = ComputeBounds(up.value().mesh);
+  EXPECT_NEAR(b.max.y() - b.min.y(), 1.7, 1e-6);  // (x, y, z) -> (x, z, -y); Assimp reads floats
+  EXPECT_NEAR(b.max.z() - b.min.z(), 0.3, 1e-6);
+  EXPECT_GT(SignedVolume(up.value().mesh, up.value().mesh.parts[0]), 0.0);
+
+  for (const Vec3& size : {Vec3(0.92, 1.52, 3.24), Vec3(1.5, 0.8, 1.93), Vec3(1.7, 0.3, 1.75),
+                           Vec3(0.45, 1.7, 0.3)}) {
+    const fs::path path = WriteFile("lying.off", BoxOff(size));
+    const Result<ImportedMesh> kept = ImportMesh(path);
+    ASSERT_TRUE(kept.ok()) << kept.error();
+    EXPECT_EQ(kept.value().report.source_up, UpAxis::kY) << size.transpose();
+    EXPECT_EQ(kept.value().report.up_source, "assumed") << size.transpose();
+  }
+  ImportOptions y_up;
+  y_up.up_axis = UpAxis::kY;
+  const Result<ImportedMesh> told = ImportMesh(standing, y_up);
+  ASSERT_TRUE(told.ok());
+  EXPECT_EQ(told.value().report.up_source, "option");
+  EXPECT_NEAR(ComputeBounds(told.value().mesh).max.z(), 1.7, 1e-6);
+}
+
+// CGAL's man.off stands along +Z with no up axis in the file: found from its shape.
+TEST(MeshImport, ManOffIsFoundStandingAlongZ) {
+  const fs::path path = Asset("man.off");
+  REQUIRE_ASSET(path);
+  ImportOptions z_up;
+  z_up.up_axis = UpAxis::kZ;
+  const Result<ImportedMesh> found = ImportMesh(path), told = ImportMesh(path, z_up);
+  ASSERT_TRUE(found.ok() && told.ok());
+  EXPECT_EQ(found.value().report.source_up, UpAxis::kZ);
+  EXPECT_EQ(found.value().mesh.positions, told.value().mesh.positions);
+}
+
 TEST(MeshImport, UnitScaleOptionScalesPositions) {
   const fs::path path = Asset("cow.off");
   REQUIRE_ASSET(path);

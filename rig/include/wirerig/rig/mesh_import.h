@@ -43,7 +43,8 @@ struct ImportIsolation {
 };
 
 struct ImportOptions {
-  // Source up axis; when unset, taken from the file's metadata, else assumed +Y.
+  // Source up axis; when unset, taken from the file's metadata, else +Z for a figure standing
+  // along Z (far taller along Z than across, wider along X than deep along Y), else assumed +Y.
   std::optional<UpAxis> up_axis;
   // Metres per source unit; when unset, taken from the file's metadata, else 1.
   std::optional<double> unit_scale;
@@ -62,7 +63,7 @@ struct ImportOptions {
 struct ImportReport {
   std::string format;  // e.g. "Collada", "OFF": Assimp's importer, else the extension
   UpAxis source_up = UpAxis::kY;
-  std::string up_source;            // "option", "file metadata" or "assumed"
+  std::string up_source;  // "option", "file metadata", "shape: ..." or "assumed"
   double unit_scale = 1.0;          // metres per source unit that was applied
   std::string unit_source;          // "option", "file metadata" or "assumed"
   std::size_t source_vertices = 0;  // render vertices before welding
