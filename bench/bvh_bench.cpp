@@ -13,7 +13,7 @@
 #include <random>
 #include <vector>
 
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/triangle_bvh.h"
 
 namespace wirerig {

@@ -10,10 +10,10 @@
 #include <memory>
 #include <vector>
 
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/curve_skeleton.h"
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/part_assignment.h"
-#include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/profile_curves.h"
 #include "wirerig/rig/triangle_bvh.h"
 #include "wirerig/runtime/parallel.h"

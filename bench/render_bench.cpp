@@ -9,7 +9,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/viewer/headless.h"
 
 namespace wirerig {

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_model_builder.h"
 

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <utility>
 
-#include "wirerig/rig/procedural_mesh.h"
-#include "wirerig/rig/procedural_octopus.h"
-#include "wirerig/rig/procedural_props.h"
+#include "wirerig/procedural/octopus.h"
+#include "wirerig/procedural/props.h"
+#include "wirerig/procedural/shapes.h"
 
 namespace wirerig::detail {
 namespace {
@@ -31,7 +31,7 @@ std::string FirstError(std::initializer_list<std::string> errors) {
   return {};
 }
 
-// A generator with its own rig description (rig/procedural_octopus.h, procedural_props.h):
+// A generator with its own rig description (wirerig/procedural/octopus.h, props.h):
 // its lengths (m, or fractions) and counts by name over its defaults, then the generator,
 // which checks them (its error names the parameter).
 template <typename Parameters>
@@ -146,7 +146,7 @@ const DescribedShape<ChairParameters>& Chair() {
   return shape;
 }
 
-// The plain shapes (rig/procedural_mesh.h): no rig of their own.
+// The plain shapes (wirerig/procedural/shapes.h): no rig of their own.
 Result<GeneratedMesh> Shape(std::string error, auto make) {
   if (!error.empty()) return Error{std::move(error)};
   return GeneratedMesh{make(), {}};
@@ -227,7 +227,7 @@ std::vector<ProceduralGenerator> MakeRegistry() {
        false,
        kClay,
        &GenerateTorus},
-      // The paper's props (rig/procedural_props.h), each with its own rig description.
+      // The paper's props (wirerig/procedural/props.h), each with its own rig description.
       {"candles", Candles().Names(), true, Vec4(0.85, 0.78, 0.60, 1.0),
        [](const MeshSource& s) { return Candles().Generate(s); }},
       {"beam", Beam().Names(), true, Vec4(0.50, 0.52, 0.55, 1.0),

@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "procedural_generators.h"
 #include "wirerig/anim/scene.h"
 #include "wirerig/rig/automatic_description.h"
@@ -46,6 +48,62 @@ std::string ApplyWireSettings(const SceneDescription& scene, Rig& rig) {
     }
   }
   return {};
+}
+
+// The parts' spine kinds, the camera's part and the clips of a scene whose model is built.
+std::string SetPartsAndClips(const SceneDescription& scene, BuiltScene& out) {
+  for (PartModel& part : out.model.parts) {
+    const auto settings = scene.parts.find(part.name);
+    if (settings != scene.parts.end() && settings->second.kind) part.kind = *settings->second.kind;
+  }
+  if (scene.camera && !scene.camera->follow.empty()) {
+    const auto& parts = out.model.parts;
+    if (std::none_of(parts.begin(), parts.end(),
+                     [&](const PartModel& p) { return p.name == scene.camera->follow; })) {
+      return "/camera/follow: the rig has no part named \"" + scene.camera->follow + "\"" +
+             NameHint(scene.camera->follow, PartNames(out.rig), "parts");
+    }
+  }
+
+  // The clips, against the model.
+  out.clips.clear();
+  for (std::size_t i = 0; i < scene.clips.size(); ++i) {
+    const std::string clip_path = "/clips/" + std::to_string(i);
+    RawClip raw;
+    if (const auto motion = scene.motions.find(scene.clips[i].name);
+        motion != scene.motions.end()) {
+      // Tracks from a motion file (motion_import.h), the clip's own merged on top.
+      Result<RawClip> made = MakeMotionClip(
+          motion->second, scene.clips[i], scene.folder, out.mesh,
+          scene.mesh.procedural.empty() ? Resolve(scene, scene.mesh.file) : std::filesystem::path(),
+          scene.mesh.import, out.model);
+      if (!made) {
+        const std::string& e = made.error();
+        return clip_path + (e.starts_with("/") ? "" : "/motion/") + e;
+      }
+      raw = std::move(made).value();
+    }
+    Result<Clip> clip =
+        BuildClip(scene.motions.contains(scene.clips[i].name) ? raw : scene.clips[i], out.model);
+    if (!clip) return clip_path + ": " + clip.error();
+    out.clips.push_back(std::move(clip).value());
+  }
+  return {};
+}
+
+// Whether two descriptions ask for the same mesh and rig: they differ at most in what EditScene
+// edits in place (per-part settings, default spine kind, clips and motions, playback, camera).
+bool SameSource(const SceneDescription& a, const SceneDescription& b) {
+  if (a.folder != b.folder || a.mesh.import.up_axis != b.mesh.import.up_axis ||
+      a.mesh.import.unit_scale != b.mesh.import.unit_scale)
+    return false;
+  auto source = [](const SceneDescription& scene) {
+    nlohmann::json document = SceneToJson(scene);
+    for (const char* key : {"parts", "default_kind", "clips", "playback", "camera"})
+      document.erase(key);
+    return document;
+  };
+  return source(a) == source(b);
 }
 
 }  // namespace
@@ -140,6 +198,7 @@ Result<BuiltScene> BuildScene(const SceneDescription& scene) {
       break;
   }
   if (!error.empty()) return fail(mesh_name + ": " + error);
+  out.source_rig = out.rig;
   if (std::string e = ApplyWireSettings(scene, out.rig); !e.empty()) return fail(e);
 
   // The runtime model, with each part's spine kind.
@@ -148,43 +207,37 @@ Result<BuiltScene> BuildScene(const SceneDescription& scene) {
   Result<BuiltRigModel> model = BuildRigModel(out.mesh, out.rig, model_options);
   if (!model) return fail(model.error());
   out.model = std::move(model.value().model);
-  for (PartModel& part : out.model.parts) {
-    const auto settings = scene.parts.find(part.name);
-    if (settings != scene.parts.end() && settings->second.kind) part.kind = *settings->second.kind;
-  }
-
-  if (scene.camera && !scene.camera->follow.empty()) {
-    const auto& parts = out.model.parts;
-    if (std::none_of(parts.begin(), parts.end(),
-                     [&](const PartModel& p) { return p.name == scene.camera->follow; })) {
-      return fail("/camera/follow: the rig has no part named \"" + scene.camera->follow + "\"" +
-                  NameHint(scene.camera->follow, PartNames(out.rig), "parts"));
-    }
-  }
-
-  // The clips, against the model.
-  for (std::size_t i = 0; i < scene.clips.size(); ++i) {
-    const std::string clip_path = "/clips/" + std::to_string(i);
-    RawClip raw;
-    if (const auto motion = scene.motions.find(scene.clips[i].name);
-        motion != scene.motions.end()) {
-      // Tracks from a motion file (motion_import.h), the clip's own merged on top.
-      Result<RawClip> made = MakeMotionClip(
-          motion->second, scene.clips[i], scene.folder, out.mesh,
-          scene.mesh.procedural.empty() ? Resolve(scene, scene.mesh.file) : std::filesystem::path(),
-          scene.mesh.import, out.model);
-      if (!made) {
-        const std::string& e = made.error();
-        return fail(clip_path + (e.starts_with("/") ? "" : "/motion/") + e);
-      }
-      raw = std::move(made).value();
-    }
-    Result<Clip> clip =
-        BuildClip(scene.motions.contains(scene.clips[i].name) ? raw : scene.clips[i], out.model);
-    if (!clip) return fail(clip_path + ": " + clip.error());
-    out.clips.push_back(std::move(clip).value());
-  }
+  if (std::string e = SetPartsAndClips(scene, out); !e.empty()) return fail(e);
   return out;
+}
+
+Result<bool> EditScene(BuiltScene* scene, const SceneDescription& edited) {
+  if (!SameSource(scene->description, edited)) {
+    Result<BuiltScene> built = BuildScene(edited);
+    if (!built) return Error{built.error()};
+    *scene = std::move(built).value();
+    return false;
+  }
+  BuiltScene out;
+  out.description = edited;
+  out.mesh = std::move(scene->mesh);  // given back below if the edit fails
+  out.rig = scene->source_rig;
+  out.source_rig = scene->source_rig;
+  out.report = scene->report;
+  out.model = scene->model;
+  std::string error = ApplyWireSettings(edited, out.rig);
+  if (error.empty()) {
+    SetWireProperties(out.rig, &out.model);
+    for (PartModel& part : out.model.parts) part.kind = edited.default_kind;
+    error = SetPartsAndClips(edited, out);
+  }
+  if (!error.empty()) {
+    scene->mesh = std::move(out.mesh);
+    const std::string& name = edited.name;
+    return Error{(name.empty() ? "scene" : "scene \"" + name + "\"") + ": " + error};
+  }
+  *scene = std::move(out);
+  return true;
 }
 
 Result<BuiltScene> LoadAndBuildScene(const std::filesystem::path& path,

@@ -261,6 +261,18 @@ std::string CheckRigWithinMesh(const Mesh& mesh, const Rig& rig) {
 
 }  // namespace
 
+void SetWireProperties(const Rig& rig, RigModel* model) {
+  for (std::size_t i = 0; i < rig.parts.size() && i < model->parts.size(); ++i) {
+    const RigPart& part = rig.parts[i];
+    PartModel& out = model->parts[i];
+    out.spine_stiffness = ComputeStiffness(part.spine_wire.material, part.spine_wire.section);
+    out.mass = ProfileSolid(part, part.spine_wire.material.density);
+    for (std::size_t p = 0; p < out.profiles.size() && p < part.profile_wires.size(); ++p)
+      out.profiles[p].stiffness =
+          ComputeStiffness(part.profile_wires[p].material, part.profile_wires[p].section);
+  }
+}
+
 Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
                                     const RigModelOptions& options) {
   if (mesh.welded_positions.size() != rig.mesh_vertices ||
@@ -287,14 +299,10 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
     out.spine_frames.resize(std::size_t(samples));
     PropagateSpineFrames(out.spine_points, spine.value().FrameAt(0.0), out.spine_frames);
     out.spine_length = spine.value().length();
-    out.spine_stiffness = ComputeStiffness(part.spine_wire.material, part.spine_wire.section);
-    out.mass = ProfileSolid(part, part.spine_wire.material.density);
     for (std::size_t p = 0; p < part.profiles.size(); ++p) {
       ProfileModel profile;
       profile.spine_v = ProjectOnSamples(out.spine_points, part.spine_points[p]);
       profile.closed = part.profiles[p].closed;
-      profile.stiffness =
-          ComputeStiffness(part.profile_wires[p].material, part.profile_wires[p].section);
       Vec3 origin;
       const Mat3 axes =
           FrameAxes(InterpolateSpine(out.spine_points, out.spine_frames, profile.spine_v, &origin));
@@ -306,6 +314,7 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
     }
     model.parts.push_back(std::move(out));
   }
+  SetWireProperties(rig, &model);
   for (std::size_t i = 1; i < model.parts.size(); ++i) {
     PartModel& part = model.parts[i];
     Result<JointModel> joint =

@@ -34,7 +34,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/test_folder.h"
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/temp_files.h"
 
 namespace wirerig {

@@ -13,7 +13,7 @@
 
 #include "support/test_folder.h"
 #include "wirerig/anim/gltf_export.h"
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 
 namespace wirerig {
 namespace {

@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "wirerig/procedural/shapes.h"
+
 #ifndef WIRERIG_SAMPLES_DIR
 #error "the tests need WIRERIG_SAMPLES_DIR (set by CMake)"
 #endif
@@ -219,6 +221,82 @@ TEST(Scene, BuildsAProceduralSceneReadyToPlay) {
   EXPECT_EQ(scene.FindClip("push")->name, "push");
   EXPECT_EQ(scene.FindClip("swim"), nullptr);
   EXPECT_EQ(scene.clips[0].profiles.size(), 1u);
+}
+
+// A closed cylinder of radius 0.1 m from y = 0 to 1 as an OFF file (the cylinder scene's beam).
+fs::path WriteBeamMesh(const fs::path& path) {
+  const Mesh mesh = MakeCylinder(0.1, 1.0, 16, 8);
+  std::ofstream out(path);
+  out << "OFF\n" << mesh.positions.size() << " " << mesh.triangles.size() << " 0\n";
+  for (const Vec3& p : mesh.positions) out << p.x() << " " << p.y() << " " << p.z() << "\n";
+  for (const Triangle& t : mesh.triangles)
+    out << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+  return path;
+}
+
+// Editing a built scene's wire settings and clips (what the viewer's apply and undo do) keeps
+// its mesh and rig: the mesh file is gone by then and the edit still succeeds, and the result is
+// what a fresh build of the edited description gives; changing the mesh or rig source builds
+// anew; a bad edit leaves the scene as it was.
+TEST(Scene, EditInPlaceKeepsTheMeshAndRigAndMatchesAFreshBuild) {
+  const fs::path folder = fs::path(::testing::TempDir()) / "wirerig_scene_edit";
+  fs::create_directories(folder);
+  const fs::path mesh_file = WriteBeamMesh(folder / "beam.off");
+  json d = CylinderScene();
+  d["mesh"] = {{"file", "beam.off"}};
+  const SceneDescription original = ParseScene(d, folder).value();
+  d["parts"]["beam"]["spine"]["material"] = "aluminium";
+  d["clips"][0]["duration"] = 3;
+  const SceneDescription edited = ParseScene(d, folder).value();
+  Result<BuiltScene> built = BuildScene(original), reference = BuildScene(edited);
+  ASSERT_TRUE(built.ok() && reference.ok()) << built.error();
+  fs::remove(mesh_file);
+  ASSERT_FALSE(BuildScene(edited).ok());  // a build would need the file
+
+  BuiltScene& scene = built.value();
+  Result<bool> in_place = EditScene(&scene, edited);
+  ASSERT_TRUE(in_place.ok()) << in_place.error();
+  EXPECT_TRUE(in_place.value());
+  const PartModel& part = scene.model.parts[0];
+  const PartModel& expected = reference.value().model.parts[0];
+  const Material& aluminium = *FindMaterialPreset("aluminium");
+  EXPECT_EQ(scene.rig.parts[0].spine_wire.material.youngs_modulus, aluminium.youngs_modulus);
+  EXPECT_DOUBLE_EQ(part.spine_stiffness.bending,
+                   aluminium.youngs_modulus * scene.rig.parts[0].spine_wire.section.second_moment);
+  EXPECT_EQ(part.spine_stiffness.bending, expected.spine_stiffness.bending);
+  EXPECT_EQ(part.spine_stiffness.axial, expected.spine_stiffness.axial);
+  EXPECT_EQ(part.mass.mass, expected.mass.mass);
+  EXPECT_EQ(part.profiles[3].stiffness.bending, expected.profiles[3].stiffness.bending);
+  EXPECT_EQ(scene.clips[0].duration, 3.0);
+  EXPECT_EQ(scene.model.vertices.size(), reference.value().model.vertices.size());
+
+  // Undo: the description before the edit gives back the rig's steel, not the aluminium.
+  ASSERT_TRUE(EditScene(&scene, original).ok());
+  EXPECT_EQ(scene.rig.parts[0].spine_wire.material.youngs_modulus,
+            FindMaterialPreset("steel")->youngs_modulus);
+  EXPECT_EQ(scene.clips[0].duration, 2.0);
+
+  // A bad edit names the field and changes nothing.
+  SceneDescription bad = original;
+  bad.parts["arm"] = PartSettings{};
+  Result<bool> refused = EditScene(&scene, bad);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error(),
+            "scene \"beam\": /parts/arm: the rig has no part of this name (parts: beam)");
+  EXPECT_FALSE(scene.description.parts.contains("arm"));
+  EXPECT_EQ(scene.mesh.welded_positions.size(), reference.value().mesh.welded_positions.size());
+
+  // Another mesh source is built anew (and needs its file).
+  SceneDescription thicker = original;
+  thicker.skin_thickness = 0.01;
+  Result<bool> rebuilt = EditScene(&scene, thicker);
+  ASSERT_FALSE(rebuilt.ok());
+  EXPECT_NE(rebuilt.error().find("beam.off"), std::string::npos) << rebuilt.error();
+  WriteBeamMesh(mesh_file);
+  rebuilt = EditScene(&scene, thicker);
+  ASSERT_TRUE(rebuilt.ok()) << rebuilt.error();
+  EXPECT_FALSE(rebuilt.value());
+  EXPECT_EQ(scene.description.skin_thickness, 0.01);
 }
 
 std::string BuildError(const json& document) {

@@ -17,7 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "wirerig/anim/gltf_export.h"
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_model_builder.h"
 #include "wirerig/runtime/rig_evaluation.h"

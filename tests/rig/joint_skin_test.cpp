@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/joint_skin_report.h"
 #include "wirerig/rig/joint_sweep.h"
 #include "wirerig/rig/mesh_import.h"
-#include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_model_builder.h"
 #include "wirerig/rig/skin_quality.h"

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/mesh_statistics.h"
-#include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/runtime/rigid_body.h"
 
 namespace wirerig {

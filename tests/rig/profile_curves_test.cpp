@@ -13,7 +13,7 @@
 #include <optional>
 #include <vector>
 
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/spine_curves.h"
 #include "wirerig/rig/triangle_bvh.h"
 #include "wirerig/runtime/parallel.h"

@@ -7,10 +7,10 @@
 
 #include <algorithm>
 
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/curve_skeleton.h"
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/mesh_statistics.h"
-#include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/skeleton_description.h"
 #include "wirerig/rig/triangle_bvh.h"
 

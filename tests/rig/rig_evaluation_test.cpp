@@ -13,8 +13,8 @@
 #include <thread>
 
 #include "support/two_segment_limb.h"
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/mesh_import.h"
-#include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_model_builder.h"
 #include "wirerig/runtime/parallel.h"

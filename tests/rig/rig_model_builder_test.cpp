@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/mesh.h"
-#include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/rig_builder.h"
 
 namespace wirerig {

@@ -18,7 +18,7 @@
 
 #include <gtest/gtest.h>
 
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 
 namespace wirerig {
 namespace {

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/automatic_description.h"
 #include "wirerig/rig/mesh_import.h"
-#include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/watertight_proxy.h"
 

@@ -7,7 +7,7 @@
 #include <new>
 #include <vector>
 
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_model_builder.h"
 #include "wirerig/runtime/axial_job.h"

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "support/two_segment_limb.h"
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_model_builder.h"
 #include "wirerig/runtime/rig_evaluation.h"

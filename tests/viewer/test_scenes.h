@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/viewer/render_frame.h"
 
 namespace wirerig::testing {

@@ -15,7 +15,7 @@
 
 #include <Eigen/Geometry>
 
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/runtime/bending_job.h"
 #include "wirerig/viewer/application.h"
 

@@ -29,7 +29,19 @@ SceneViewer::~SceneViewer() = default;
 Result<bool> SceneViewer::Open(const SceneDescription& description) {
   Result<BuiltScene> built = BuildScene(description);
   if (!built) return Error{built.error()};
-  auto scene = std::make_unique<BuiltScene>(std::move(built).value());
+  return Show(std::make_unique<BuiltScene>(std::move(built).value()));
+}
+
+Result<bool> SceneViewer::OpenEdited(const SceneDescription& edited) {
+  auto scene = std::make_unique<BuiltScene>(*scene_);
+  Result<bool> in_place = EditScene(scene.get(), edited);
+  if (!in_place) return in_place;
+  if (Result<bool> shown = Show(std::move(scene)); !shown) return shown;
+  return in_place;
+}
+
+Result<bool> SceneViewer::Show(std::unique_ptr<BuiltScene> scene) {
+  const SceneDescription& description = scene->description;
   failure_.clear();
   deflection_warned_ = false;
   const Clip* clip = scene->FindClip(options_.clip);
@@ -269,7 +281,7 @@ void SceneViewer::DrawGizmo() {
 
 void SceneViewer::Apply(SceneDescription edited) {
   undo_.push_back(scene_->description);
-  if (Result<bool> opened = Open(edited); !opened) {
+  if (Result<bool> opened = OpenEdited(edited); !opened) {
     status_ = opened.error();
     undo_.pop_back();
     return;
@@ -359,7 +371,7 @@ void SceneViewer::DrawEditor() {
   if (ImGui::Button("undo") && !undo_.empty()) {
     SceneDescription previous = undo_.back();
     undo_.pop_back();
-    Result<bool> opened = Open(previous);
+    Result<bool> opened = OpenEdited(previous);
     status_ = opened ? "undone" : opened.error();
   }
   ImGui::SameLine();

@@ -108,6 +108,7 @@ struct BuiltScene {
   SceneDescription description;
   Mesh mesh;
   Rig rig;
+  Rig source_rig;         // `rig` as built or read, before the scene's per-part wire settings
   RigBuildReport report;  // empty when the rig came from a rig file
   RigModel model;
   std::vector<Clip> clips;  // one per description clip, same order
@@ -120,6 +121,14 @@ struct BuiltScene {
 };
 
 Result<BuiltScene> BuildScene(const SceneDescription& scene);
+
+// Makes *scene what BuildScene(edited) would. When `edited` differs from scene->description only
+// in what needs no new mesh or rig (per-part materials, sections and spine kinds, the clips, the
+// playback options, the camera), the built scene is edited in place: the wire properties are
+// set on the model (SetWireProperties) and the clips rebuilt; nothing is imported or rigged
+// again, and it returns true. Otherwise the scene is built anew and it returns false. On error
+// *scene is left as it was.
+Result<bool> EditScene(BuiltScene* scene, const SceneDescription& edited);
 // LoadScene then BuildScene; every error starts with the file's path. `import_isolation`, when
 // set, imports the scene's mesh file in a child process (mesh_import.h).
 Result<BuiltScene> LoadAndBuildScene(

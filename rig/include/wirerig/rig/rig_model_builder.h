@@ -55,4 +55,10 @@ inline constexpr double kRigReach = 1.0;
 Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
                                     const RigModelOptions& options = {});
 
+// What of a built model follows from its rig's wire properties (materials and sections): each
+// part's spine stiffness and mass properties and its profiles' stiffness. For a rig whose wire
+// properties changed after `model` was built from it (same parts and profiles): the model is
+// then as BuildRigModel would make it, without binding the mesh again.
+void SetWireProperties(const Rig& rig, RigModel* model);
+
 }  // namespace wirerig

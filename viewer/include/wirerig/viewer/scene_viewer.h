@@ -69,9 +69,13 @@ class SceneViewer : public Application {
   bool GizmoPixel(int axis, float t, Vec2f* pixel) const override;
 
  private:
-  // Loads (or rebuilds after an edit) the scene and everything made from it; the error names
-  // the file and field.
+  // Builds the scene and everything made from it; the error names the file and field.
   Result<bool> Open(const SceneDescription& description);
+  // An edit of the open scene (apply, undo): in place when it keeps the mesh and rig (EditScene:
+  // nothing imported or rigged again; true), else built anew (false).
+  Result<bool> OpenEdited(const SceneDescription& edited);
+  // Shows a built scene: its playback and picture replace the current ones at once.
+  Result<bool> Show(std::unique_ptr<BuiltScene> scene);
   // LoadScene, with the options' import isolation for its mesh and motion files.
   Result<SceneDescription> Load(const std::filesystem::path& scene) const;
   void DrawEditor();

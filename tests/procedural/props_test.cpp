@@ -1,7 +1,7 @@
 // The paper's procedural props (candles, trunk, lamp post, chair): closed, outward-facing
 // pieces, rigs that build with no ray misses and the documented parts and parents, straight
 // spines where the physics samples need them, and parameter errors that name the field.
-#include "wirerig/rig/procedural_props.h"
+#include "wirerig/procedural/props.h"
 
 #include <gtest/gtest.h>
 

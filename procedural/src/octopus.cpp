@@ -1,11 +1,11 @@
-#include "wirerig/rig/procedural_octopus.h"
+#include "wirerig/procedural/octopus.h"
 
 #include <cmath>
 #include <numbers>
 #include <string>
 #include <vector>
 
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 
 namespace wirerig {
 namespace {

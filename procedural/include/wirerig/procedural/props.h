@@ -1,5 +1,5 @@
 // Procedural props for the paper's physics examples (section 6, Figs. 5-8 and 10), each a mesh
-// and the rig description that goes with it, like MakeOctopus (procedural_octopus.h). Every
+// and the rig description that goes with it, like MakeOctopus (octopus.h). Every
 // piece is a closed, outward-facing tube (MakeCylinder or MakeSweptTube) kept as its own mesh
 // part, and each rig part is restricted to its own mesh parts. Metres, +Y up.
 //
@@ -20,7 +20,7 @@
 
 #include <string>
 
-#include "wirerig/rig/procedural_octopus.h"
+#include "wirerig/procedural/octopus.h"
 
 namespace wirerig {
 

@@ -1,11 +1,11 @@
 // The procedural octopus: closed pieces, a rig that builds with no misses, tentacle profiles
 // that are circles of the tapered radius around the centre line, and named parameter errors.
-#include "wirerig/rig/procedural_octopus.h"
+#include "wirerig/procedural/octopus.h"
 
 #include <gtest/gtest.h>
 
+#include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/mesh_statistics.h"
-#include "wirerig/rig/procedural_mesh.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_model_builder.h"
 #include "wirerig/runtime/rigid_body.h"

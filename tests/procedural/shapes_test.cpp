@@ -4,7 +4,7 @@
 // polyhedron (regular n-gon frusta; for the torus, Pappus for n-gon wedges), whose distance to
 // the analytic volume is bounded by the polygon-area deficit 1 - n sin(2 pi / n) / 2 pi
 // <= (2 pi / n)^2 / 6.
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 
 #include <algorithm>
 #include <cmath>

@@ -15,7 +15,7 @@
 //     height segments >= 1, cap rings >= 1. Lengths are checked with assert (radii and
 //     heights positive; a cone needs r0, r1 >= 0 with at least one positive; a torus needs
 //     0 < minor < major; a capsule's height may be 0, making it a sphere).
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 
 #include "wirerig/runtime/curve.h"
 

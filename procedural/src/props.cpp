@@ -1,4 +1,4 @@
-#include "wirerig/rig/procedural_props.h"
+#include "wirerig/procedural/props.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "wirerig/rig/procedural_mesh.h"
+#include "wirerig/procedural/shapes.h"
 
 namespace wirerig {
 namespace {
