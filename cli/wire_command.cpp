@@ -10,7 +10,7 @@
 #include "wire_table.h"
 #include "wirerig/rig/atomic_file.h"
 #include "wirerig/rig/output_file.h"
-#include "wirerig/rig/wire_problem.h"
+#include "wirerig/wire_problem/wire_problem.h"
 
 namespace wirerig::cli {
 

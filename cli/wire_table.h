@@ -3,7 +3,7 @@
 
 #include <iosfwd>
 
-#include "wirerig/rig/wire_problem.h"
+#include "wirerig/wire_problem/wire_problem.h"
 
 namespace wirerig::cli {
 

@@ -4,8 +4,8 @@
 #include <cstdio>
 
 #include <wirerig/anim/track.h>
-#include <wirerig/rig/wire_problem.h>
 #include <wirerig/runtime/bending_job.h>
+#include <wirerig/wire_problem/wire_problem.h>
 #include <nlohmann/json.hpp>
 
 int main() {

@@ -1,4 +1,4 @@
-#include "wirerig/rig/wire_problem.h"
+#include "wirerig/wire_problem/wire_problem.h"
 #include "wirerig/rig/json_text.h"
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // Loading wire problems: a stream that cannot be read (an ifstream on a directory, whose
 // libstdc++ buffer throws) and paths that are not regular files come back as errors naming the
 // source, never as exceptions.
-#include "wirerig/rig/wire_problem.h"
+#include "wirerig/wire_problem/wire_problem.h"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
