@@ -316,8 +316,8 @@ TEST(MeshImport, UpAxisFromTheShapeOfAFigureStandingAlongZ) {
   EXPECT_NEAR(b.max.z() - b.min.z(), 0.3, 1e-6);
   EXPECT_GT(SignedVolume(up.value().mesh, up.value().mesh.parts[0]), 0.0);
 
-  for (const Vec3& size : {Vec3(0.92, 1.52, 3.24), Vec3(1.5, 0.8, 1.93), Vec3(1.7, 0.3, 1.75),
-                           Vec3(0.45, 1.7, 0.3)}) {
+  for (const Vec3& size :
+       {Vec3(0.92, 1.52, 3.24), Vec3(1.5, 0.8, 1.93), Vec3(1.7, 0.3, 1.75), Vec3(0.45, 1.7, 0.3)}) {
     const fs::path path = WriteFile("lying.off", BoxOff(size));
     const Result<ImportedMesh> kept = ImportMesh(path);
     ASSERT_TRUE(kept.ok()) << kept.error();

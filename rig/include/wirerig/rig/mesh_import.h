@@ -63,7 +63,7 @@ struct ImportOptions {
 struct ImportReport {
   std::string format;  // e.g. "Collada", "OFF": Assimp's importer, else the extension
   UpAxis source_up = UpAxis::kY;
-  std::string up_source;  // "option", "file metadata", "shape: ..." or "assumed"
+  std::string up_source;            // "option", "file metadata", "shape: ..." or "assumed"
   double unit_scale = 1.0;          // metres per source unit that was applied
   std::string unit_source;          // "option", "file metadata" or "assumed"
   std::size_t source_vertices = 0;  // render vertices before welding
