@@ -94,9 +94,7 @@ std::string SetPartsAndClips(const SceneDescription& scene, BuiltScene& out) {
 // Whether two descriptions ask for the same mesh and rig: they differ at most in what EditScene
 // edits in place (per-part settings, default spine kind, clips and motions, playback, camera).
 bool SameSource(const SceneDescription& a, const SceneDescription& b) {
-  if (a.folder != b.folder || a.mesh.import.up_axis != b.mesh.import.up_axis ||
-      a.mesh.import.unit_scale != b.mesh.import.unit_scale)
-    return false;
+  if (a.folder != b.folder) return false;  // the documents hold paths relative to it
   auto source = [](const SceneDescription& scene) {
     nlohmann::json document = SceneToJson(scene);
     for (const char* key : {"parts", "default_kind", "clips", "playback", "camera"})

@@ -39,6 +39,8 @@ void FitJointGrowth(std::span<const Vec3> rest, RigModel* model) {
   for (std::size_t c = 1; c < model->parts.size(); ++c) {
     JointModel& joint = model->parts[c].joint;
     if (model->parts[c].parent < 0 || !(joint.blend_length > 0.0)) continue;
+    const std::vector<Vec3> bends = FitBends(joint);
+    if (bends.empty()) continue;
     const Limb limb = LimbOf(*model, c);
     const double rest_volume = LimbVolume(limb, rest, model->triangles);
     if (!(std::abs(rest_volume) > 0.0)) continue;
@@ -55,7 +57,7 @@ void FitJointGrowth(std::span<const Vec3> rest, RigModel* model) {
       return ok ? LimbVolume(limb, posed, model->triangles) / rest_volume : 1.0;
     };
     double numerator = 0.0, denominator = 0.0;
-    for (const Vec3& degrees : FitBends(joint)) {
+    for (const Vec3& degrees : bends) {
       const double v0 = volume(degrees, 0.0), v1 = volume(degrees, 1.0);
       numerator += (1.0 - v0) * (v1 - v0);
       denominator += (v1 - v0) * (v1 - v0);

@@ -986,7 +986,6 @@ std::string FormatName(const aiScene& scene, const fs::path& path) {
   return name;
 }
 
-// Up axis and units: the option, else what the file says, else +Y and metres. Assimp's
 // Whether a mesh the file gives no up axis for is a figure standing along +Z (the other common
 // convention: Blender, 3ds Max, CAD): its extent along Z at least kTallOverWide times the
 // others (a standing person is 2-4 times as tall as wide) and its width (X) at least
@@ -998,14 +997,13 @@ std::string FormatName(const aiScene& scene, const fs::path& path) {
 constexpr double kTallOverWide = 1.8;
 constexpr double kWideOverDeep = 1.3;
 bool StandsAlongZ(const Mesh& mesh) {
-  if (mesh.positions.empty()) return false;
-  Vec3 low = mesh.positions.front(), high = low;
-  for (const Vec3& p : mesh.positions) low = low.cwiseMin(p), high = high.cwiseMax(p);
-  const Vec3 extent = high - low;
+  const Bounds bounds = ComputeBounds(mesh);
+  const Vec3 extent = bounds.max - bounds.min;
   return extent.z() > kTallOverWide * std::max(extent.x(), extent.y()) &&
          extent.x() > kWideOverDeep * extent.y();
 }
 
+// Up axis and units: the option, else what the file says, else +Y and metres. Assimp's
 // Collada loader already applies <up_axis> and <unit> with a transform on the root node
 // (unless told to ignore the up axis), so for Collada that transform is read back.
 Result<FrameChoice> ChooseFrame(const fs::path& path, const aiScene& scene,
