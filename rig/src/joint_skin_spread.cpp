@@ -62,6 +62,12 @@ std::vector<bool> Subtree(const RigModel& model, std::size_t root) {
   return out;
 }
 
+bool HasPartBelow(const RigModel& model, std::size_t part) {
+  for (const PartModel& p : model.parts)
+    if (p.parent == int(part)) return true;
+  return false;
+}
+
 // ancestor[p]: part p is `part` or one of its ancestors.
 std::vector<bool> AncestorsOf(const RigModel& model, int part) {
   std::vector<bool> out(model.parts.size(), false);
@@ -108,25 +114,39 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
   std::vector<double>& distance = scratch.distance;
   std::vector<std::int32_t>& index = scratch.index;
 
-  // Free vertices: blended by the bridge, then the parent side's skin within reach of them.
-  std::vector<std::uint32_t> free;
+  // Free vertices: blended by the bridge, then the parent side's skin within reach of them, and
+  // the skin of parts below the child within reach of any bound vertex (fixed ones too: an
+  // arm's skin beside the chest's bridge).
+  std::vector<std::uint32_t> free, fixed_seeds;
   using Item = std::pair<double, std::uint32_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+  bool any_free = false;
   for (std::uint32_t v : bound) {
     const JointInfluence* j = InfluenceOf(model->vertices[v], joint);
-    if (j != nullptr && !Fixed(*model, model->vertices[v], *j)) {
-      distance[v] = 0.0;
-      queue.push({0.0, v});
-    }
+    if (j == nullptr) continue;
+    distance[v] = 0.0;
+    queue.push({0.0, v});
+    if (Fixed(*model, model->vertices[v], *j))
+      fixed_seeds.push_back(v);
+    else
+      any_free = true;
   }
-  if (queue.empty()) return 0;
+  auto reset_seeds = [&] {
+    for (std::uint32_t v : fixed_seeds) distance[v] = std::numeric_limits<double>::infinity();
+  };
+  if (!any_free && !HasPartBelow(*model, c)) {
+    reset_seeds();
+    return 0;
+  }
   const double reach = kSpreadRadii * child.joint.radius;
   const double sibling_reach = kSiblingSpreadRadii * child.joint.radius;
   while (!queue.empty()) {
     const auto [d, v] = queue.top();
     queue.pop();
     if (d > distance[v]) continue;
-    if (index[v] < 0) {
+    const JointInfluence* own = InfluenceOf(model->vertices[v], joint);
+    const bool fixed = own != nullptr && Fixed(*model, model->vertices[v], *own);
+    if (!fixed && index[v] < 0) {
       index[v] = std::int32_t(free.size());
       free.push_back(v);
     }
@@ -136,7 +156,10 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
       const VertexAttachment& a = model->vertices[nb.vertex];
       const JointInfluence* j = InfluenceOf(model->vertices[nb.vertex], joint);
       const bool sibling = model->parts[a.part].parent == child.parent && a.part != c;
-      if (j == nullptr && !parent_side[a.part] && !(sibling && next <= sibling_reach))
+      const bool below_child = child_side[a.part] && a.part != c;
+      if (fixed && !(below_child && j == nullptr)) continue;  // a fixed seed: only those
+      if (j == nullptr && !parent_side[a.part] && !below_child &&
+          !(sibling && next <= sibling_reach))
         continue;  // the child's skin, or another limb's beyond its reach
       if (j != nullptr && Fixed(*model, a, *j)) continue;
       distance[nb.vertex] = next;
@@ -144,6 +167,10 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
     }
   }
 
+  if (free.empty()) {
+    reset_seeds();
+    return 0;
+  }
   // The value a vertex outside the free set holds: its bridge coordinate on the joint, else
   // 0 on the parent's side and 1 on the child's.
   // The fields solved for: u, JointInfluence::bridge and JointInfluence::section.
@@ -182,6 +209,7 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
     distance[v] = std::numeric_limits<double>::infinity();
     index[v] = -1;
   }
+  reset_seeds();
   if (solver.info() != Eigen::Success) return 0;  // keep the per-vertex binding
 
   std::size_t left_out = 0;
@@ -198,17 +226,19 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
     }
     if (!(value > 0.0)) continue;
     const JointInfluence spread{joint, own_samples[free[i]], value, 1.0, bridge, section};
-    left_out += !AddJointInfluence(spread, &a);
+    left_out += !AddJointInfluence(*model, spread, &a);
   }
   return left_out;
 }
 
 }  // namespace
 
-bool AddJointInfluence(const JointInfluence& influence, VertexAttachment* a) {
+bool AddJointInfluence(const RigModel& model, const JointInfluence& influence,
+                       VertexAttachment* a) {
   auto strength = [&](const JointInfluence& j) {
     if (j.joint < 0) return -1.0;
-    const bool child_side = j.joint == int(a->part);
+    const bool child_side =
+        j.joint == int(a->part) || IsBelowPart(model, a->part, std::size_t(j.joint));
     return j.weight * (child_side ? 1.0 - j.u : j.u);
   };
   JointInfluence* weakest = &a->joints[0];

@@ -6,7 +6,9 @@
 // like an armpit or the torso around a shoulder) and the skin of the joint's parent and its
 // ancestors within kSpreadRadii x the joint's radius of it along the surface get u harmonic
 // over the surface (edge weights 1 / length), with u = 0 on the parent's side and 1 on the
-// child's beyond (ancestors' and siblings' skin too: it moves with the parent's side).
+// child's beyond (ancestors' and siblings' skin too: it moves with the parent's side). The skin
+// of parts below the child within that reach (an arm's skin beside a chest's joint) gets u too:
+// it rides on the child, so it must blend as the child's skin next to it does.
 // A vertex whose kJointInfluences slots hold stronger influences is left out; their count is
 // returned.
 #pragma once
@@ -24,8 +26,10 @@ inline constexpr double kSiblingSpreadRadii = 1.0;
 
 // Gives the vertex the influence, in a free slot or instead of its weakest influence if that
 // is weaker (strength: how far the influence moves the vertex from where its own part puts it,
-// weight x u on the parent's side, weight x (1 - u) on the child's). False: left out.
-bool AddJointInfluence(const JointInfluence& influence, VertexAttachment* a);
+// weight x u on the parent's side, weight x (1 - u) on the child's: the child's skin and the
+// skin of parts below it). False: left out.
+bool AddJointInfluence(const RigModel& model, const JointInfluence& influence,
+                       VertexAttachment* a);
 
 // `rest`: the welded rest positions of model.vertices; `own_samples`: per vertex, its own part's
 // spine sample nearest it. Returns the vertices left out for want of a free influence slot.

@@ -93,11 +93,14 @@ ReferenceSkin MakeReferenceSkin(const RigModel& model, std::span<const Vec3> res
       dense[v][std::size_t(j.joint)] += j.weight * child;
       const auto parent = std::size_t(model.parts[std::size_t(j.joint)].parent);
       dense[v][parent] += j.weight * (1 - child);
-      // The bridge's motion minus its side's (rig_model.h): the child's for the child's skin.
-      if (j.joint != int(a.part))
-        dense[v][parent] -= j.weight;
-      else
+      // The bridge's motion minus its side's (rig_model.h): the child's for the child's skin
+      // (own: its part is the child), the child's rigid motion for the skin of parts below it.
+      if (j.joint == int(a.part))
         own -= j.weight;
+      else if (IsBelowPart(model, a.part, std::size_t(j.joint)))
+        dense[v][std::size_t(j.joint)] -= j.weight;
+      else
+        dense[v][parent] -= j.weight;
     }
     dense[v][a.part] += own;
     // The largest weights by magnitude (a joint's skin spread over an ancestor's subtracts its

@@ -208,7 +208,7 @@ void BindJoints(const RigModel& model, const std::vector<RestBridge>& rest_bridg
     const double reach = child.joint.blend_length;
     const JointBinding b = BindToJoint(child.joint, rest_bridges[c], p, side, reach);
     if (!(b.weight > 0.0)) continue;
-    AddJointInfluence({int(c), sample, b.u, b.weight, b.bridge, b.section}, a);
+    AddJointInfluence(model, {int(c), sample, b.u, b.weight, b.bridge, b.section}, a);
   }
 }
 

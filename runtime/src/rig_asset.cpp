@@ -1,5 +1,6 @@
 #include "wirerig/runtime/rig_asset.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 
@@ -13,7 +14,7 @@ constexpr AssetMagic kMagic = {'W', 'R', 'I', 'G'};
 
 // The smallest encoding of one element of each array, for bounding counts before allocating.
 constexpr std::size_t kVec3Bytes = 24, kFrameBytes = 72, kTriangleBytes = 12, kIndexBytes = 4;
-constexpr std::size_t kProfileBytes = 29, kPartBytes = 438, kVertexBytes = 250;
+constexpr std::size_t kProfileBytes = 29, kPartBytes = 438, kVertexBytes = 131;
 
 void WriteProfile(bytes::Writer& w, const ProfileModel& p) {
   w.F64(p.spine_v);
@@ -56,7 +57,11 @@ void WriteVertex(bytes::Writer& w, const VertexAttachment& a) {
   w.F64(b.alpha), w.F64(b.beta), w.F64(b.gamma), w.V3(b.rest_normal), w.V3(b.rest_edge);
   w.U8(b.flags);
   w.V3(a.cap_local);
+  // The joint influences in use (joint >= 0), preceded by their count.
+  w.U8(std::uint8_t(std::count_if(a.joints.begin(), a.joints.end(),
+                                  [](const JointInfluence& j) { return j.joint >= 0; })));
   for (const JointInfluence& j : a.joints) {
+    if (j.joint < 0) continue;
     w.I32(j.joint), w.U32(j.sample);
     w.F64(j.u), w.F64(j.weight), w.F64(j.bridge), w.F64(j.section);
   }
@@ -103,8 +108,9 @@ PartModel ReadPart(bytes::Reader& r) {
   return p;
 }
 
-VertexAttachment ReadVertex(bytes::Reader& r) {
-  VertexAttachment a;
+// False when the vertex claims more joint influences than a vertex holds.
+bool ReadVertex(bytes::Reader& r, VertexAttachment* out) {
+  VertexAttachment& a = *out;
   a.part = r.U32(), a.profile = r.U32(), a.cap = r.U8() != 0;
   PairBinding& b = a.pair;
   b.k1 = r.U32(), b.lambda1 = r.F64(), b.k2 = r.U32(), b.lambda2 = r.F64();
@@ -112,11 +118,14 @@ VertexAttachment ReadVertex(bytes::Reader& r) {
   b.rest_normal = r.V3(), b.rest_edge = r.V3();
   b.flags = r.U8();
   a.cap_local = r.V3();
-  for (JointInfluence& j : a.joints) {
+  const std::size_t influences = r.U8();
+  if (influences > a.joints.size()) return false;
+  for (std::size_t i = 0; i < influences; ++i) {
+    JointInfluence& j = a.joints[i];
     j.joint = r.I32(), j.sample = r.U32();
     j.u = r.F64(), j.weight = r.F64(), j.bridge = r.F64(), j.section = r.F64();
   }
-  return a;
+  return true;
 }
 
 }  // namespace
@@ -178,7 +187,10 @@ Status ParseRigAsset(std::span<const std::uint8_t> bytes, RigAsset* out) {
   model.parts.resize(r.Count(kPartBytes));
   for (PartModel& part : model.parts) part = ReadPart(r);
   model.vertices.resize(r.Count(kVertexBytes));
-  for (VertexAttachment& a : model.vertices) a = ReadVertex(r);
+  for (std::size_t v = 0; v < model.vertices.size(); ++v)
+    if (!ReadVertex(r, &model.vertices[v]))
+      return Status::InvalidElement("vertices", int(v), "joints",
+                                    "holds more joint influences than a vertex can");
   model.triangles.resize(r.Count(kTriangleBytes));
   for (Triangle& t : model.triangles) t = {r.U32(), r.U32(), r.U32()};
   asset.vertex_order.resize(r.Count(kIndexBytes));

@@ -82,13 +82,18 @@ std::shared_ptr<const RigEvaluationPlan> MakeRigEvaluationPlan(const RigModel& m
       ++profiles;
     }
   }
+  using JointBase = RigEvaluationLayout::JointBase;
+  auto base_of = [&](std::uint32_t part, std::int32_t joint) {
+    if (std::int32_t(part) == joint) return JointBase::kOwn;
+    return IsBelowPart(model, part, std::size_t(joint)) ? JointBase::kChild : JointBase::kParent;
+  };
   for (std::size_t v = 0; v < model.vertices.size(); ++v)
     for (const JointInfluence& j : model.vertices[v].joints)
       if (j.joint >= 0)
         layout.joint_vertices.push_back(
             {static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(j.joint),
              model.vertices[v].part, j.sample, j.u, j.weight, j.bridge, j.section,
-             j.joint == std::int32_t(model.vertices[v].part)});
+             base_of(model.vertices[v].part, j.joint)});
   for (std::size_t i = 0; i < model.parts.size(); ++i) {
     const PartModel& part = model.parts[i];
     if (part.parent >= 0 && part.joint.blend_length > 0.0)

@@ -82,7 +82,8 @@ void MakeVertexStagePlan(const RigModel& model, const RigEvaluationLayout& layou
   });
   std::vector<std::uint32_t> sorted_position(entries.size());
   auto push_entry = [&](std::uint32_t bridged, std::uint32_t slot, double f, double u,
-                        double fraction, double section, double weight, bool child) {
+                        double fraction, double section, double weight,
+                        RigEvaluationLayout::JointBase base) {
     s.entry_bridged.push_back(bridged);
     s.entry_slot.push_back(slot);
     s.entry_f.push_back(Real(f));
@@ -90,7 +91,7 @@ void MakeVertexStagePlan(const RigModel& model, const RigEvaluationLayout& layou
     s.entry_fraction.push_back(Real(fraction));
     s.entry_section.push_back(Real(section));
     s.entry_weight.push_back(Real(weight));
-    s.entry_child.push_back(child ? Real(1) : Real(0));
+    s.entry_base.push_back(Real(static_cast<int>(base)));
   };
   for (std::size_t i = 0; i < order.size();) {
     typename VertexStagePlan<Real>::Bucket bucket;
@@ -104,10 +105,11 @@ void MakeVertexStagePlan(const RigModel& model, const RigEvaluationLayout& layou
       const RigEvaluationLayout::JointVertex& j = entries[e];
       sorted_position[e] = static_cast<std::uint32_t>(s.entry_bridged.size());
       push_entry(entry_bridged[e], s.bridged_slot[entry_bridged[e]], fraction_in[e], j.u, j.bridge,
-                 j.section, j.weight, j.child_side);
+                 j.section, j.weight, j.base);
     }
     while (s.entry_bridged.size() % kBucketMultiple != 0)
-      push_entry(0, s.bridged_slot[0], 0.0, 0.0, 1.0, 1.0, 0.0, false);
+      push_entry(0, s.bridged_slot[0], 0.0, 0.0, 1.0, 1.0, 0.0,
+                 RigEvaluationLayout::JointBase::kParent);
     bucket.end = static_cast<std::uint32_t>(s.entry_bridged.size());
     s.buckets.push_back(bucket);
   }

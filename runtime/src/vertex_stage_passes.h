@@ -159,7 +159,8 @@ struct StagePasses {
 
   // The buckets of task k: each entry's correction, weight * (the bridge's image of its rest
   // point - the rigid motion of its own side: its own position for the child's skin, the
-  // parent's motion of its rest point otherwise).
+  // child's motion of its rest point for the skin of parts below the child, the parent's
+  // otherwise).
   template <class P>
   void Bucket(const typename S::Bucket& bucket) const {
     using Value = typename P::Value;
@@ -170,14 +171,17 @@ struct StagePasses {
       const std::uint32_t* bridged = &st.plan->entry_bridged[e];
       const std::uint32_t* slot = &st.plan->entry_slot[e];
       const V q = GatherV3<P>(st.rest, bridged);
-      V parent;
+      V parent, child;
       const V image = segment.Image(P::Load(&st.plan->entry_f[e]), P::Load(&st.plan->entry_u[e]),
                                     P::Load(&st.plan->entry_fraction[e]),
-                                    P::Load(&st.plan->entry_section[e]), q, &parent);
-      const auto child = P::Greater(P::Load(&st.plan->entry_child[e]), P::Broadcast(Real(0.5)));
+                                    P::Load(&st.plan->entry_section[e]), q, &parent, &child);
+      const Value side = P::Load(&st.plan->entry_base[e]);
+      const auto is_own = P::Greater(side, P::Broadcast(Real(0.5)));
+      const auto is_child = P::Greater(side, P::Broadcast(Real(1.5)));
       const V own = GatherV3<P>(st.position, slot);
-      const V base{P::Select(child, own.x, parent.x), P::Select(child, own.y, parent.y),
-                   P::Select(child, own.z, parent.z)};
+      const V base{P::Select(is_child, child.x, P::Select(is_own, own.x, parent.x)),
+                   P::Select(is_child, child.y, P::Select(is_own, own.y, parent.y)),
+                   P::Select(is_child, child.z, P::Select(is_own, own.z, parent.z))};
       const V correction = P::Load(&st.plan->entry_weight[e]) * (image - base);
       P::Store(&st.correction.x[e], correction.x);
       P::Store(&st.correction.y[e], correction.y);

@@ -633,7 +633,7 @@ TEST(RigEvaluation, FlatVertexPassAgreesWithApplyPairBindingAndTriangleOrderNorm
   const RigWorkspace& w = got.workspace;
   // Reference: every vertex by ApplyPairBinding (or its cap frame) on the evaluated wires.
   double worst = 0.0;
-  std::size_t pairs = 0, caps = 0, on_bridges = 0, others = 0;
+  std::size_t pairs = 0, caps = 0, on_bridges = 0, others = 0, below = 0;
   for (std::size_t v = 0; v < got.positions.size(); ++v) {
     const VertexAttachment& a = human.model.vertices[v];
     const PartModel& part = human.model.parts[a.part];
@@ -665,14 +665,19 @@ TEST(RigEvaluation, FlatVertexPassAgreesWithApplyPairBindingAndTriangleOrderNorm
                         FrameAxes(w.spine_frames[a.part][j.sample]).transpose();
       const Vec3 rest =
           part.spine_points[j.sample] + undo * (expected - w.spine_points[a.part][j.sample]);
-      // The bridge's image minus the rigid motion of the vertex's side of the joint.
+      // The bridge's image minus the rigid motion of the vertex's side of the joint: its own
+      // position on the child, the child's rigid motion below the child, else the parent's.
       const BridgeSamples& bridge = w.bridges[std::size_t(j.joint)];
-      const bool child_side = j.joint == int(a.part);
-      const Vec3 base =
-          child_side ? expected : Vec3(bridge.parent_turn * rest + bridge.parent_offset);
+      bool below_child = false;
+      for (int p = human.model.parts[a.part].parent; p >= 0; p = human.model.parts[p].parent)
+        below_child = below_child || p == j.joint;
+      const Vec3 base = j.joint == int(a.part) ? expected
+                        : below_child ? Vec3(bridge.child_turn * rest + bridge.child_offset)
+                                      : Vec3(bridge.parent_turn * rest + bridge.parent_offset);
       bridged += j.weight * (ApplyJointBridge(bridge, j.u, j.bridge, rest, j.section) - base);
       ++on_bridges;
       others += int(a.part) != j.joint && int(a.part) != human.model.parts[j.joint].parent;
+      below += below_child;
     }
     expected += bridged;
     worst = std::max(worst, (got.positions[v] - expected).norm());
@@ -681,6 +686,7 @@ TEST(RigEvaluation, FlatVertexPassAgreesWithApplyPairBindingAndTriangleOrderNorm
   EXPECT_GT(caps, 10u);
   EXPECT_GT(on_bridges, 100u);
   EXPECT_GT(others, 10u);  // the shoulders' and hips' skin spreads over the torso
+  EXPECT_GT(below, 10u);   // the chest's over the arms' skin beside it
   EXPECT_LT(worst, 1e-12 * human.diagonal);
   // Normals: accumulated over the triangles in order, then normalised, exactly.
   std::vector<Vec3> sum(got.positions.size(), Vec3::Zero());

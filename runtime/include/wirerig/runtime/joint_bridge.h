@@ -129,10 +129,10 @@ struct BridgeSegment {
 
   // The image of rest points q at f in [0, 1] along the segment and t = u in [0, 1] along the
   // bridge: `fraction` of the swept cross-section's motion (taking `section` of its growth), the
-  // rest the two sides' motions blended by smoothstep(t); *parent_image: the parent side's
-  // rigid motion of q.
+  // rest the two sides' motions blended by smoothstep(t); *parent_image and *child_image (if
+  // given): each side's rigid motion of q.
   [[gnu::always_inline]] V Image(Value f, Value t, Value fraction, Value section, const V& q,
-                                 V* parent_image) const {
+                                 V* parent_image, V* child_image = nullptr) const {
     const Value one = P::Broadcast(Real(1)), zero = P::Broadcast(Real(0));
     const Value g = one - f;
     V swept = g * (map[0] * q + map_offset[0]) + f * (map[1] * q + map_offset[1]);
@@ -152,6 +152,7 @@ struct BridgeSegment {
     const V child = child_turn * q + child_offset;
     const Value blend = t * t * (P::Broadcast(Real(3)) - P::Broadcast(Real(2)) * t);
     *parent_image = parent;
+    if (child_image != nullptr) *child_image = child;
     return fraction * swept + (one - fraction) * (parent + blend * (child - parent));
   }
 };

@@ -22,7 +22,8 @@
 
 namespace wirerig {
 
-inline constexpr std::uint32_t kRigAssetVersion = 2;  // 2: JointModel::growth_scale
+// 2: JointModel::growth_scale; 3: a vertex's joint influences as a count and those in use.
+inline constexpr std::uint32_t kRigAssetVersion = 3;
 inline constexpr std::size_t kRigAssetHeaderSize = 20;
 
 struct RigAsset {

@@ -119,13 +119,18 @@ struct RigEvaluationLayout {
   // A vertex on a joint's skin bridge: its own part's spine sample (to undo the own part's
   // motion into rest space) and where it lies on the bridge. A vertex's entries are adjacent and
   // share its own part's spine sample.
+  enum class JointBase : std::uint8_t { kParent, kOwn, kChild };
   struct JointVertex {
     std::uint32_t vertex = 0;
     std::uint32_t joint = 0;  // the joint's child part
     std::uint32_t part = 0;   // the vertex's own part
     std::uint32_t sample = 0;
     double u = 0.0, weight = 0.0, bridge = 0.0, section = 1.0;
-    bool child_side = false;  // the vertex belongs to the joint's child
+    // What the bridge's correction is measured from (rig_model.h, JointInfluence): the vertex's
+    // own position when it belongs to the joint's child, the child's rigid motion of its rest
+    // point when it belongs to a part below the child (an arm's skin on a chest's joint), the
+    // parent's otherwise.
+    JointBase base = JointBase::kParent;
   };
   std::vector<JointVertex> joint_vertices;   // in vertex order
   std::vector<std::uint32_t> bridged_parts;  // parts whose joint has a skin bridge

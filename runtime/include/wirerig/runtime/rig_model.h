@@ -59,9 +59,10 @@ struct JointInfluence {
   double section = 1.0;      // JointBinding::section
 };
 
-// At most this many joint bridges move one vertex (a shoulder's skin near the neck: the neck,
-// the shoulder and the chest's own joint).
-inline constexpr int kJointInfluences = 3;
+// At most this many joint bridges move one vertex (the top of a chest beside the neck: the
+// chest's own joint, the neck's, the head's and both shoulders'; fewer slots drop one of them
+// and its skin jumps where a neighbour kept it).
+inline constexpr int kJointInfluences = 6;
 
 struct VertexAttachment {
   std::uint32_t part = 0;
@@ -88,5 +89,12 @@ struct RigModel {
   std::vector<VertexAttachment> vertices;  // one per welded mesh vertex
   std::vector<Triangle> triangles;         // welded triangles, for normals
 };
+
+// Whether part `part` lies strictly below part `ancestor` (its child, grandchild, ...).
+inline bool IsBelowPart(const RigModel& model, std::size_t part, std::size_t ancestor) {
+  for (std::int32_t p = model.parts[part].parent; p >= 0; p = model.parts[std::size_t(p)].parent)
+    if (std::size_t(p) == ancestor) return true;
+  return false;
+}
 
 }  // namespace wirerig

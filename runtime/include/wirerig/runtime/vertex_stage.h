@@ -53,7 +53,8 @@ struct VertexStagePlan {
   std::vector<std::uint32_t> bucket_task_starts;  // tasks of whole buckets
   std::vector<std::uint32_t> entry_bridged;       // the entry's bridged vertex
   std::vector<std::uint32_t> entry_slot;          // its slot
-  std::vector<Real> entry_f, entry_u, entry_fraction, entry_section, entry_weight, entry_child;
+  // entry_base: RigEvaluationLayout::JointBase as a number (0 parent, 1 own, 2 child).
+  std::vector<Real> entry_f, entry_u, entry_fraction, entry_section, entry_weight, entry_base;
   // Normals: triangles by slot, and each slot's triangles in increasing order,
   // slot_triangles[slot_triangle_offsets[i] .. slot_triangle_offsets[i + 1]).
   std::vector<std::uint32_t> t0, t1, t2;
