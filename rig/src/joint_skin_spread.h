@@ -28,8 +28,7 @@ inline constexpr double kSiblingSpreadRadii = 1.0;
 // is weaker (strength: how far the influence moves the vertex from where its own part puts it,
 // weight x u on the parent's side, weight x (1 - u) on the child's: the child's skin and the
 // skin of parts below it). False: left out.
-bool AddJointInfluence(const RigModel& model, const JointInfluence& influence,
-                       VertexAttachment* a);
+bool AddJointInfluence(const RigModel& model, const JointInfluence& influence, VertexAttachment* a);
 
 // `rest`: the welded rest positions of model.vertices; `own_samples`: per vertex, its own part's
 // spine sample nearest it. Returns the vertices left out for want of a free influence slot.

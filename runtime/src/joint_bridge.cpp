@@ -140,7 +140,8 @@ JointBinding BindToJoint(const JointModel& joint, const RestBridge& rest_bridge,
   const bool child_side = side == JointSide::kChild;
   // A point of one side lying beyond the bridge's far end (a vertex its part claimed across
   // the joint) follows the other side near the bone line: the bridge's end there.
-  if (child_side ? (before <= -reach || after >= 0.0) : (before <= 0.0 || after >= reach)) {
+  const double fade = kBridgeEndFade * h;
+  if (child_side ? (before <= -reach || after >= fade) : (before <= -fade || after >= reach)) {
     out.u = 0.0;
     return out;
   }
@@ -149,6 +150,8 @@ JointBinding BindToJoint(const JointModel& joint, const RestBridge& rest_bridge,
   const double mix = SmoothStep(0.25, 0.5, out.u);
   const double radius = (1.0 - mix) * parent_radius + mix * joint.radius;
   out.bridge = 1.0 - SmoothStep(kBridgeInner * radius, kBridgeOuter * radius, rho);
+  const double beyond = child_side ? after : -before;
+  if (beyond > 0.0) out.bridge *= 1.0 - SmoothStep(0.0, fade, beyond);
   out.section = rho > radius ? radius / rho : 1.0;
   out.weight = 1.0;
   return out;

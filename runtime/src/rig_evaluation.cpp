@@ -90,10 +90,10 @@ std::shared_ptr<const RigEvaluationPlan> MakeRigEvaluationPlan(const RigModel& m
   for (std::size_t v = 0; v < model.vertices.size(); ++v)
     for (const JointInfluence& j : model.vertices[v].joints)
       if (j.joint >= 0)
-        layout.joint_vertices.push_back(
-            {static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(j.joint),
-             model.vertices[v].part, j.sample, j.u, j.weight, j.bridge, j.section,
-             base_of(model.vertices[v].part, j.joint)});
+        layout.joint_vertices.push_back({static_cast<std::uint32_t>(v),
+                                         static_cast<std::uint32_t>(j.joint),
+                                         model.vertices[v].part, j.sample, j.u, j.weight, j.bridge,
+                                         j.section, base_of(model.vertices[v].part, j.joint)});
   for (std::size_t i = 0; i < model.parts.size(); ++i) {
     const PartModel& part = model.parts[i];
     if (part.parent >= 0 && part.joint.blend_length > 0.0)

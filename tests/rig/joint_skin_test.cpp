@@ -303,22 +303,27 @@ const HumanRig& Human() {
   return human;
 }
 
-// The joints whose skin holds through their whole sweep (the hips still fold at 90 and 120
-// degrees of flexion, the shoulders at one edge; docs/benchmarks.md).
+// The joints whose skin holds through their whole sweep, limits included (the hips still fold
+// at 90 and 120 degrees of flexion, the shoulders at two or three edges; docs/benchmarks.md).
+// Not met yet, and held to what they reach so they cannot get worse: the waist bent sideways
+// to its 20-degree limit folds two edges, the elbow at its 115-degree limit stretches an edge
+// of its crease to 2.1x.
 TEST(JointSkin, HumanSpineNeckHeadElbowsWristsKneesAndAnklesHoldThroughTheirSweeps) {
   const HumanRig& human = Human();
   std::vector<std::size_t> joints;
-  for (const char* name : {"spine_1", "spine_2", "neck", "head", "forearm_l", "forearm_r", "hand_l",
-                           "hand_r", "shin_l", "shin_r", "foot_l", "foot_r"})
+  for (const char* name : {"spine_1", "spine_2", "chest", "neck", "head", "forearm_l", "forearm_r",
+                           "hand_l", "hand_r", "shin_l", "shin_r", "foot_l", "foot_r"})
     joints.push_back(human.Part(name));
   const std::vector<JointSkinRow> rows =
       MeasureJointSweep(human.model, human.mesh.welded_positions, joints);
-  EXPECT_GE(rows.size(), 20u);  // every pose the limits allow
+  EXPECT_GE(rows.size(), 60u);  // every pose the limits allow, the limits themselves too
   for (const JointSkinRow& row : rows) {
     SCOPED_TRACE(row.joint + " " + row.pose);
     const SkinMeasures& wire = row.methods[0];
-    EXPECT_EQ(wire.folded_edges, 0u);
-    EXPECT_LT(wire.worst_stretch, 2.0);
+    const bool waist_side_limit = row.joint == "spine_2" && row.pose.starts_with("y");
+    const bool elbow_limit = row.joint.starts_with("forearm") && row.pose == "x+115";
+    EXPECT_LE(wire.folded_edges, waist_side_limit ? 2u : 0u);
+    EXPECT_LT(wire.worst_stretch, elbow_limit ? 2.15 : 2.0);
     EXPECT_GT(wire.smallest_perimeter, 0.95);
     // Elbows and knees keep their limb's volume (the elbow, bent at rest, gained 9% before its
     // growth was fitted).
@@ -350,8 +355,10 @@ TEST(JointSkin, GrowthFitKeepsTheTubesGrowthForStraightLimbsAndLowersItForTheElb
 
 // The shoulders and hips: the skin spread over the torso keeps every edge within twice its rest
 // length through the shoulders' whole sweep and the hips' up to 60 degrees of flexion (beyond,
-// the groin still folds), and the wire rig's shoulders fold fewer edges over their sweep than
-// linear blend, dual-quaternion or centre-of-rotation skinning of the same bones.
+// the groin still folds; at its 45-degree abduction limit the hip stretches an edge to 2.1x,
+// and at its adduction limit the right hip's section narrows to 0.897 of its rest perimeter),
+// and the wire rig's shoulders fold fewer edges over their sweep than linear blend,
+// dual-quaternion or centre-of-rotation skinning of the same bones.
 TEST(JointSkin, HumanShouldersAndHipsSpreadTheirStretchOverTheTorso) {
   const HumanRig& human = Human();
   const std::vector<std::size_t> joints = {human.Part("upper_arm_l"), human.Part("upper_arm_r"),
@@ -364,12 +371,14 @@ TEST(JointSkin, HumanShouldersAndHipsSpreadTheirStretchOverTheTorso) {
     const SkinMeasures& wire = row.methods[0];
     const bool deep_hip_flexion =
         row.joint.starts_with("thigh") && (row.pose == "x-90" || row.pose == "x-120");
+    const bool hip_abduction_limit = row.joint.starts_with("thigh") && row.pose == "y+45";
+    const bool hip_adduction_limit = row.joint == "thigh_r" && row.pose == "y+25";
     if (!deep_hip_flexion) {
-      EXPECT_LT(wire.worst_stretch, 2.0);
+      EXPECT_LT(wire.worst_stretch, hip_abduction_limit ? 2.15 : 2.0);
     }
     if (row.joint.starts_with("upper_arm"))
       for (int m = 0; m < kSkinMethods; ++m) shoulder_folds[m] += row.methods[m].folded_edges;
-    EXPECT_GT(wire.smallest_perimeter, 0.9);
+    EXPECT_GT(wire.smallest_perimeter, hip_adduction_limit ? 0.89 : 0.9);
   }
   for (int m = 1; m < kSkinMethods; ++m) EXPECT_LT(shoulder_folds[0], shoulder_folds[m]) << m;
 }

@@ -158,6 +158,26 @@ TEST(RigAsset, RefusesCountsLargerThanTheFile) {
   EXPECT_NE(Refusal(bytes).find("payload"), std::string::npos);
 }
 
+// A vertex's joint influences are stored as a count and those in use; a count beyond what a
+// vertex holds (kJointInfluences) is refused naming the vertex.
+TEST(RigAsset, RefusesMoreJointInfluencesThanAVertexHolds) {
+  RigAsset asset = Limb();
+  const std::size_t last = asset.model.vertices.size() - 1;
+  asset.model.vertices[last].joints = {};  // its record ends with its count, 0
+  std::vector<std::uint8_t> bytes = SerializeRigAsset(asset);
+  RigAsset round;
+  ASSERT_TRUE(ParseRigAsset(bytes, &round).ok());
+  // After the vertices: the triangles and the vertex order, each a u32 count and its elements.
+  const std::size_t tail =
+      4 + 12 * asset.model.triangles.size() + 4 + 4 * asset.vertex_order.size();
+  std::uint8_t& count = bytes[bytes.size() - tail - 1];
+  ASSERT_EQ(count, 0);
+  count = std::uint8_t(kJointInfluences + 1);
+  Reseal(bytes);
+  EXPECT_EQ(Refusal(bytes), "vertices[" + std::to_string(last) +
+                                "].joints: holds more joint influences than a vertex can");
+}
+
 // Random corruptions that keep a valid checksum (a hostile file): each is refused or parses
 // into a model that evaluates without a crash (run under the sanitizers in CI).
 TEST(RigAsset, CorruptPayloadsNeverCrash) {

@@ -19,10 +19,13 @@ namespace wirerig {
 // smoothstep(u): 1 within radius * kBridgeInner of the bridge curve, fading smoothly to 0 at
 // radius * kBridgeOuter, where radius runs from joint.parent_radius over the parent's half
 // (u <= 1/4) to joint.radius (u >= 1/2) (skin far from the limb, like a thumb by the wrist, is
-// no cross-section of it). At its ends the bridge moves exactly as the side it meets, so points
-// there join their own part's skin continuously. A point of one side up to `reach` beyond the
-// bridge's far end (a vertex its part claimed across the joint) binds to that end (u = 0 or 1):
-// it follows the other side.
+// no cross-section of it). At its ends the bridge's swept sections still bend (the curve is
+// curved there, and squeezed short of its centre of curvature), so a point of a side up to
+// kBridgeEndFade x blend_length beyond the bridge's own end binds to that end (u = 0 or 1) with
+// its bridge fading to 0 over that distance: the skin goes over from the bent sections to its
+// side's rigid motion across several edges, not one. A point of one side up to `reach` beyond
+// the bridge's far end (a vertex its part claimed across the joint) binds to that end (u = 0
+// or 1): it follows the other side.
 enum class JointSide : int { kParent, kChild };
 // section in (0, 1] is the share of the swept cross-section's growth (the bridge keeping its
 // volume) the point takes: 1 within the limb's radius, radius / distance beyond (flesh around
@@ -36,6 +39,7 @@ struct JointBinding {
 inline constexpr double kBridgeInner = 1.25;
 inline constexpr int kBridgeSegments = 16;  // a bridge's samples: kBridgeSegments + 1
 inline constexpr double kBridgeOuter = 2.0;
+inline constexpr double kBridgeEndFade = 1.0;
 
 // The bridge's two clamped ends for one configuration (rest or posed), world axes.
 struct BridgeEnds {
