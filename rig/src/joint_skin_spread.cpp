@@ -158,7 +158,7 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
       const bool sibling = model->parts[a.part].parent == child.parent && a.part != c;
       const bool below_child = child_side[a.part] && a.part != c;
       if (fixed && !(below_child && j == nullptr)) continue;  // a fixed seed: only those
-      if (j == nullptr && !parent_side[a.part] && !below_child &&
+      if (j == nullptr && !parent_side[a.part] && !(below_child && next <= sibling_reach) &&
           !(sibling && next <= sibling_reach))
         continue;  // the child's skin, or another limb's beyond its reach
       if (j != nullptr && Fixed(*model, a, *j)) continue;

@@ -8,7 +8,8 @@
 // over the surface (edge weights 1 / length), with u = 0 on the parent's side and 1 on the
 // child's beyond (ancestors' and siblings' skin too: it moves with the parent's side). The skin
 // of parts below the child within that reach (an arm's skin beside a chest's joint) gets u too:
-// it rides on the child, so it must blend as the child's skin next to it does.
+// it rides on the child, so it must blend as the child's skin next to it does (within
+// kSiblingSpreadRadii, as siblings' skin).
 // A vertex whose kJointInfluences slots hold stronger influences is left out; their count is
 // returned.
 #pragma once
