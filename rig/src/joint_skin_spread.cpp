@@ -62,12 +62,6 @@ std::vector<bool> Subtree(const RigModel& model, std::size_t root) {
   return out;
 }
 
-bool HasPartBelow(const RigModel& model, std::size_t part) {
-  for (const PartModel& p : model.parts)
-    if (p.parent == int(part)) return true;
-  return false;
-}
-
 // ancestor[p]: part p is `part` or one of its ancestors.
 std::vector<bool> AncestorsOf(const RigModel& model, int part) {
   std::vector<bool> out(model.parts.size(), false);
@@ -134,7 +128,8 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
   auto reset_seeds = [&] {
     for (std::uint32_t v : fixed_seeds) distance[v] = std::numeric_limits<double>::infinity();
   };
-  if (!any_free && !HasPartBelow(*model, c)) {
+  const bool parts_below = std::count(child_side.begin(), child_side.end(), true) > 1;
+  if (!any_free && !parts_below) {
     reset_seeds();
     return 0;
   }

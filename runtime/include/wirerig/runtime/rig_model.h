@@ -47,9 +47,10 @@ struct PartModel {
 
 // A vertex near a joint follows the joint's skin bridge (joint_bridge.h) by `weight`, on top of
 // where its own part puts it: it moves by weight x (the bridge's image of it - its side's rigid
-// motion of it), its side being the joint's child if the vertex belongs to the child, else the
-// parent (the parent's skin, and the skin of other parts near the joint that the joint's skin
-// spreads over). Its own part's deformation is kept, and several joints' corrections add.
+// motion of it), its side being the joint's child if the vertex belongs to the child or to a
+// part below it (an arm's skin beside a chest's joint), else the parent (the parent's skin, and
+// the skin of other parts near the joint that the joint's skin spreads over). Its own part's
+// deformation is kept, and several joints' corrections add.
 struct JointInfluence {
   std::int32_t joint = -1;   // the joint's child part; -1: none
   std::uint32_t sample = 0;  // the own part's spine sample nearest the vertex at rest
