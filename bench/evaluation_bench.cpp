@@ -14,7 +14,8 @@
 //  * BM_WireEvaluationFloat: the same into float engine buffers (the float evaluation; avx2:1
 //    lets it use eight lanes where the CPU has AVX2, avx2:0 keeps SSE2's four);
 //    BM_ReferenceLinearBlend: linear blend skinning as engines write it (float, one array per
-//    attribute, 4 influences; rig/reference_skinning.h), one bone per part, same pose.
+//    attribute, 4 influences, vectorised as ozz-animation's SkinningJob; rig/reference_skinning.h),
+//    one bone per part, same pose.
 //  * BM_BindingPrecompute: BuildRigModel alone on the subdivided mesh. Target: under 200 ms
 //    for 100k vertices. BM_MakeWorkspace: MakeRigWorkspace on it (flat binding layout).
 // One thread each unless named; meshes, rigs, models and skins are built once, outside the timed

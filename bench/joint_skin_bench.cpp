@@ -3,10 +3,10 @@
 // --joint-report`; see docs/benchmarks.md):
 //  * BM_WireRigSkin: EvaluateRigJob on human.zae's bone-chain rig (18 rigid parts, skin bridges
 //    at every joint), positions and normals (doubles), one thread; BM_WireRigSkinFloat: the
-//    same into float buffers.
+//    same into float buffers; BM_WireRigSkinFloatPositions: positions only.
 //  * BM_LinearBlend, BM_DualQuaternion, BM_CentresOfRotation: ReferenceSkinningJob (float, one
-//    array per attribute, 4 influences, positions and normals) with the bone matrices of the
-//    same pose.
+//    array per attribute, 4 influences, positions and normals; linear blend vectorised as
+//    ozz-animation's SkinningJob is) with the bone matrices of the same pose.
 // The pose bends every joint: elbows and knees 60 degrees, shoulders and hips 45 about their
 // second and first axes, the spine, neck and head 15, wrists and ankles 20.
 #include <benchmark/benchmark.h>
@@ -115,6 +115,25 @@ void BM_WireRigSkinFloat(benchmark::State& state) {
   state.counters["bridged"] = double(workspace.plan->layout.joint_vertices.size());
 }
 BENCHMARK(BM_WireRigSkinFloat)->Unit(benchmark::kMicrosecond);
+
+// The same frame, positions only (what the normals cost is the difference).
+void BM_WireRigSkinFloatPositions(benchmark::State& state) {
+  const Scene& s = Human();
+  RigWorkspace workspace = MakeRigWorkspace(s.model);
+  std::vector<float> positions(3 * s.model.vertices.size());
+  EvaluateRigJob job;
+  job.model = &s.model;
+  job.poses = s.poses;
+  job.workspace = &workspace;
+  job.float_positions = positions;
+  for (auto _ : state) {
+    if (!job.Run()) state.SkipWithError("evaluation failed");
+    benchmark::DoNotOptimize(positions.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["vertices"] = double(s.model.vertices.size());
+}
+BENCHMARK(BM_WireRigSkinFloatPositions)->Unit(benchmark::kMicrosecond);
 
 void RunReference(benchmark::State& state, ReferenceSkinning method) {
   const Scene& s = Human();

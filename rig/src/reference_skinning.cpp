@@ -53,6 +53,42 @@ inline void Rotate(const Quatf& q, float x, float y, float z, float* ox, float* 
   *oz = z + q.w * tz + (q.x * ty - q.y * tx);
 }
 
+// Linear blend skinning as ozz-animation's SkinningJob writes it: each bone's transform as four
+// columns of four floats (one SIMD register each, the fourth lane 0), the influences' columns
+// blended with one multiply-add per column, the point and normal transformed by splatting their
+// coordinates. The normal is renormalised (a blend of rotations is not one).
+using Float4 = float __attribute__((vector_size(16)));
+struct BoneColumns {
+  Float4 column[4];
+};
+
+void LinearBlend(const ReferenceSkin& s, std::span<const BoneMatrix> bones, std::span<float> x,
+                 std::span<float> y, std::span<float> z, std::span<float> nx, std::span<float> ny,
+                 std::span<float> nz) {
+  std::array<BoneColumns, kMaxBones> columns;
+  for (std::size_t b = 0; b < bones.size(); ++b)
+    for (int c = 0; c < 4; ++c)
+      columns[b].column[c] = Float4{bones[b][std::size_t(c)], bones[b][std::size_t(4 + c)],
+                                    bones[b][std::size_t(8 + c)], 0.0f};
+  constexpr int K = ReferenceSkin::kInfluences;
+  const std::size_t n = s.x.size();
+  for (std::size_t v = 0; v < n; ++v) {
+    Float4 c0{}, c1{}, c2{}, c3{};
+    for (int k = 0; k < K; ++k) {
+      const float w = s.weights[v][std::size_t(k)];
+      const BoneColumns& m = columns[s.bones[v][std::size_t(k)]];
+      c0 += w * m.column[0], c1 += w * m.column[1], c2 += w * m.column[2];
+      c3 += w * m.column[3];
+    }
+    const Float4 p = c0 * s.x[v] + c1 * s.y[v] + c2 * s.z[v] + c3;
+    const Float4 q = c0 * s.nx[v] + c1 * s.ny[v] + c2 * s.nz[v];
+    x[v] = p[0], y[v] = p[1], z[v] = p[2];
+    const Float4 qq = q * q;
+    const float inverse = 1.0f / __builtin_sqrtf(qq[0] + qq[1] + qq[2]);
+    nx[v] = q[0] * inverse, ny[v] = q[1] * inverse, nz[v] = q[2] * inverse;
+  }
+}
+
 }  // namespace
 
 const char* ToString(ReferenceSkinning method) {
@@ -178,25 +214,7 @@ void ReferenceSkinningJob::Run() const {
   const std::size_t n = s.x.size();
   constexpr int K = ReferenceSkin::kInfluences;
   if (method == ReferenceSkinning::kLinearBlend) {
-    for (std::size_t v = 0; v < n; ++v) {
-      float m[12] = {};
-      for (int k = 0; k < K; ++k) {
-        const float w = s.weights[v][k];
-        const BoneMatrix& b = bones[s.bones[v][k]];
-        for (int e = 0; e < 12; ++e) m[e] += w * b[e];
-      }
-      const float px = s.x[v], py = s.y[v], pz = s.z[v];
-      x[v] = m[0] * px + m[1] * py + m[2] * pz + m[3];
-      y[v] = m[4] * px + m[5] * py + m[6] * pz + m[7];
-      z[v] = m[8] * px + m[9] * py + m[10] * pz + m[11];
-      const float qx = s.nx[v], qy = s.ny[v], qz = s.nz[v];
-      const float ox = m[0] * qx + m[1] * qy + m[2] * qz, oy = m[4] * qx + m[5] * qy + m[6] * qz,
-                  oz = m[8] * qx + m[9] * qy + m[10] * qz;
-      const float inv = 1.0f / std::sqrt(ox * ox + oy * oy + oz * oz);
-      nx[v] = ox * inv;
-      ny[v] = oy * inv;
-      nz[v] = oz * inv;
-    }
+    LinearBlend(s, bones, x, y, z, nx, ny, nz);
     return;
   }
   // Per bone: rotation quaternion and translation (dual part from them).

@@ -1,7 +1,8 @@
 // The skinning methods engines ship, run on a wire rig's bones for comparison (skin-at-joints
 // benchmark and tests): linear blend skinning, dual-quaternion skinning (Kavan et al. 2008) and
 // skinning with optimized centres of rotation (Le and Hodgins 2016). Written as engines write
-// them: float, one flat array per attribute, at most 4 influences per vertex.
+// them: float, one flat array per attribute, at most 4 influences per vertex; linear blend
+// vectorised the way ozz-animation's SkinningJob is (a bone's transform as four SIMD columns).
 //
 // Bones are the rig's parts; a bone's transform is its part's rigid motion (the turn of its
 // spine's root frame, about its root point). Weights come from the rig's own blend region, so
