@@ -26,7 +26,8 @@ std::string RequireName(const json& value, const std::string& path, const char* 
 Result<MotionMapping> ParseMotionMapping(const nlohmann::json& document) {
   try {
     const JsonObject root(document, "");
-    root.RejectUnknownKeys({"format", "version", "source", "channels", "root_scale", "joints"});
+    root.RejectUnknownKeys(
+        {"format", "version", "source", "channels", "limits", "root_scale", "joints"});
     if (root.String("format") != kFormat)
       throw FieldError("/format", std::string("must be \"") + kFormat + "\"");
     if (root.Integer("version", -1) != MotionMapping::kFormatVersion)
@@ -51,6 +52,18 @@ Result<MotionMapping> ParseMotionMapping(const nlohmann::json& document) {
         mapping.channels = RetargetChannels::kJointAngles;
       } else {
         throw FieldError("/channels", "must be \"rotation\" or \"joint_angles\"");
+      }
+    }
+    if (root.Has("limits")) {
+      const std::string limits = root.String("limits");
+      if (limits == "pass_to_parents") {
+        mapping.limits = RetargetLimits::kPassToParents;
+      } else if (limits == "clamp") {
+        mapping.limits = RetargetLimits::kClamp;
+      } else if (limits == "ignore") {
+        mapping.limits = RetargetLimits::kIgnore;
+      } else {
+        throw FieldError("/limits", "must be \"pass_to_parents\", \"clamp\" or \"ignore\"");
       }
     }
     if (root.Has("root_scale")) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "motion_limits.h"
 #include "motion_rotation.h"
 #include "wirerig/anim/motion_import.h"
 #include "wirerig/rig/name_hint.h"
@@ -244,37 +245,43 @@ Result<RetargetedMotion> RetargetMotion(const MotionCapture& motion, const Motio
     out.root_scale = mapping.unit_scale;
   }
 
-  // Every frame: world rotations, then each part's own turn.
+  // Every frame: the wanted world rotations, fitted to the joints' limits, then each part's
+  // own turn.
   RawClip& clip = out.clip;
   clip.name = options.clip_name;
   clip.duration = first == last ? motion.frame_time : double(last - first) * motion.frame_time;
   std::vector<RawPartTracks> tracks(part_count);
   for (std::size_t p = 0; p < part_count; ++p) tracks[p].part = model.parts[p].name;
+  std::vector<char> driven(part_count);
+  for (std::size_t p = 0; p < part_count; ++p) driven[p] = sources[p].joint >= 0;
+  std::vector<char> hands_up(part_count, 0);
+  if (mapping.limits == RetargetLimits::kPassToParents)
+    hands_up = HandsUpToParent(model, chain_child, driven);
+  JointLimitFit fit(model, driven, std::move(hands_up), mapping.limits != RetargetLimits::kIgnore);
   std::vector<BvhPose> poses;
-  std::vector<Mat3> world(part_count);
+  std::vector<Mat3> wanted(part_count, Mat3::Identity());
   std::vector<std::optional<Vec3>> previous(part_count);
   Vec3 root_start = Vec3::Zero();
   for (std::size_t f = first; f <= last; ++f) {
     PoseBvhFrame(motion, f, poses);
     const double time = double(f - first) * motion.frame_time;
     for (std::size_t p = 0; p < part_count; ++p) {
-      const PartModel& part = model.parts[p];
       const PartSource& source = sources[p];
-      const Mat3 parent_world =
-          part.parent < 0 ? Mat3::Identity() : world[std::size_t(part.parent)];
-      if (source.joint < 0) {
-        world[p] = parent_world;
-        continue;
-      }
+      if (source.joint < 0) continue;
       const BvhPose& pose = poses[std::size_t(source.joint)];
       Mat3 rotation = axes * pose.rotation * axes.transpose() * alignment[p];
-      if (part.parent >= 0 && source.tip.joint >= 0 && rig_bone[p].squaredNorm() > 0.0) {
+      if (model.parts[p].parent >= 0 && source.tip.joint >= 0 && rig_bone[p].squaredNorm() > 0.0) {
         const Vec3 bone = axes * (TipPosition(source.tip, poses) - pose.position);
         if (bone.norm() > tiny)
           rotation = LeastRotation(rotation * rig_bone[p], bone.normalized()) * rotation;
       }
-      world[p] = rotation;
-      const Mat3 turn = parent_world.transpose() * rotation;
+      wanted[p] = rotation;
+    }
+    fit.Fit(wanted);
+    for (std::size_t p = 0; p < part_count; ++p) {
+      const PartModel& part = model.parts[p];
+      if (!driven[p]) continue;
+      const Mat3& turn = fit.turns()[p];
       if (part.parent >= 0 && mapping.channels == RetargetChannels::kJointAngles) {
         const Vec3 angles = ClampJointAngles(part.joint, JointAnglesOf(part.joint, turn));
         tracks[p].channels.joint_angles.keys.push_back({time, angles, Interpolation::kLinear});
@@ -284,8 +291,9 @@ Result<RetargetedMotion> RetargetMotion(const MotionCapture& motion, const Motio
         tracks[p].channels.rotation.keys.push_back({time, vector, Interpolation::kLinear});
       }
       if (part.parent < 0) {
-        if (f == first) root_start = pose.position;
-        const Vec3 shift = out.root_scale * (axes * (pose.position - root_start));
+        const Vec3& position = poses[std::size_t(sources[p].joint)].position;
+        if (f == first) root_start = position;
+        const Vec3 shift = out.root_scale * (axes * (position - root_start));
         tracks[p].channels.translation.keys.push_back({time, shift, Interpolation::kLinear});
       }
     }

@@ -5,12 +5,17 @@
 //    part's rotation is the product of elementary rotations derived here by hand from the
 //    definition (rest alignment, then the capture's world rotation), the played bones point
 //    along the capture's bones and the root moves by the capture's translation times the leg
-//    length ratio; the joint-angle form plays the same pose.
+//    length ratio; the joint-angle form plays the same pose. With limits, a twist beyond the
+//    end's limit: the end's and its parent's turns as derived by hand from the rule
+//    (docs/motion-import.md#joint-limits), the end's world rotation off by exactly what the
+//    limits cannot take.
 //  * 01_01.bvh (CMU): 31 joints, its frame count and rate; retargeted onto human.zae (the
-//    sample scene samples/mocap/human_mocap.scene.json) it plays without a non-finite value,
-//    every mapped bone points along the capture's bone (forward kinematics written here), the
-//    pelvis follows the capture's hips scaled by the leg length ratio, and the knees bend as
-//    the capture's do (past 75 degrees in the jumps).
+//    sample scene samples/mocap/human_mocap.scene.json, limits ignored) it plays without a
+//    non-finite value, every mapped bone points along the capture's bone (forward kinematics
+//    written here), the pelvis follows the capture's hips scaled by the leg length ratio, and the knees bend as
+//    the capture's do (past 75 degrees in the jumps); as checked in (limits passed to parents)
+//    no joint angle passes its limits at any key and the head stays nearer the capture's
+//    rotation than a plain clamp leaves it.
 //  * anim_test.x and Testwuson.X: their animations played through their skeleton rigs carry
 //    every bone's root and tip where Assimp's animated node transforms put the joints.
 //  * bad input is refused with the file and field named: a mapping naming a joint or part that
@@ -337,6 +342,91 @@ TEST(MotionRetarget, ThreeJointChainTurnsAsTheDefinitionSays) {
   fs::remove_all(folder);
 }
 
+// Joint limits. A capture hanging down like the chain (no rest alignment) twists C by 80
+// degrees about its bone (Yrotation -80: about -Y, the bottom joint's Z axis, so the bottom's
+// turn is +80 about Z). The bottom may twist 45, comfortably 0.75 of that (33.75). The middle
+// first takes what lies beyond that within its own comfortable range, the bottom takes back the
+// rest up to its limit, the middle the rest up to its own; the root takes nothing.
+constexpr const char* kHangingTwist = R"(HIERARCHY
+ROOT A
+{
+  OFFSET 0 0 0
+  CHANNELS 6 Xposition Yposition Zposition Zrotation Yrotation Xrotation
+  JOINT B
+  {
+    OFFSET 0 -10 0
+    CHANNELS 3 Zrotation Xrotation Yrotation
+    JOINT C
+    {
+      OFFSET 0 -10 0
+      CHANNELS 3 Zrotation Yrotation Xrotation
+      End Site
+      {
+        OFFSET 0 -5 0
+      }
+    }
+  }
+}
+MOTION
+Frames: 2
+Frame Time: 0.5
+0 0 0 0 0 0 0 0 0 0 0 0
+0 0 0 0 0 0 0 0 0 0 -80 0
+)";
+
+TEST(MotionRetarget, LimitsHandTheExcessToTheParent) {
+  const fs::path folder = TempFolder();
+  const fs::path bvh = WriteFile(folder / "twist.bvh", kHangingTwist);
+  auto play = [&](const std::string& limits, double middle_twist) {
+    json mapping = json::parse(kThreeJointMapping);
+    mapping["limits"] = limits;
+    json scene = ChainScene(bvh, WriteFile(folder / (limits + ".mapping.json"), mapping.dump()));
+    json& parts = scene["rig"]["description"]["parts"];
+    parts[1]["joint"] = {
+        {"type", "ball"}, {"axis", {1, 0, 0}}, {"limits", {{"z", {-middle_twist, middle_twist}}}}};
+    parts[2]["joint"] = {{"type", "ball"}, {"axis", {1, 0, 0}}, {"limits", {{"z", {-45, 45}}}}};
+    return samples::PlayDocument(scene);
+  };
+  struct Case {
+    std::string limits;
+    double middle_limit;
+    double middle, bottom;  // expected twists, degrees
+  };
+  const std::vector<Case> cases = {
+      // 80 - 33.75 = 46.25 > the middle's comfortable 37.5: it takes 37.5, the bottom 42.5.
+      {"pass_to_parents", 50.0, 37.5, 42.5},
+      // The middle's comfortable 15, the bottom back up to 45, the middle to its limit 20: 15
+      // degrees of the capture's twist are lost.
+      {"pass_to_parents", 20.0, 20.0, 45.0},
+      {"clamp", 50.0, 0.0, 45.0},
+      {"ignore", 50.0, 0.0, 80.0}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.limits + ", middle limit " + std::to_string(c.middle_limit));
+    std::unique_ptr<PlayedScene> played = play(c.limits, c.middle_limit);
+    ASSERT_NE(played, nullptr);
+    const Clip& clip = played->playback->clip();
+    const RigModel& model = played->scene.model;
+    const std::size_t middle = played->Part("middle"), bottom = played->Part("bottom");
+    const double t = 0.5;
+    EXPECT_LT((FromVector(clip.parts[middle].rotation.Sample(t)) -
+               JointMatrix(model.parts[middle].joint, Vec3(0, 0, c.middle)))
+                  .norm(),
+              1e-9);
+    EXPECT_LT((FromVector(clip.parts[bottom].rotation.Sample(t)) -
+               JointMatrix(model.parts[bottom].joint, Vec3(0, 0, c.bottom)))
+                  .norm(),
+              1e-9);
+    // The bottom's world rotation against the capture's (Ry(-80)): off by the twist the chain
+    // could not take, about the bone, which still points along the capture's (-Y).
+    const Mat3 world = ChainMotion(model, clip, bottom, t).rotation;
+    const double lost = Eigen::AngleAxisd(world.transpose() * Ry(-80)).angle();
+    EXPECT_NEAR(lost * kDegrees, 80.0 - c.middle - c.bottom, 1e-6);
+    played->Evaluate(t);
+    EXPECT_LT(Angle(PlayedBone(*played, bottom), -Vec3::UnitY()), 1e-6);
+  }
+  fs::remove_all(folder);
+}
+
 // ---------------------------------------------------------------------------------------------
 // CMU 01_01 on the human.
 
@@ -354,8 +444,25 @@ TEST(MotionCapture, LoadsCmu0101) {
   EXPECT_DOUBLE_EQ(m.values.back(), -0.9244);  // the last value of the last line
 }
 
+// The mocap sample's scene with its paths made absolute and its mapping's "limits" set to
+// `limits` (a copy of the mapping in `folder`).
+json HumanMocapScene(const fs::path& folder, const std::string& limits) {
+  const fs::path here = fs::path(WIRERIG_SAMPLES_DIR) / "mocap";
+  json scene = json::parse(std::ifstream(here / "human_mocap.scene.json"));
+  json mapping = json::parse(std::ifstream(here / "human_from_cmu.mapping.json"));
+  mapping["limits"] = limits;
+  scene["mesh"]["file"] = (here / scene["mesh"]["file"].get<std::string>()).string();
+  scene["rig"]["description"] = (here / scene["rig"]["description"].get<std::string>()).string();
+  json& motion = scene["clips"][0]["motion"];
+  motion["file"] = (here / motion["file"].get<std::string>()).string();
+  motion["mapping"] = WriteFile(folder / "mapping.json", mapping.dump()).string();
+  return scene;
+}
+
+// With "limits": "ignore" the capture is reproduced exactly, beyond the rig's limits.
 TEST(HumanMocap, PlaysTheCaptureOnTheHuman) {
-  std::unique_ptr<PlayedScene> played = samples::PlaySample("mocap/human_mocap.scene.json");
+  const fs::path folder = TempFolder();
+  std::unique_ptr<PlayedScene> played = samples::PlayDocument(HumanMocapScene(folder, "ignore"));
   ASSERT_NE(played, nullptr);
   Result<MotionCapture> loaded = LoadBvh(Asset("assimp/BVH/01_01.bvh"));
   ASSERT_TRUE(loaded.ok()) << loaded.error();
@@ -463,6 +570,54 @@ TEST(HumanMocap, PlaysTheCaptureOnTheHuman) {
                                       model.parts[pelvis].spine_points.front().z());
   }
   EXPECT_GT(farthest, 3.0);
+  fs::remove_all(folder);
+}
+
+// The sample as checked in ("limits": "pass_to_parents"): at every key no joint leaves its
+// limits; where the capture turns the neck past them (78 degrees of twist against the chest,
+// 55 bent back) the spine takes the rest, so the head's world rotation stays nearer the
+// capture's than a plain clamp puts it.
+TEST(HumanMocap, StaysWithinTheJointLimits) {
+  const fs::path folder = TempFolder();
+  std::unique_ptr<PlayedScene> sample = samples::PlaySample("mocap/human_mocap.scene.json");
+  std::unique_ptr<PlayedScene> exact = samples::PlayDocument(HumanMocapScene(folder, "ignore"));
+  std::unique_ptr<PlayedScene> clamped = samples::PlayDocument(HumanMocapScene(folder, "clamp"));
+  ASSERT_NE(sample, nullptr);
+  ASSERT_NE(exact, nullptr);
+  ASSERT_NE(clamped, nullptr);
+  const RigModel& model = sample->scene.model;
+  const Clip& clip = sample->playback->clip();
+  const std::size_t head = sample->Part("head");
+  const double frame = 0.0083333;  // the capture's frame time: every key
+  double worst_excess = 0.0, head_error = 0.0, clamped_head_error = 0.0;
+  for (std::size_t k = 0; double(k) * frame <= clip.duration + 1e-9; ++k) {
+    const double t = double(k) * frame;
+    for (std::size_t p = 0; p < model.parts.size(); ++p) {
+      const PartModel& part = model.parts[p];
+      if (part.parent < 0 || clip.parts[p].rotation.IsEmpty()) continue;
+      // The joint angles of the part's turn (X, Y, Z intrinsic about its joint axes, joint.h).
+      const Mat3 local = part.joint.axes.transpose() *
+                         FromVector(clip.parts[p].rotation.Sample(t)) * part.joint.axes;
+      const double b = std::asin(std::clamp(local(0, 2), -1.0, 1.0));
+      const Vec3 angles =
+          Vec3(std::atan2(-local(1, 2), local(2, 2)), b, std::atan2(-local(0, 1), local(0, 0))) *
+          kDegrees;
+      Vec3 excess = (angles - part.joint.max_degrees).cwiseMax(part.joint.min_degrees - angles);
+      if (part.joint.type == JointType::kHinge) excess.tail<2>() = angles.tail<2>().cwiseAbs();
+      worst_excess = std::max(worst_excess, excess.maxCoeff());
+    }
+    const Mat3 wanted = ChainMotion(model, exact->playback->clip(), head, t).rotation;
+    const auto error = [&](const PlayedScene& played) {
+      const Mat3 off =
+          ChainMotion(model, played.playback->clip(), head, t).rotation.transpose() * wanted;
+      return Eigen::AngleAxisd(off).angle() * kDegrees;
+    };
+    head_error = std::max(head_error, error(*sample));
+    clamped_head_error = std::max(clamped_head_error, error(*clamped));
+  }
+  EXPECT_LT(worst_excess, 1e-6);  // degrees beyond a limit, over every joint and key
+  EXPECT_LT(head_error, clamped_head_error);
+  fs::remove_all(folder);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -790,6 +945,10 @@ TEST(MotionErrors, MappingsMustNameJointsAndPartsThatExist) {
   mapping = json::parse(kThreeJointMapping);
   mapping["source"]["up_axis"] = "w";
   EXPECT_EQ(error_with(mapping), prefix + "/source/up_axis: must be \"x\", \"y\" or \"z\"");
+  mapping = json::parse(kThreeJointMapping);
+  mapping["limits"] = "soft";
+  EXPECT_EQ(error_with(mapping),
+            prefix + "/limits: must be \"pass_to_parents\", \"clamp\" or \"ignore\"");
   mapping = json::parse(kThreeJointMapping);
   mapping["source"]["unit_scale"] = -1;
   EXPECT_EQ(error_with(mapping), prefix +

@@ -37,6 +37,10 @@
 //     part (by its rest root point) up to the root part, the sum of the distances between the
 //     root points of consecutive parts, leaving out the root's own segment (hip width); for the
 //     capture, between the mapped joints' rest positions.
+//   * the turns are then fitted to the joints' limits as the mapping's "limits" says
+//     (motion_limits.h; by default a spine, neck or head turn beyond three quarters of its range
+//     is shared with the joints above it, the limbs clamped), so "every mapped bone points where
+//     the capture's does" holds where no limit binds, or everywhere with "limits": "ignore".
 //   * rotation vectors are kept continuous from frame to frame (the angle may pass pi).
 #pragma once
 

@@ -5,6 +5,7 @@
 //   {"format": "wirerig.motion_mapping", "version": 1,
 //    "source": {"up_axis": "y", "unit_scale": 0.056444},
 //    "channels": "rotation",
+//    "limits": "pass_to_parents",
 //    "root_scale": "leg_length",
 //    "joints": {"Hips": "pelvis", "LeftUpLeg": "thigh_l",
 //               "LeftHand": {"part": "hand_l", "tip": "LFingers"}, ...}}
@@ -27,11 +28,26 @@ namespace wirerig {
 
 // What the retargeted clip's tracks are.
 enum class RetargetChannels : int {
-  // `rotation` per part: the capture's motion exactly (rotation tracks are not clamped).
+  // `rotation` per part: each part's turn after RetargetLimits (the runtime does not clamp
+  // rotation tracks).
   kRotation = 0,
   // `joint_angles` per child part (X, Y, Z about its joint axes, clamped to the joint's type
   // and limits when sampled); the root keeps `rotation`.
   kJointAngles = 1,
+};
+
+// What the retarget does where a part's turn leaves its joint's limits (joint.h: per axis, in
+// degrees, and the joint's type).
+enum class RetargetLimits : int {
+  // Clamp the turn to the limits and hand what they refuse to the parent chain, each ancestor
+  // within its own limits (motion_limits.h), so the part's world rotation is kept as well as the
+  // chain's limits allow. The default.
+  kPassToParents = 0,
+  // Clamp each turn to its own limits; the parents do not take the rest.
+  kClamp = 1,
+  // The capture exactly, beyond the limits (rotation tracks; joint_angles are still clamped
+  // when sampled).
+  kIgnore = 2,
 };
 
 // How the root's translation is scaled from file units to metres.
@@ -53,6 +69,7 @@ struct MotionMapping {
   UpAxis up_axis = UpAxis::kY;  // the capture's up axis
   double unit_scale = 1.0;      // metres per capture unit
   RetargetChannels channels = RetargetChannels::kRotation;
+  RetargetLimits limits = RetargetLimits::kPassToParents;
   RootScale root_scale = RootScale::kLegLength;
   std::vector<JointMapping> joints;  // in the file's key order (sorted by joint name)
 };
