@@ -7,7 +7,7 @@
 #include <iostream>
 #include <utility>
 
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 
 namespace wirerig::bench {
 

@@ -11,7 +11,7 @@
 #include "wirerig/anim/bake.h"
 #include "wirerig/anim/gltf_export.h"
 #include "wirerig/anim/scene.h"
-#include "wirerig/rig/output_file.h"
+#include "wirerig/io/output_file.h"
 
 namespace wirerig::cli {
 namespace {

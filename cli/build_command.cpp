@@ -8,8 +8,8 @@
 
 #include "wirerig/anim/clip_asset_export.h"
 #include "wirerig/anim/scene.h"
-#include "wirerig/rig/atomic_file.h"
-#include "wirerig/rig/output_file.h"
+#include "wirerig/io/atomic_file.h"
+#include "wirerig/io/output_file.h"
 #include "wirerig/runtime/rig_asset.h"
 
 namespace wirerig::cli {

@@ -8,7 +8,7 @@
 #include "bake_command.h"
 #include "octopus_scene.h"
 #include "render_command.h"
-#include "wirerig/rig/atomic_file.h"
+#include "wirerig/io/atomic_file.h"
 
 namespace wirerig::cli {
 

@@ -21,7 +21,7 @@
 #include "view_command.h"
 #endif
 #include "wire_command.h"
-#include "wirerig/rig/name_hint.h"
+#include "wirerig/io/name_hint.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"wirerig: character rigging and animation with physically based wire deformations"};

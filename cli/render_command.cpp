@@ -8,7 +8,7 @@
 
 #include "wirerig/anim/bake.h"
 #include "wirerig/anim/scene.h"
-#include "wirerig/rig/output_file.h"
+#include "wirerig/io/output_file.h"
 #include "wirerig/viewer/headless.h"
 #include "wirerig/viewer/scene_frame.h"
 

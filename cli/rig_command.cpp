@@ -7,11 +7,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include "wirerig/io/output_file.h"
 #include "wirerig/rig/automatic_description.h"
 #include "wirerig/rig/joint_skin_report.h"
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/mesh_statistics.h"
-#include "wirerig/rig/output_file.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_file.h"
 #include "wirerig/rig/rig_model_builder.h"

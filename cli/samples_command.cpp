@@ -9,11 +9,11 @@
 
 #include "bake_command.h"
 #include "render_command.h"
-#include "wirerig/rig/atomic_file.h"
-#include "wirerig/rig/input_file.h"
-#include "wirerig/rig/json_fields.h"
-#include "wirerig/rig/json_text.h"
-#include "wirerig/rig/output_file.h"
+#include "wirerig/io/atomic_file.h"
+#include "wirerig/io/input_file.h"
+#include "wirerig/io/json_fields.h"
+#include "wirerig/io/json_text.h"
+#include "wirerig/io/output_file.h"
 
 #ifndef WIRERIG_SAMPLES_DIR
 #define WIRERIG_SAMPLES_DIR "samples"

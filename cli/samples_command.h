@@ -9,7 +9,7 @@
 
 #include <CLI/App.hpp>
 
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 
 namespace wirerig::cli {
 

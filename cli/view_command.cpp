@@ -7,7 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "samples_command.h"
-#include "wirerig/rig/output_file.h"
+#include "wirerig/io/output_file.h"
 #include "wirerig/viewer/scene_viewer.h"
 
 #ifndef WIRERIG_SAMPLES_DIR

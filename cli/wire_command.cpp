@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "wire_table.h"
-#include "wirerig/rig/atomic_file.h"
-#include "wirerig/rig/output_file.h"
+#include "wirerig/io/atomic_file.h"
+#include "wirerig/io/output_file.h"
 #include "wirerig/wire_problem/wire_problem.h"
 
 namespace wirerig::cli {

@@ -14,7 +14,7 @@
 #include "wirerig/anim/clip.h"
 #include "wirerig/anim/clip_json.h"
 #include "wirerig/anim/clip_sampling.h"
-#include "wirerig/rig/json_text.h"
+#include "wirerig/io/json_text.h"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <string>
 
-#include "wirerig/rig/finite.h"
+#include "wirerig/io/finite.h"
 
 namespace wirerig {
 namespace {

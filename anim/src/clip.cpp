@@ -1,6 +1,6 @@
 #include "wirerig/anim/clip.h"
 
-#include "wirerig/rig/name_hint.h"
+#include "wirerig/io/name_hint.h"
 #include "wirerig/runtime/clip_asset.h"
 
 #include <algorithm>

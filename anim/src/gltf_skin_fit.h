@@ -34,7 +34,7 @@
 #include "gltf_mesh.h"
 #include "gltf_skin.h"
 #include "wirerig/anim/baked_animation.h"
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 
 namespace wirerig::gltf {
 

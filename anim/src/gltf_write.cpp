@@ -21,10 +21,10 @@
 
 #include "gltf_buffers.h"
 #include "gltf_paths.h"
-#include "wirerig/rig/atomic_file.h"
-#include "wirerig/rig/input_file.h"
-#include "wirerig/rig/output_file.h"
-#include "wirerig/rig/temp_files.h"
+#include "wirerig/io/atomic_file.h"
+#include "wirerig/io/input_file.h"
+#include "wirerig/io/output_file.h"
+#include "wirerig/io/temp_files.h"
 
 namespace wirerig::gltf {
 namespace {

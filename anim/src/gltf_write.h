@@ -18,7 +18,7 @@
 
 #include <tiny_gltf.h>
 
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 
 namespace wirerig::gltf {
 

@@ -16,7 +16,7 @@
 #include "motion_rotation.h"
 #include "wirerig/anim/clip_json.h"
 #include "wirerig/anim/motion_import.h"
-#include "wirerig/rig/floating_point_hold.h"
+#include "wirerig/io/floating_point_hold.h"
 #include "wirerig/rig/isolated_process.h"
 
 namespace wirerig {

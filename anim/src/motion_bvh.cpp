@@ -7,8 +7,8 @@
 #include <unordered_set>
 
 #include "wirerig/anim/motion_capture.h"
-#include "wirerig/rig/floating_point_hold.h"
-#include "wirerig/rig/input_file.h"
+#include "wirerig/io/floating_point_hold.h"
+#include "wirerig/io/input_file.h"
 
 namespace wirerig {
 namespace {

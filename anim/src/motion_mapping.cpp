@@ -4,9 +4,9 @@
 #include <nlohmann/json.hpp>
 
 #include "wirerig/anim/motion_mapping.h"
-#include "wirerig/rig/input_file.h"
-#include "wirerig/rig/json_fields.h"
-#include "wirerig/rig/json_text.h"
+#include "wirerig/io/input_file.h"
+#include "wirerig/io/json_fields.h"
+#include "wirerig/io/json_text.h"
 
 namespace wirerig {
 namespace {

@@ -6,7 +6,7 @@
 #include "motion_limits.h"
 #include "motion_rotation.h"
 #include "wirerig/anim/motion_import.h"
-#include "wirerig/rig/name_hint.h"
+#include "wirerig/io/name_hint.h"
 
 namespace wirerig {
 namespace {

@@ -1,6 +1,6 @@
 #include "wirerig/anim/profile_dynamics.h"
 
-#include "wirerig/rig/name_hint.h"
+#include "wirerig/io/name_hint.h"
 
 #include <algorithm>
 #include <cmath>

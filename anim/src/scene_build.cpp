@@ -9,10 +9,10 @@
 
 #include "procedural_generators.h"
 #include "wirerig/anim/scene.h"
+#include "wirerig/io/name_hint.h"
 #include "wirerig/rig/automatic_description.h"
 #include "wirerig/rig/mesh_import.h"
 #include "wirerig/rig/mesh_subdivision.h"
-#include "wirerig/rig/name_hint.h"
 #include "wirerig/rig/rig_file.h"
 #include "wirerig/rig/rig_model_builder.h"
 

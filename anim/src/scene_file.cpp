@@ -7,13 +7,13 @@
 #include "procedural_generators.h"
 #include "wirerig/anim/clip_json.h"
 #include "wirerig/anim/scene.h"
-#include "wirerig/rig/finite.h"
+#include "wirerig/io/finite.h"
 
-#include "wirerig/rig/atomic_file.h"
-#include "wirerig/rig/input_file.h"
+#include "wirerig/io/atomic_file.h"
+#include "wirerig/io/input_file.h"
+#include "wirerig/io/json_text.h"
+#include "wirerig/io/name_hint.h"
 #include "wirerig/rig/json_physics.h"
-#include "wirerig/rig/json_text.h"
-#include "wirerig/rig/name_hint.h"
 
 namespace wirerig {
 namespace {

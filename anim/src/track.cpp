@@ -4,7 +4,7 @@
 #include <cmath>
 #include <type_traits>
 
-#include "wirerig/rig/finite.h"
+#include "wirerig/io/finite.h"
 
 namespace wirerig {
 namespace {

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "wirerig/rig/finite.h"
+#include "wirerig/io/finite.h"
 
 namespace wirerig {
 namespace {

@@ -7,8 +7,8 @@
 // MPFR (the Delaunay triangulation used for the medial poles has exact constructions).
 #include "wirerig/rig/curve_skeleton.h"
 
-#include "wirerig/rig/finite.h"
-#include "wirerig/rig/floating_point_hold.h"
+#include "wirerig/io/finite.h"
+#include "wirerig/io/floating_point_hold.h"
 #include "wirerig/rig/watertight_proxy.h"
 
 #include <fenv.h>

@@ -6,8 +6,8 @@
 #include <string>
 #include <string_view>
 
+#include "wirerig/io/result.h"
 #include "wirerig/rig/mesh_import.h"
-#include "wirerig/rig/result.h"
 
 namespace wirerig {
 

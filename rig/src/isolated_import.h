@@ -4,8 +4,8 @@
 
 #include <filesystem>
 
+#include "wirerig/io/result.h"
 #include "wirerig/rig/mesh_import.h"
-#include "wirerig/rig/result.h"
 
 namespace wirerig {
 

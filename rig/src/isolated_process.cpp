@@ -1,5 +1,5 @@
 #include "wirerig/rig/isolated_process.h"
-#include "path_messages.h"
+#include "wirerig/io/path_messages.h"
 
 #include <fcntl.h>
 #include <poll.h>

@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "wirerig/rig/json_fields.h"
+#include "wirerig/io/json_fields.h"
 
 namespace wirerig {
 namespace {

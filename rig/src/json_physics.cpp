@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "wirerig/rig/name_hint.h"
+#include "wirerig/io/name_hint.h"
 
 namespace wirerig {
 namespace {

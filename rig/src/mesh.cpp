@@ -1,6 +1,6 @@
 // Welding render vertices by position, and bounds.
 #include "wirerig/rig/mesh.h"
-#include "wirerig/rig/finite.h"
+#include "wirerig/io/finite.h"
 
 #include <algorithm>
 #include <bit>

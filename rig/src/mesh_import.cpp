@@ -1,7 +1,7 @@
 // Importing meshes with Assimp: bad-input checks before Assimp runs, node transforms, up axis
 // and units, materials, skeleton and skin, then welding.
 #include "wirerig/rig/mesh_import.h"
-#include "path_messages.h"
+#include "wirerig/io/path_messages.h"
 
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "isolated_import.h"
-#include "wirerig/rig/input_file.h"
+#include "wirerig/io/input_file.h"
 
 namespace wirerig {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "wirerig/rig/name_hint.h"
+#include "wirerig/io/name_hint.h"
 
 namespace wirerig {
 namespace {

@@ -1,7 +1,7 @@
 #include "wirerig/rig/rig_description.h"
 
-#include "wirerig/rig/json_text.h"
-#include "wirerig/rig/name_hint.h"
+#include "wirerig/io/json_text.h"
+#include "wirerig/io/name_hint.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "wirerig/rig/input_file.h"
-#include "wirerig/rig/json_fields.h"
+#include "wirerig/io/input_file.h"
+#include "wirerig/io/json_fields.h"
 #include "wirerig/rig/json_physics.h"
 
 namespace wirerig {

@@ -1,17 +1,17 @@
 #include "wirerig/rig/rig_file.h"
 
-#include "wirerig/rig/json_text.h"
+#include "wirerig/io/json_text.h"
 
 #include <cmath>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
-#include "wirerig/rig/atomic_file.h"
-#include "wirerig/rig/input_file.h"
-#include "wirerig/rig/json_fields.h"
+#include "wirerig/io/atomic_file.h"
+#include "wirerig/io/input_file.h"
+#include "wirerig/io/json_fields.h"
+#include "wirerig/io/name_hint.h"
 #include "wirerig/rig/json_physics.h"
-#include "wirerig/rig/name_hint.h"
 #include "wirerig/rig/rig_description.h"
 
 namespace wirerig {

@@ -1,7 +1,7 @@
 // Whether a mesh is watertight; the wrap itself is in watertight_wrap.cpp (CGAL).
 #include "wirerig/rig/watertight_proxy.h"
 
-#include "wirerig/rig/finite.h"
+#include "wirerig/io/finite.h"
 
 #include <algorithm>
 #include <array>

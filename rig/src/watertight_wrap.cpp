@@ -11,8 +11,8 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/alpha_wrap_3.h>
 
-#include "wirerig/rig/finite.h"
-#include "wirerig/rig/floating_point_hold.h"
+#include "wirerig/io/finite.h"
+#include "wirerig/io/floating_point_hold.h"
 #include "wirerig/rig/watertight_proxy.h"
 
 namespace wirerig {

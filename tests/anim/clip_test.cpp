@@ -2,7 +2,7 @@
 // turns tracks into the runtime's loads exactly as documented.
 #include "wirerig/anim/clip.h"
 #include "wirerig/anim/clip_json.h"
-#include "wirerig/rig/json_fields.h"
+#include "wirerig/io/json_fields.h"
 
 #include <gtest/gtest.h>
 

@@ -34,8 +34,8 @@
 #include <nlohmann/json.hpp>
 
 #include "support/test_folder.h"
+#include "wirerig/io/temp_files.h"
 #include "wirerig/procedural/shapes.h"
-#include "wirerig/rig/temp_files.h"
 
 namespace wirerig {
 namespace {

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "anim_test_rigs.h"
-#include "wirerig/rig/floating_point_hold.h"
+#include "wirerig/io/floating_point_hold.h"
 
 namespace wirerig {
 namespace {

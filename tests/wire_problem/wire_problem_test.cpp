@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "wirerig/rig/input_file.h"
+#include "wirerig/io/input_file.h"
 
 namespace wirerig {
 namespace {

@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "gl.h"
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 
 namespace wirerig::gl {
 

@@ -6,7 +6,7 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
-#include "wirerig/rig/atomic_file.h"
+#include "wirerig/io/atomic_file.h"
 
 // Debian's libstb ships stb_image and stb_image_write compiled (libstb.so): the
 // implementations are linked, not defined here.

@@ -4,7 +4,7 @@
 #include <charconv>
 #include <sstream>
 
-#include "wirerig/rig/input_file.h"
+#include "wirerig/io/input_file.h"
 
 namespace wirerig {
 namespace {

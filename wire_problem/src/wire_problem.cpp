@@ -1,5 +1,5 @@
 #include "wirerig/wire_problem/wire_problem.h"
-#include "wirerig/rig/json_text.h"
+#include "wirerig/io/json_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "wirerig/rig/input_file.h"
-#include "wirerig/rig/json_fields.h"
+#include "wirerig/io/input_file.h"
+#include "wirerig/io/json_fields.h"
 #include "wirerig/rig/json_physics.h"
 #include "wirerig/runtime/axial_job.h"
 

@@ -21,7 +21,7 @@
 
 #include "wirerig/anim/clip.h"
 #include "wirerig/anim/clip_sampling.h"
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 #include "wirerig/runtime/articulated_body.h"
 #include "wirerig/runtime/rig_evaluation.h"
 

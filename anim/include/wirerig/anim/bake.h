@@ -11,8 +11,8 @@
 #include "wirerig/anim/baked_animation.h"
 #include "wirerig/anim/clip.h"
 #include "wirerig/anim/playback.h"
+#include "wirerig/io/result.h"
 #include "wirerig/rig/mesh.h"
-#include "wirerig/rig/result.h"
 #include "wirerig/runtime/rig_model.h"
 
 namespace wirerig {

@@ -31,7 +31,7 @@
 #include <vector>
 
 #include "wirerig/anim/track.h"
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 #include "wirerig/runtime/bending_job.h"
 #include "wirerig/runtime/rig_model.h"
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "wirerig/anim/playback.h"
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 #include "wirerig/runtime/clip_asset.h"
 
 namespace wirerig {

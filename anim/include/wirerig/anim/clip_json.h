@@ -12,7 +12,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "wirerig/anim/clip.h"
-#include "wirerig/rig/json_fields.h"
+#include "wirerig/io/json_fields.h"
 
 namespace wirerig {
 

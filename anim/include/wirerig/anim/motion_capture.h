@@ -27,7 +27,7 @@
 #include <string_view>
 #include <vector>
 
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 #include "wirerig/runtime/conventions.h"
 
 namespace wirerig {

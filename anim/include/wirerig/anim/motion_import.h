@@ -54,10 +54,10 @@
 #include "wirerig/anim/clip.h"
 #include "wirerig/anim/motion_capture.h"
 #include "wirerig/anim/motion_mapping.h"
-#include "wirerig/rig/json_fields.h"
+#include "wirerig/io/json_fields.h"
+#include "wirerig/io/result.h"
 #include "wirerig/rig/mesh.h"
 #include "wirerig/rig/mesh_import.h"
-#include "wirerig/rig/result.h"
 #include "wirerig/runtime/rig_model.h"
 
 namespace wirerig {

@@ -21,8 +21,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "wirerig/io/result.h"
 #include "wirerig/rig/mesh_import.h"
-#include "wirerig/rig/result.h"
 
 namespace wirerig {
 

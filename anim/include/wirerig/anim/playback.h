@@ -22,7 +22,7 @@
 #include "wirerig/anim/profile_dynamics.h"
 #include "wirerig/anim/rigid_part.h"
 #include "wirerig/anim/wire_dynamics.h"
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 #include "wirerig/runtime/rig_evaluation.h"
 
 namespace wirerig {

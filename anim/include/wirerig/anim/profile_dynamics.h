@@ -44,7 +44,7 @@
 #include <vector>
 
 #include "wirerig/anim/wire_dynamics.h"
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 #include "wirerig/runtime/clip_asset.h"
 #include "wirerig/runtime/modal_wire.h"
 #include "wirerig/runtime/rig_evaluation.h"

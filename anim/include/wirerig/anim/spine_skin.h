@@ -21,8 +21,8 @@
 #include <vector>
 
 #include "wirerig/anim/baked_animation.h"
+#include "wirerig/io/result.h"
 #include "wirerig/rig/mesh.h"
-#include "wirerig/rig/result.h"
 #include "wirerig/runtime/rig_model.h"
 
 namespace wirerig {

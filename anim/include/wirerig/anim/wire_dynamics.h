@@ -31,7 +31,7 @@
 #include <vector>
 
 #include "wirerig/anim/clip_sampling.h"
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 #include "wirerig/runtime/modal_wire.h"
 #include "wirerig/runtime/rig_evaluation.h"
 

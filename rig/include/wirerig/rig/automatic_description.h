@@ -5,8 +5,8 @@
 #include <optional>
 #include <string>
 
+#include "wirerig/io/result.h"
 #include "wirerig/rig/mesh.h"
-#include "wirerig/rig/result.h"
 #include "wirerig/rig/rig_description.h"
 
 namespace wirerig {

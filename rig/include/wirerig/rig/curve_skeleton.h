@@ -4,8 +4,8 @@
 
 #include <vector>
 
+#include "wirerig/io/result.h"
 #include "wirerig/rig/mesh.h"
-#include "wirerig/rig/result.h"
 #include "wirerig/rig/rig_description.h"
 
 namespace wirerig {

@@ -9,8 +9,8 @@
 #include <functional>
 #include <string>
 
+#include "wirerig/io/result.h"
 #include "wirerig/rig/mesh_import.h"
-#include "wirerig/rig/result.h"
 
 namespace wirerig {
 

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "wirerig/rig/json_fields.h"
+#include "wirerig/io/json_fields.h"
 #include "wirerig/runtime/material.h"
 #include "wirerig/runtime/section.h"
 

@@ -22,8 +22,8 @@
 #include <string>
 #include <string_view>
 
+#include "wirerig/io/result.h"
 #include "wirerig/rig/mesh.h"
-#include "wirerig/rig/result.h"
 
 namespace wirerig {
 

@@ -11,8 +11,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "wirerig/io/result.h"
 #include "wirerig/rig/mesh.h"
-#include "wirerig/rig/result.h"
 #include "wirerig/rig/rig_description.h"
 #include "wirerig/rig/triangle_bvh.h"
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "wirerig/io/result.h"
 #include "wirerig/rig/mesh.h"
 #include "wirerig/rig/profile_curves.h"
-#include "wirerig/rig/result.h"
 #include "wirerig/rig/rig.h"
 #include "wirerig/rig/rig_description.h"
 

@@ -17,9 +17,9 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "wirerig/io/result.h"
 #include "wirerig/rig/joint_description.h"
 #include "wirerig/rig/mesh_import.h"
-#include "wirerig/rig/result.h"
 #include "wirerig/runtime/material.h"
 
 namespace wirerig {

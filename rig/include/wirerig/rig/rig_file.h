@@ -7,7 +7,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 #include "wirerig/rig/rig.h"
 
 namespace wirerig {

@@ -12,8 +12,8 @@
 // kNearer times as far from it as from its own, within kAroundRadii of its radius) follows it.
 #pragma once
 
+#include "wirerig/io/result.h"
 #include "wirerig/rig/mesh.h"
-#include "wirerig/rig/result.h"
 #include "wirerig/rig/rig.h"
 #include "wirerig/runtime/rig_model.h"
 

@@ -28,8 +28,8 @@
 // merges; -1 (the nearest visible curve, part_assignment.h) when no kept part takes it.
 #pragma once
 
+#include "wirerig/io/result.h"
 #include "wirerig/rig/mesh.h"
-#include "wirerig/rig/result.h"
 #include "wirerig/rig/rig_description.h"
 
 namespace wirerig {

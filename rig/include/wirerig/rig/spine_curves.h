@@ -5,8 +5,8 @@
 
 #include <span>
 
+#include "wirerig/io/result.h"
 #include "wirerig/rig/profile_curves.h"
-#include "wirerig/rig/result.h"
 #include "wirerig/runtime/curve.h"
 
 namespace wirerig {

@@ -8,8 +8,8 @@
 #include <span>
 #include <string>
 
+#include "wirerig/io/result.h"
 #include "wirerig/rig/mesh.h"
-#include "wirerig/rig/result.h"
 
 namespace wirerig {
 

@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 #include "wirerig/viewer/camera.h"
 #include "wirerig/viewer/input_script.h"
 #include "wirerig/viewer/picking.h"

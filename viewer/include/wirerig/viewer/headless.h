@@ -13,7 +13,7 @@
 #include <span>
 #include <string>
 
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 #include "wirerig/viewer/camera.h"
 #include "wirerig/viewer/image.h"
 #include "wirerig/viewer/render_frame.h"

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 
 namespace wirerig {
 

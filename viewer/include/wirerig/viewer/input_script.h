@@ -20,7 +20,7 @@
 #include <string_view>
 #include <vector>
 
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 
 namespace wirerig {
 

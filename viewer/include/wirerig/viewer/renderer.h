@@ -16,7 +16,7 @@
 #include <memory>
 #include <string_view>
 
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 #include "wirerig/viewer/camera.h"
 #include "wirerig/viewer/render_frame.h"
 

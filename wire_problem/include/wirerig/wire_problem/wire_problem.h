@@ -12,7 +12,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 #include "wirerig/runtime/bending_job.h"
 #include "wirerig/runtime/loads.h"
 #include "wirerig/runtime/material.h"

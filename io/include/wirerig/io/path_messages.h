@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 
 namespace wirerig::detail {
 

@@ -1,5 +1,5 @@
 // Tests for ParseJsonText: syntax errors give the line and column, never an exception.
-#include "wirerig/rig/json_text.h"
+#include "wirerig/io/json_text.h"
 
 #include <string>
 

@@ -1,9 +1,9 @@
-#include "wirerig/rig/json_text.h"
+#include "wirerig/io/json_text.h"
 
 #include <algorithm>
 #include <string>
 
-#include "wirerig/rig/floating_point_hold.h"
+#include "wirerig/io/floating_point_hold.h"
 
 namespace wirerig {
 

@@ -1,5 +1,5 @@
-#include "wirerig/rig/output_file.h"
-#include "path_messages.h"
+#include "wirerig/io/output_file.h"
+#include "wirerig/io/path_messages.h"
 
 #include <fcntl.h>
 #include <unistd.h>

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 
 namespace wirerig {
 

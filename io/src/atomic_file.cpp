@@ -1,4 +1,4 @@
-#include "wirerig/rig/atomic_file.h"
+#include "wirerig/io/atomic_file.h"
 
 #include <unistd.h>
 #include <cerrno>
@@ -6,8 +6,8 @@
 #include <fstream>
 #include <system_error>
 
-#include "wirerig/rig/output_file.h"
-#include "wirerig/rig/temp_files.h"
+#include "wirerig/io/output_file.h"
+#include "wirerig/io/temp_files.h"
 
 namespace wirerig {
 

@@ -1,4 +1,4 @@
-#include "wirerig/rig/json_fields.h"
+#include "wirerig/io/json_fields.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "wirerig/rig/name_hint.h"
+#include "wirerig/io/name_hint.h"
 
 namespace wirerig {
 

@@ -1,5 +1,5 @@
 // Tests for name hints: edit distance, the nearest known name, and the hint text.
-#include "wirerig/rig/name_hint.h"
+#include "wirerig/io/name_hint.h"
 
 #include <string>
 #include <vector>

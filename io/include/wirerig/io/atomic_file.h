@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string_view>
 
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 
 namespace wirerig {
 

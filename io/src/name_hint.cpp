@@ -1,4 +1,4 @@
-#include "wirerig/rig/name_hint.h"
+#include "wirerig/io/name_hint.h"
 
 #include <algorithm>
 #include <numeric>

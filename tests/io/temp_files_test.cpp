@@ -1,7 +1,7 @@
 // Temporary files: SIGINT, SIGTERM and the other terminating signals remove the registered ones and
 // still end the process by that signal; a stale temporary file of a dead process is removed by the
 // next write beside its target, a live process's is kept.
-#include "wirerig/rig/temp_files.h"
+#include "wirerig/io/temp_files.h"
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "wirerig/rig/atomic_file.h"
+#include "wirerig/io/atomic_file.h"
 
 namespace wirerig {
 namespace {

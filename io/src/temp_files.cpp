@@ -1,4 +1,4 @@
-#include "wirerig/rig/temp_files.h"
+#include "wirerig/io/temp_files.h"
 
 #include <signal.h>
 #include <unistd.h>

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "wirerig/rig/result.h"
+#include "wirerig/io/result.h"
 
 namespace wirerig {
 

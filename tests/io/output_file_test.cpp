@@ -1,8 +1,8 @@
 // Tests for CheckOutputFile: extension, directory, missing and unwritable folders, nothing
 // written by the check.
-#include "wirerig/rig/output_file.h"
+#include "wirerig/io/output_file.h"
 
-#include "wirerig/rig/atomic_file.h"
+#include "wirerig/io/atomic_file.h"
 
 #include <sys/stat.h>
 #include <unistd.h>

@@ -1,7 +1,7 @@
 // Input files: a directory, a FIFO, a device and an oversized file are refused by name before
 // anything reads them (a FIFO would block, /dev/zero would read forever); a regular file is
 // read whole.
-#include "wirerig/rig/input_file.h"
+#include "wirerig/io/input_file.h"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>

@@ -1,5 +1,5 @@
-#include "wirerig/rig/input_file.h"
-#include "path_messages.h"
+#include "wirerig/io/input_file.h"
+#include "wirerig/io/path_messages.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
