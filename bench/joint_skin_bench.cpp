@@ -3,7 +3,7 @@
 // --joint-report`; see docs/benchmarks.md):
 //  * BM_WireRigSkin: EvaluateRigJob on human.zae's bone-chain rig (18 rigid parts, skin bridges
 //    at every joint), positions and normals (doubles), one thread; BM_WireRigSkinFloat: the
-//    same into float buffers; BM_WireRigSkinFloatPositions: positions only.
+//    same into float buffers (normals:0: positions only).
 //  * BM_LinearBlend, BM_DualQuaternion, BM_CentresOfRotation: ReferenceSkinningJob (float, one
 //    array per attribute, 4 influences, positions and normals; linear blend vectorised as
 //    ozz-animation's SkinningJob is) with the bone matrices of the same pose.
@@ -95,7 +95,8 @@ void BM_WireRigSkin(benchmark::State& state) {
 }
 BENCHMARK(BM_WireRigSkin)->Unit(benchmark::kMicrosecond);
 
-// The same frame into float engine buffers (the float evaluation, four vertices at a time).
+// The same frame into float engine buffers (the float evaluation, four vertices at a time);
+// normals:0 writes positions only (what the normals cost is the difference).
 void BM_WireRigSkinFloat(benchmark::State& state) {
   const Scene& s = Human();
   RigWorkspace workspace = MakeRigWorkspace(s.model);
@@ -105,7 +106,7 @@ void BM_WireRigSkinFloat(benchmark::State& state) {
   job.poses = s.poses;
   job.workspace = &workspace;
   job.float_positions = positions;
-  job.float_normals = normals;
+  if (state.range(0) == 1) job.float_normals = normals;
   for (auto _ : state) {
     if (!job.Run()) state.SkipWithError("evaluation failed");
     benchmark::DoNotOptimize(positions.data());
@@ -114,26 +115,7 @@ void BM_WireRigSkinFloat(benchmark::State& state) {
   state.counters["vertices"] = double(s.model.vertices.size());
   state.counters["bridged"] = double(workspace.plan->layout.joint_vertices.size());
 }
-BENCHMARK(BM_WireRigSkinFloat)->Unit(benchmark::kMicrosecond);
-
-// The same frame, positions only (what the normals cost is the difference).
-void BM_WireRigSkinFloatPositions(benchmark::State& state) {
-  const Scene& s = Human();
-  RigWorkspace workspace = MakeRigWorkspace(s.model);
-  std::vector<float> positions(3 * s.model.vertices.size());
-  EvaluateRigJob job;
-  job.model = &s.model;
-  job.poses = s.poses;
-  job.workspace = &workspace;
-  job.float_positions = positions;
-  for (auto _ : state) {
-    if (!job.Run()) state.SkipWithError("evaluation failed");
-    benchmark::DoNotOptimize(positions.data());
-    benchmark::ClobberMemory();
-  }
-  state.counters["vertices"] = double(s.model.vertices.size());
-}
-BENCHMARK(BM_WireRigSkinFloatPositions)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_WireRigSkinFloat)->ArgName("normals")->Arg(1)->Arg(0)->Unit(benchmark::kMicrosecond);
 
 void RunReference(benchmark::State& state, ReferenceSkinning method) {
   const Scene& s = Human();
