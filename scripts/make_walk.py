@@ -28,6 +28,7 @@ PERIOD = 1.0        # s per gait cycle (two steps)
 STANCE = 0.6        # fraction of the cycle a foot is on the ground
 STRIDE = 0.45       # m: how far the foot moves relative to the hip over a stance
 LIFT = 0.10         # m: the swing foot's highest lift
+HEEL_DOWN = 0.4     # the fraction of the swing over which the toe-off's heel rise goes back down
 DROP = 0.025        # m: the pelvis lowered from rest (mean), so the leg reaches without locking
 BOB = 0.012         # m: the pelvis's rise and fall, twice per cycle
 YAW = 0.05          # rad: the pelvis's turn each way
@@ -115,12 +116,24 @@ def two_bone(leg, forward, down):
 def leg_angles(leg, t, phase):
     """(hip, knee, ankle) X angles in degrees. The foot is kept flat; where the ankle's
     dorsiflexion limit forbids that (late stance), the foot pivots on its toes: the heel rises
-    and the ankle with it, so the toes stay on the ground."""
-    forward, lift = foot_path(phase)
+    and the ankle with it, so the toes stay on the ground. In the swing the heel comes back
+    down smoothly from where toe-off left it (no jump of the knee at the stance's end)."""
+    if phase >= STANCE:
+        s = (phase - STANCE) / (1.0 - STANCE)
+        toe_off = leg_pose(leg, t, -STRIDE / 2, 0.0, None)[3]
+        fixed = toe_off * (1.0 - smooth(min(1.0, s / HEEL_DOWN)))
+        return leg_pose(leg, t, *foot_path(phase), fixed)[:3]
+    return leg_pose(leg, t, *foot_path(phase), None)[:3]
+
+
+def leg_pose(leg, t, forward, lift, fixed_pitch):
+    """(hip, knee, ankle, pitch): the ankle `forward` of its hip and lifted by `lift` with the
+    foot pitched toes-down by `fixed_pitch` (rad), or, when that is None, by what planting it
+    on its toes takes (found by iteration from a flat foot)."""
     hip_height = leg["hip"][1] - DROP + pelvis_bob(t)
     toe_forward, toe_down = leg["toe"]
-    pitch = 0.0  # rad, toes down
-    for _ in range(8):
+    pitch = 0.0 if fixed_pitch is None else fixed_pitch  # rad, toes down
+    for _ in range(8 if fixed_pitch is None else 1):
         # The ankle where the toes stay where a flat foot would put them.
         ankle_forward = forward + toe_forward - (toe_forward * math.cos(pitch) - toe_down * math.sin(pitch))
         ankle_lift = lift - toe_down + (toe_forward * math.sin(pitch) + toe_down * math.cos(pitch))
@@ -129,8 +142,9 @@ def leg_angles(leg, t, phase):
         hip_x = -math.degrees(thigh - leg["thigh_rest"])
         knee_x = math.degrees((thigh - shin) - (leg["thigh_rest"] - leg["shin_rest"]))
         ankle_x = min(max(-(hip_x + knee_x) + math.degrees(pitch), -20.0), 45.0)
-        pitch = max(0.0, math.radians(hip_x + knee_x + ankle_x)) if lift == 0.0 else 0.0
-    return hip_x, knee_x, ankle_x
+        if fixed_pitch is None:
+            pitch = max(0.0, math.radians(hip_x + knee_x + ankle_x))
+    return hip_x, knee_x, ankle_x, pitch
 
 
 def key(t, value):
@@ -154,7 +168,9 @@ def main():
         tracks["spine_2"].append(key(t, [3.0, 0.0, -3.0 * swing]))
         tracks["chest"].append(key(t, [2.0, 0.0, -3.0 * swing]))
         for side, offset in (("l", 0.0), ("r", 0.5)):
-            phase = (cycle + offset + STANCE / 2) % 1.0  # t = 0: mid-stance on the left
+            # t = 0: mid-stance on the left; rounded so a key on the stance's end is the same
+            # phase in every cycle
+            phase = round((cycle + offset + STANCE / 2) % 1.0, 9) % 1.0
             hip, knee, ankle = leg_angles(legs[side], t, phase)
             tracks["thigh_" + side].append(key(t, [hip, 0.0, 0.0]))
             tracks["shin_" + side].append(key(t, [knee, 0.0, 0.0]))

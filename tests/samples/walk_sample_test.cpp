@@ -6,7 +6,8 @@
 //    walk), keeps its sole on the ground (the foot's lowest skin point within 2.5 cm of the rest
 //    mesh's lowest point) and does not slide (its ankle moves under 2.5 cm along the ground
 //    over each contact);
-//  * the skin holds on every frame: no folded edge, no edge stretched beyond 2x.
+//  * the skin holds on every frame: no folded edge, no edge stretched beyond 2x;
+//  * the gait loops: every keyed joint angle repeats each 1 s cycle.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,6 +24,28 @@ namespace {
 namespace WIRERIG_TEST_FILE {
 
 constexpr double kFrame = 1.0 / 30.0;  // s
+constexpr double kCycle = 1.0;         // s: the gait's period (scripts/make_walk.py)
+
+// A looping gait: each part's keyed joint angles at t and t + one cycle agree (a key computed
+// differently in one cycle, as a rounding of the phase once made the knee's toe-off key, fails).
+TEST(WalkSample, EveryKeyedJointAngleRepeatsEachCycle) {
+  std::unique_ptr<PlayedScene> played = PlaySample("walk/walk.scene.json");
+  ASSERT_NE(played, nullptr);
+  const Clip& clip = played->playback->clip();
+  std::size_t tracks = 0;
+  for (std::size_t p = 0; p < clip.parts.size(); ++p) {
+    const Track<Vec3>& angles = clip.parts[p].joint_angles;
+    if (angles.IsEmpty()) continue;
+    ++tracks;
+    // At the keys (20 per cycle): between them the cubic's tangents at the clip's ends differ.
+    for (int k = 0; double(k) / 20.0 + kCycle <= clip.duration + 1e-9; ++k) {
+      const double t = double(k) / 20.0;
+      ASSERT_LT((angles.Sample(t + kCycle) - angles.Sample(t)).norm(), 0.01)
+          << played->scene.model.parts[p].name << " at t = " << t;  // degrees
+    }
+  }
+  EXPECT_GE(tracks, 12u);
+}
 
 TEST(WalkSample, KneesAndElbowsBendPastSixtyDegrees) {
   std::unique_ptr<PlayedScene> played = PlaySample("walk/walk.scene.json");
