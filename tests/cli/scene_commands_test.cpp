@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "bake_command.h"
@@ -16,6 +18,9 @@
 
 #ifndef WIRERIG_SOURCE_DIR
 #error "the tests need WIRERIG_SOURCE_DIR (set by CMake)"
+#endif
+#ifndef WIRERIG_ASSET_DIR
+#error "the tests need WIRERIG_ASSET_DIR (set by CMake)"
 #endif
 
 namespace wirerig::cli {
@@ -119,6 +124,107 @@ TEST(BakeCommand, FailuresNameTheFileAndFieldAndWriteNothing) {
   const CommandRun run = Bake(options);
   EXPECT_EQ(run.code, 1);
   EXPECT_FALSE(fs::exists(options.output));
+}
+
+// Writes `text` to the file `name` in the test's output folder.
+fs::path WriteFile(const std::string& name, const std::string& text) {
+  const fs::path path = Output(name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+// A scene of human.zae on `description` with `clip` (JSON) and optional `playback` (JSON).
+fs::path HumanScene(const std::string& name, const std::string& clip,
+                    const std::string& description, const std::string& playback = "") {
+  return WriteFile(name, R"({"format": "wirerig.scene", "version": 1, "name": "t",
+    "mesh": {"file": ")" + std::string(WIRERIG_ASSET_DIR) +
+                             R"(/assimp/Collada/human.zae"},
+    "rig": {"description": ")" +
+                             description + R"("}, "default_kind": "rigid",)" +
+                             (playback.empty() ? "" : R"("playback": )" + playback + ",") +
+                             R"("clips": [)" + clip + "]}");
+}
+
+// Issue 12's bad input (motion capture, joint limits, tracking gains): each refused naming the
+// scene, the file at fault and its field (a BVH's line), exit 1, no .glb.
+TEST(BakeCommand, BadMotionLimitsAndGainsNameTheFileAndFieldAndWriteNothing) {
+  const std::string samples = std::string(WIRERIG_SOURCE_DIR) + "/samples";
+  const std::string human = samples + "/rigs/human.description.json";
+  const std::string bvh = std::string(WIRERIG_ASSET_DIR) + "/assimp/BVH/01_01.bvh";
+  // The checked-in mapping with one CMU joint renamed to one the capture does not have.
+  std::ifstream mapping_file(samples + "/mocap/human_from_cmu.mapping.json");
+  std::string mapping((std::istreambuf_iterator<char>(mapping_file)), {});
+  const std::string from = "\"LeftForeArm\"";
+  ASSERT_NE(mapping.find(from), std::string::npos);
+  mapping.replace(mapping.find(from), from.size(), "\"LeftElbowX\"");
+  WriteFile("bad_bone.mapping.json", mapping);
+  // A capture whose second frame has one value fewer than its channels.
+  WriteFile("short.bvh", R"(HIERARCHY
+ROOT Hips
+{
+  OFFSET 0 0 0
+  CHANNELS 6 Xposition Yposition Zposition Zrotation Yrotation Xrotation
+  JOINT Spine
+  {
+    OFFSET 0 1 0
+    CHANNELS 3 Zrotation Yrotation Xrotation
+    End Site
+    {
+      OFFSET 0 1 0
+    }
+  }
+}
+MOTION
+Frames: 2
+Frame Time: 0.0333333
+0 0 0 0 0 0 0 0 0
+0 0 0 0 0 0 0 0
+)");
+  // The human's description with spine_1's X limits the wrong way round.
+  std::ifstream description_file(human);
+  std::string description((std::istreambuf_iterator<char>(description_file)), {});
+  const std::string limits = "\"x\": [-20, 35]";
+  ASSERT_NE(description.find(limits), std::string::npos);
+  description.replace(description.find(limits), limits.size(), "\"x\": [35, -20]");
+  const std::string relative_mesh = "../../.cache/assets/assimp/Collada/human.zae";
+  ASSERT_NE(description.find(relative_mesh), std::string::npos);
+  description.replace(description.find(relative_mesh), relative_mesh.size(),
+                      std::string(WIRERIG_ASSET_DIR) + "/assimp/Collada/human.zae");
+  const fs::path bad_limit = WriteFile("bad_limit.description.json", description);
+  const std::string keyed = R"({"name": "c", "duration": 1.0, "parts": [{"part": "shin_l",
+      "joint_angles": {"keys": [[0, [10, 0, 0], "cubic"], [1, [20, 0, 0], "cubic"]]}}]})";
+  struct Case {
+    fs::path scene;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {HumanScene("bad_bone.scene.json",
+                  R"({"name": "m", "motion": {"file": ")" + bvh +
+                      R"(", "mapping": "bad_bone.mapping.json", "frames": [1, 4]}})",
+                  human),
+       "bad_bone.mapping.json: /joints/LeftElbowX: " + bvh + " has no joint of this name"},
+      {HumanScene("short.scene.json",
+                  R"({"name": "m", "motion": {"file": "short.bvh", "mapping": ")" + samples +
+                      R"(/mocap/human_from_cmu.mapping.json"}})",
+                  human),
+       "short.bvh: line 20: frame 1 has 8 values; the hierarchy's 2 joints have 9 channels"},
+      {HumanScene("bad_limit.scene.json", keyed, bad_limit.string()),
+       "bad_limit.description.json: /parts/1/joint/limits/x: the lower limit 35"},
+      {HumanScene("bad_gain.scene.json", keyed, human,
+                  R"({"tracking": {"frequency": 1000.0, "damping_ratio": 0.7}})"),
+       "bad_gain.scene.json: /playback/tracking/frequency: must be in (0, 100] Hz"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.scene.string());
+    BakeCommandOptions options;
+    options.scene = c.scene.string();
+    options.output = Output("bad_input.glb").string();
+    const CommandRun run = Bake(options);
+    EXPECT_EQ(run.code, 1);
+    EXPECT_NE(run.err.find(c.message), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find(c.scene.filename().string()), std::string::npos) << run.err;
+    EXPECT_FALSE(fs::exists(options.output));
+  }
 }
 
 // A procedural beam scene (a cylinder, one steel part) whose clip pushes the tip with
