@@ -5,6 +5,7 @@
 //    joint drives, so f and zeta are the joint's own natural frequency and damping ratio);
 //  * with damping ratio 0.3 it overshoots by the textbook exp(-pi zeta / sqrt(1 - zeta^2));
 //  * scrubbing back and forth gives the same frames (fixed steps from cached states);
+//  * a keyed force and gravity each hold the hinge where the PD spring balances their moment;
 //  * bad options are refused naming the field.
 #include <gtest/gtest.h>
 
@@ -138,6 +139,29 @@ TEST(ArticulatedTracking, KeyedForceBalancesTheTrackingSpring) {
   const double simulated = std::abs(HingeDegrees(*played, 3.0)) * std::numbers::pi / 180.0;
   std::printf("[ measured ] hinge %.5f rad, balance %.5f rad\n", simulated, phi);
   EXPECT_GT(phi, 0.05);  // a visible deflection
+  EXPECT_NEAR(simulated, phi, 0.01 * phi);
+}
+
+// Gravity across the hanging arm (along -Z, the hinge about X) swings the lower segment until
+// the PD spring balances its weight's moment: kp |phi| = m g d cos(phi), d the distance of the
+// segment's centre of mass from the hinge (it hangs straight below the joint at rest).
+TEST(ArticulatedTracking, GravityBalancesTheTrackingSpring) {
+  constexpr double kFrequency = 1.2, kGravity = 9.81;
+  json scene = ArmScene(kFrequency, 1.0);
+  scene["clips"][0]["parts"][0].erase("joint_angles");
+  scene["playback"]["tracking"]["gravity"] = {0, 0, -kGravity};
+  std::unique_ptr<Played> played = Play(scene);
+  ASSERT_NE(played, nullptr);
+  const ArticulatedBodyDesc& lower = played->playback->tracking()->model().body(1);
+  const Vec3 c = lower.center_of_mass;  // body axes: X is the hinge
+  const double d = std::hypot(c.y(), c.z());
+  const double inertia = lower.inertia(0, 0) + lower.mass * d * d;
+  const double kp = std::pow(2.0 * std::numbers::pi * kFrequency, 2) * inertia;
+  double phi = 0.0;  // kp phi = m g d cos(phi), by fixed-point iteration
+  for (int k = 0; k < 50; ++k) phi = lower.mass * kGravity * d * std::cos(phi) / kp;
+  const double simulated = std::abs(HingeDegrees(*played, 5.0)) * std::numbers::pi / 180.0;
+  std::printf("[ measured ] hinge %.5f rad, balance %.5f rad\n", simulated, phi);
+  EXPECT_GT(phi, 0.05);  // a visible sag
   EXPECT_NEAR(simulated, phi, 0.01 * phi);
 }
 
