@@ -5,7 +5,8 @@
 //    joint drives, so f and zeta are the joint's own natural frequency and damping ratio);
 //  * with damping ratio 0.3 it overshoots by the textbook exp(-pi zeta / sqrt(1 - zeta^2));
 //  * scrubbing back and forth gives the same frames (fixed steps from cached states);
-//  * a keyed force and gravity each hold the hinge where the PD spring balances their moment;
+//  * a keyed force, a keyed torque and gravity each hold the hinge where the PD spring balances
+//    their moment;
 //  * bad options are refused naming the field.
 #include <gtest/gtest.h>
 
@@ -139,6 +140,24 @@ TEST(ArticulatedTracking, KeyedForceBalancesTheTrackingSpring) {
   const double simulated = std::abs(HingeDegrees(*played, 3.0)) * std::numbers::pi / 180.0;
   std::printf("[ measured ] hinge %.5f rad, balance %.5f rad\n", simulated, phi);
   EXPECT_GT(phi, 0.05);  // a visible deflection
+  EXPECT_NEAR(simulated, phi, 0.01 * phi);
+}
+
+// A keyed torque about the hinge holds it where the PD spring balances it: kp |phi| = T.
+TEST(ArticulatedTracking, KeyedTorqueBalancesTheTrackingSpring) {
+  constexpr double kFrequency = 2.0, kTorque = 2.0;
+  json scene = ArmScene(kFrequency, 1.0);
+  scene["clips"][0]["parts"][0].erase("joint_angles");
+  scene["clips"][0]["parts"][0]["rigid_torque"] = {{"keys", {{0, {kTorque, 0, 0}}}}};
+  std::unique_ptr<Played> played = Play(scene);
+  ASSERT_NE(played, nullptr);
+  const ArticulatedBodyDesc& lower = played->playback->tracking()->model().body(1);
+  const Vec3 c = lower.center_of_mass;  // body axes: X is the hinge
+  const double inertia = lower.inertia(0, 0) + lower.mass * (c.y() * c.y() + c.z() * c.z());
+  const double phi = kTorque / (std::pow(2.0 * std::numbers::pi * kFrequency, 2) * inertia);
+  const double simulated = std::abs(HingeDegrees(*played, 3.0)) * std::numbers::pi / 180.0;
+  std::printf("[ measured ] hinge %.5f rad, balance %.5f rad\n", simulated, phi);
+  EXPECT_GT(phi, 0.05);  // a visible turn
   EXPECT_NEAR(simulated, phi, 0.01 * phi);
 }
 
