@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -238,6 +239,42 @@ TEST(DancerSample, LimbsFollowTheirJointChainsSwingWideAndTheDanceLoops) {
   for (std::size_t v = 0; v < end.size(); ++v)
     jump = std::max(jump, (end[v] - played->positions[v]).norm());
   EXPECT_LT(jump, 1e-3);
+}
+
+// The angle (degrees) between two parts' bone chords (spine start to end) now, less at rest.
+double ChordAngleChange(const PlayedScene& played, std::size_t a, std::size_t b) {
+  auto chord = [](const std::vector<Vec3>& spine) {
+    return Vec3(spine.back() - spine.front()).normalized();
+  };
+  auto angle = [](const Vec3& u, const Vec3& v) {
+    return std::acos(std::clamp(u.dot(v), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  };
+  const auto& now = played.playback->workspace().spine_points;
+  const RigModel& model = played.scene.model;
+  return angle(chord(now[a]), chord(now[b])) -
+         angle(chord(model.parts[a].spine_points), chord(model.parts[b].spine_points));
+}
+
+// The dance reaches its keyed extremes as played: the knees bend 85 degrees (hinges: the
+// shin's chord turns that far against the thigh's), the arms rise overhead (the upper arm's
+// chord turns over 100 degrees toward the chest's).
+TEST(DancerSample, ReachesItsKeyedJointAngles) {
+  std::unique_ptr<PlayedScene> played = PlaySample("dancer/dancer.scene.json");
+  ASSERT_NE(played, nullptr);
+  double knee_l = 0.0, knee_r = 0.0, arm_l = 0.0, arm_r = 0.0;
+  for (double t = 0.0; t < 8.0; t += 1.0 / 30.0) {
+    played->Evaluate(t);
+    const PlayedScene& p = *played;
+    knee_l = std::max(knee_l, ChordAngleChange(p, p.Part("thigh_l"), p.Part("shin_l")));
+    knee_r = std::max(knee_r, ChordAngleChange(p, p.Part("thigh_r"), p.Part("shin_r")));
+    arm_l = std::max(arm_l, -ChordAngleChange(p, p.Part("chest"), p.Part("upper_arm_l")));
+    arm_r = std::max(arm_r, -ChordAngleChange(p, p.Part("chest"), p.Part("upper_arm_r")));
+  }
+  std::printf("[ measured ] knees %.1f %.1f, arms %.1f %.1f degrees\n", knee_l, knee_r, arm_l,
+              arm_r);
+  EXPECT_GT(std::min(knee_l, knee_r), 80.0);  // keyed 85
+  EXPECT_GT(std::min(arm_l, arm_r), 100.0);   // keyed 110: from 45 degrees below level to
+                                              // within 30 of vertical
 }
 
 TEST(HumanSamples, EveryKeyedJointAngleStaysInsideItsLimits) {
