@@ -116,9 +116,25 @@ TEST(ArticulatedTracking, ScrubbingGivesTheSameFrames) {
   EXPECT_EQ(played->positions, first);
 }
 
+// The lower segment's PD stiffness about the hinge: kp = (2 pi f)^2 I, I its inertia about the
+// hinge (from its mass properties; body axes: X is the hinge).
+double HingeStiffness(const Played& played, double frequency) {
+  const ArticulatedBodyDesc& lower = played.playback->tracking()->model().body(1);
+  const Vec3 c = lower.center_of_mass;
+  const double inertia = lower.inertia(0, 0) + lower.mass * (c.y() * c.y() + c.z() * c.z());
+  return std::pow(2.0 * std::numbers::pi * frequency, 2) * inertia;
+}
+
+// The hinge at time t holds `balance` (rad, a visible turn), to 1%.
+void ExpectHingeAt(Played& played, double t, double balance) {
+  const double simulated = std::abs(HingeDegrees(played, t)) * std::numbers::pi / 180.0;
+  std::printf("[ measured ] hinge %.5f rad, balance %.5f rad\n", simulated, balance);
+  EXPECT_GT(balance, 0.05);
+  EXPECT_NEAR(simulated, balance, 0.01 * balance);
+}
+
 // A keyed force at the lower segment's tip, fixed in the world across the arm, holds the hinge
-// where the PD spring balances its moment: kp |phi| = F L cos(phi), kp = (2 pi f)^2 I with I
-// the segment's inertia about the hinge (from its mass properties).
+// where the PD spring balances its moment: kp |phi| = F L cos(phi).
 TEST(ArticulatedTracking, KeyedForceBalancesTheTrackingSpring) {
   constexpr double kFrequency = 2.0, kForce = 4.0;
   json scene = ArmScene(kFrequency, 1.0);
@@ -128,19 +144,13 @@ TEST(ArticulatedTracking, KeyedForceBalancesTheTrackingSpring) {
   std::unique_ptr<Played> played = Play(scene);
   ASSERT_NE(played, nullptr);
   const ArticulatedModel& model = played->playback->tracking()->model();
-  const ArticulatedBodyDesc& lower = model.body(1);
-  const Vec3 c = lower.center_of_mass;  // body axes: X is the hinge
-  const double inertia = lower.inertia(0, 0) + lower.mass * (c.y() * c.y() + c.z() * c.z());
-  const double kp = std::pow(2.0 * std::numbers::pi * kFrequency, 2) * inertia;
+  const double kp = HingeStiffness(*played, kFrequency);
   // The joint's world position (the root's frame is the world's axes at its joint) down to the
   // force's point (0, 0, 0).
   const double arm = (model.body(0).joint_position + model.body(1).joint_position).y();
   double phi = 0.0;  // kp phi = F L cos(phi), by fixed-point iteration
   for (int k = 0; k < 50; ++k) phi = kForce * arm * std::cos(phi) / kp;
-  const double simulated = std::abs(HingeDegrees(*played, 3.0)) * std::numbers::pi / 180.0;
-  std::printf("[ measured ] hinge %.5f rad, balance %.5f rad\n", simulated, phi);
-  EXPECT_GT(phi, 0.05);  // a visible deflection
-  EXPECT_NEAR(simulated, phi, 0.01 * phi);
+  ExpectHingeAt(*played, 3.0, phi);
 }
 
 // A keyed torque about the hinge holds it where the PD spring balances it: kp |phi| = T.
@@ -151,14 +161,7 @@ TEST(ArticulatedTracking, KeyedTorqueBalancesTheTrackingSpring) {
   scene["clips"][0]["parts"][0]["rigid_torque"] = {{"keys", {{0, {kTorque, 0, 0}}}}};
   std::unique_ptr<Played> played = Play(scene);
   ASSERT_NE(played, nullptr);
-  const ArticulatedBodyDesc& lower = played->playback->tracking()->model().body(1);
-  const Vec3 c = lower.center_of_mass;  // body axes: X is the hinge
-  const double inertia = lower.inertia(0, 0) + lower.mass * (c.y() * c.y() + c.z() * c.z());
-  const double phi = kTorque / (std::pow(2.0 * std::numbers::pi * kFrequency, 2) * inertia);
-  const double simulated = std::abs(HingeDegrees(*played, 3.0)) * std::numbers::pi / 180.0;
-  std::printf("[ measured ] hinge %.5f rad, balance %.5f rad\n", simulated, phi);
-  EXPECT_GT(phi, 0.05);  // a visible turn
-  EXPECT_NEAR(simulated, phi, 0.01 * phi);
+  ExpectHingeAt(*played, 3.0, kTorque / HingeStiffness(*played, kFrequency));
 }
 
 // Gravity across the hanging arm (along -Z, the hinge about X) swings the lower segment until
@@ -172,16 +175,11 @@ TEST(ArticulatedTracking, GravityBalancesTheTrackingSpring) {
   std::unique_ptr<Played> played = Play(scene);
   ASSERT_NE(played, nullptr);
   const ArticulatedBodyDesc& lower = played->playback->tracking()->model().body(1);
-  const Vec3 c = lower.center_of_mass;  // body axes: X is the hinge
-  const double d = std::hypot(c.y(), c.z());
-  const double inertia = lower.inertia(0, 0) + lower.mass * d * d;
-  const double kp = std::pow(2.0 * std::numbers::pi * kFrequency, 2) * inertia;
+  const double d = std::hypot(lower.center_of_mass.y(), lower.center_of_mass.z());
+  const double kp = HingeStiffness(*played, kFrequency);
   double phi = 0.0;  // kp phi = m g d cos(phi), by fixed-point iteration
   for (int k = 0; k < 50; ++k) phi = lower.mass * kGravity * d * std::cos(phi) / kp;
-  const double simulated = std::abs(HingeDegrees(*played, 5.0)) * std::numbers::pi / 180.0;
-  std::printf("[ measured ] hinge %.5f rad, balance %.5f rad\n", simulated, phi);
-  EXPECT_GT(phi, 0.05);  // a visible sag
-  EXPECT_NEAR(simulated, phi, 0.01 * phi);
+  ExpectHingeAt(*played, 5.0, phi);
 }
 
 TEST(ArticulatedTracking, BadOptionsAreRefusedNamingTheField) {
