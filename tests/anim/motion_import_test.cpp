@@ -12,9 +12,9 @@
 //  * 01_01.bvh (CMU): 31 joints, its frame count and rate; retargeted onto human.zae (the
 //    sample scene samples/mocap/human_mocap.scene.json, limits ignored) it plays without a
 //    non-finite value, every mapped bone points along the capture's bone (forward kinematics
-//    written here), the pelvis follows the capture's hips scaled by the leg length ratio, and the knees bend as
-//    the capture's do (past 75 degrees in the jumps); as checked in (limits passed to parents)
-//    no joint angle passes its limits at any key and the head stays nearer the capture's
+//    written here), the pelvis follows the capture's hips scaled by the leg length ratio, and the
+//    knees bend as the capture's do (past 75 degrees in the jumps); as checked in (limits passed to
+//    parents) no joint angle passes its limits at any key and the head stays nearer the capture's
 //    rotation than a plain clamp leaves it.
 //  * anim_test.x and Testwuson.X: their animations played through their skeleton rigs carry
 //    every bone's root and tip where Assimp's animated node transforms put the joints.
