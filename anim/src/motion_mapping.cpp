@@ -44,38 +44,20 @@ Result<MotionMapping> ParseMotionMapping(const nlohmann::json& document) {
         throw FieldError(source.PathOf("unit_scale"),
                          "must be a finite number of metres per unit in [1e-9, 1e9]");
     }
-    if (root.Has("channels")) {
-      const std::string channels = root.String("channels");
-      if (channels == "rotation") {
-        mapping.channels = RetargetChannels::kRotation;
-      } else if (channels == "joint_angles") {
-        mapping.channels = RetargetChannels::kJointAngles;
-      } else {
-        throw FieldError("/channels", "must be \"rotation\" or \"joint_angles\"");
-      }
-    }
-    if (root.Has("limits")) {
-      const std::string limits = root.String("limits");
-      if (limits == "pass_to_parents") {
-        mapping.limits = RetargetLimits::kPassToParents;
-      } else if (limits == "clamp") {
-        mapping.limits = RetargetLimits::kClamp;
-      } else if (limits == "ignore") {
-        mapping.limits = RetargetLimits::kIgnore;
-      } else {
-        throw FieldError("/limits", "must be \"pass_to_parents\", \"clamp\" or \"ignore\"");
-      }
-    }
-    if (root.Has("root_scale")) {
-      const std::string scale = root.String("root_scale");
-      if (scale == "leg_length") {
-        mapping.root_scale = RootScale::kLegLength;
-      } else if (scale == "unit") {
-        mapping.root_scale = RootScale::kUnit;
-      } else {
-        throw FieldError("/root_scale", "must be \"leg_length\" or \"unit\"");
-      }
-    }
+    mapping.channels =
+        root.Keyword<RetargetChannels>("channels",
+                                       {{"rotation", RetargetChannels::kRotation},
+                                        {"joint_angles", RetargetChannels::kJointAngles}},
+                                       mapping.channels);
+    mapping.limits =
+        root.Keyword<RetargetLimits>("limits",
+                                     {{"pass_to_parents", RetargetLimits::kPassToParents},
+                                      {"clamp", RetargetLimits::kClamp},
+                                      {"ignore", RetargetLimits::kIgnore}},
+                                     mapping.limits);
+    mapping.root_scale = root.Keyword<RootScale>(
+        "root_scale", {{"leg_length", RootScale::kLegLength}, {"unit", RootScale::kUnit}},
+        mapping.root_scale);
     const JsonObject joints = root.Object("joints");
     for (const auto& item : root.Required("joints").items()) {
       const std::string path = joints.PathOf(item.key());

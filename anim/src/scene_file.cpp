@@ -234,16 +234,9 @@ PlaybackOptions ReadPlayback(const JsonObject& o) {
   if (!(std::isfinite(playback.rigid_step) && playback.rigid_step > 0.0 &&
         playback.rigid_step <= 1.0))
     throw FieldError(o.PathOf("rigid_step"), "must be in (0, 1] s");
-  if (o.Has("integrator")) {
-    const std::string name = o.String("integrator");
-    if (name == "rk4") {
-      playback.integrator = RigidIntegrator::kRk4;
-    } else if (name == "momentum") {
-      playback.integrator = RigidIntegrator::kMomentum;
-    } else {
-      throw FieldError(o.PathOf("integrator"), "must be \"rk4\" or \"momentum\"");
-    }
-  }
+  playback.integrator = o.Keyword<RigidIntegrator>(
+      "integrator", {{"rk4", RigidIntegrator::kRk4}, {"momentum", RigidIntegrator::kMomentum}},
+      playback.integrator);
   const int interval = o.Integer("checkpoint_interval", 24);
   if (interval < 1) throw FieldError(o.PathOf("checkpoint_interval"), "must be at least 1");
   playback.checkpoint_interval = static_cast<std::size_t>(interval);

@@ -128,4 +128,15 @@ Vec3 ReadVector3(const nlohmann::json& value, const std::string& path) {
   return v;
 }
 
+std::string MustBeOneOf(std::span<const std::string_view> names) {
+  std::string out = "must be ";
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) out += i + 1 == names.size() ? " or " : ", ";
+    out += '"';
+    out.append(names[i]);
+    out += '"';
+  }
+  return out;
+}
+
 }  // namespace wirerig

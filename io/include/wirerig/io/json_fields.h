@@ -5,9 +5,11 @@
 #pragma once
 
 #include <initializer_list>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -21,6 +23,9 @@ struct FieldError : std::runtime_error {
       : std::runtime_error(field_path + ": " + reason), path(std::move(field_path)) {}
   std::string path;
 };
+
+// "must be \"a\", \"b\" or \"c\"": the message of a keyword that is none of `names`.
+std::string MustBeOneOf(std::span<const std::string_view> names);
 
 // A view of one JSON object at a path. The referenced json must outlive the view.
 class JsonObject {
@@ -46,6 +51,20 @@ class JsonObject {
   bool Bool(std::string_view key, bool fallback) const;
   std::string String(std::string_view key) const;
   Vec3 Vector3(std::string_view key, const Vec3& fallback) const;
+  // The optional keyword field `key`: the value paired with its name in `choices`, `fallback`
+  // when absent; any other string throws FieldError ("must be \"a\", \"b\" or \"c\"").
+  template <class T>
+  T Keyword(std::string_view key, std::initializer_list<std::pair<std::string_view, T>> choices,
+            T fallback) const {
+    if (!Has(key)) return fallback;
+    const std::string name = String(key);
+    std::vector<std::string_view> names;
+    for (const auto& [choice, value] : choices) {
+      if (choice == name) return value;
+      names.push_back(choice);
+    }
+    throw FieldError(PathOf(key), MustBeOneOf(names));
+  }
 
  private:
   const nlohmann::json& json_;
