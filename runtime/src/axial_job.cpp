@@ -85,12 +85,13 @@ Status AxialJob::Run() const {
   if (normal_force.empty()) return Status::Ok();
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const double v = samples[i];
-    // Above the support N sums the loads beyond v; below it, minus the loads before v.
+    // Above the support N sums the loads beyond v; below it, minus the loads before v. At the
+    // wire's ends too, the interior side's value: a load on the end face counts.
     const bool above = v > v0 || (v == v0 && v0 < 1.0);
     double n = 0.0;
     for (const AxialPointLoad& load : point_loads) {
-      if (above && load.at > v) n += load.force;
-      if (!above && load.at < v) n -= load.force;
+      if (above && (load.at > v || (v == 1.0 && load.at == 1.0))) n += load.force;
+      if (!above && (load.at < v || (v == 0.0 && load.at == 0.0))) n -= load.force;
     }
     for (const AxialLineLoad& load : line_loads) {
       const double f = load.force_per_length * length;

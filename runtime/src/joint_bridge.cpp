@@ -73,6 +73,11 @@ Mat3 CrossSectionScale(const Vec3& v, const Vec3& a, double area, double limb_ra
   return scale;
 }
 
+// Scales by `along` along the unit vector t and by `across` in the plane normal to it.
+Mat3 AxialScale(const Vec3& t, double along, double across) {
+  return across * Mat3::Identity() + (along - across) * t * t.transpose();
+}
+
 // Curvature x inward normal of a curve with velocity v and acceleration a.
 Vec3 Bend(const Vec3& v, const Vec3& a) {
   const double speed2 = v.squaredNorm();
@@ -101,8 +106,7 @@ RestBridge MakeRestBridge(const BridgeEnds& rest) {
     out.points[k] = curve.At(u);
     const Vec3 velocity = curve.Derivative(u);
     out.curvature[k] = Curvature(velocity, curve.SecondDerivative(u));
-    const double simpson = (k == 0 || k == kBridgeSegments) ? 1.0 : (k % 2 ? 4.0 : 2.0);
-    out.length += simpson * velocity.norm();
+    out.speed[k] = velocity.norm();
   }
   return out;
 }
@@ -161,33 +165,39 @@ void SampleJointBridge(const JointModel& joint, const RestBridge& rest_bridge,
                        const BridgeEnds& posed, const Mat3& parent_rotation,
                        const Mat3& child_rotation, BridgeSamples* out) {
   const BridgeEnds& rest = rest_bridge.ends;
-  out->parent_turn = parent_rotation;
-  out->parent_offset = posed.start - parent_rotation * rest.start;
-  out->child_turn = child_rotation;
-  out->child_offset = posed.end - child_rotation * rest.end;
+  out->parent_turn = parent_rotation * AxialScale(rest.start_tangent, 1.0, posed.start_scale);
+  out->parent_offset = posed.start - out->parent_turn * rest.start;
+  out->child_turn = child_rotation * AxialScale(rest.end_tangent, 1.0, posed.end_scale);
+  out->child_offset = posed.end - out->child_turn * rest.end;
   const Hermite curve = CurveOf(posed);
   const Quat parent(parent_rotation);
   const Quat relative = (parent.conjugate() * Quat(child_rotation)).normalized();
   Quat swing, twist;
   SwingTwist(relative, joint.axes.col(2), &swing, &twist);
-  // Area growth 1 + c bump(u), bump = 4u(1 - u): 1 at both ends (the sections meet the rigid
-  // sides unscaled) and c chosen so the bridge keeps its rest volume, integral of area x speed
-  // (Simpson's rule over the samples), times the joint's growth_scale (the mesh's skin is no
-  // tube of constant section about the curve: the builder fits it).
+  // Area growth s(u)^2 (1 + c bump(u)), s the ends' in-plane scales blended by smoothstep(u)
+  // and bump = 4u(1 - u): the sides' own sections at both ends, and c chosen so the bridge keeps
+  // the volume of its flesh, integral of area x speed (Simpson's rule over the samples): the
+  // rest bridge's, each section scaled by s(u)^2 and stretched by 1 at the start to the child's
+  // stretch at the end (smoothstep(u)), times the joint's growth_scale (the mesh's skin is no
+  // tube of constant section about the curve: the builder fits it). A straight limb strained
+  // evenly keeps its sections: c = 0.
   // The curves' velocities and accelerations at the samples, computed once.
   std::array<Vec3, kBridgeSegments + 1> velocity, acceleration;
-  double bent = 0.0, bumped = 0.0;
+  std::array<double, kBridgeSegments + 1> scale;
+  double flesh = 0.0, bent = 0.0, bumped = 0.0;
   for (int k = 0; k <= kBridgeSegments; ++k) {
     const double u = double(k) / kBridgeSegments;
     velocity[k] = curve.Derivative(u);
     acceleration[k] = curve.SecondDerivative(u);
+    const double blend = SmoothStep(0.0, 1.0, u);
+    scale[k] = posed.start_scale + blend * (posed.end_scale - posed.start_scale);
     const double simpson = (k == 0 || k == kBridgeSegments) ? 1.0 : (k % 2 ? 4.0 : 2.0);
-    const double speed = velocity[k].norm();
-    bent += simpson * speed;
-    bumped += simpson * 4.0 * u * (1.0 - u) * speed;
+    const double area = simpson * scale[k] * scale[k];
+    flesh += area * (1.0 + blend * (posed.end_stretch - 1.0)) * rest_bridge.speed[k];
+    bent += area * velocity[k].norm();
+    bumped += 4.0 * u * (1.0 - u) * area * velocity[k].norm();
   }
-  const double growth =
-      bumped > 0.0 ? joint.growth_scale * (rest_bridge.length - bent) / bumped : 0.0;
+  const double growth = bumped > 0.0 ? joint.growth_scale * (flesh - bent) / bumped : 0.0;
   // swing^u and twist^u at u_k = k / kBridgeSegments as powers of their first step.
   const Quat swing_step = ScaleRotation(swing, 1.0 / kBridgeSegments);
   const Quat twist_step = ScaleRotation(twist, 1.0 / kBridgeSegments);
@@ -200,9 +210,12 @@ void SampleJointBridge(const JointModel& joint, const RestBridge& rest_bridge,
     const Mat3 rotation = (parent * swing_u * twist_u).toRotationMatrix();
     swing_u = (swing_u * swing_step).normalized();
     twist_u = (twist_u * twist_step).normalized();
-    const double area = std::clamp(1.0 + growth * 4.0 * u * (1.0 - u), 0.25, 4.0);
-    sample.turn = rotation;
-    sample.turn_offset = sample.centre - rotation * rest_centre;
+    const double area =
+        std::clamp(scale[k] * scale[k] * (1.0 + growth * 4.0 * u * (1.0 - u)), 0.25, 4.0);
+    const double speed = velocity[k].norm();
+    sample.turn =
+        speed > 0.0 ? AxialScale(velocity[k] / speed, 1.0, scale[k]) * rotation : rotation;
+    sample.turn_offset = sample.centre - sample.turn * rest_centre;
     sample.inward = Inward(velocity[k], acceleration[k], rest_bridge.curvature[k]);
     sample.map = CrossSectionScale(velocity[k], acceleration[k], area, joint.radius) * rotation;
     sample.map_offset = sample.centre - sample.map * rest_centre;

@@ -25,9 +25,26 @@ Mat3 SpineTurn(const PartModel& part, const RigWorkspace& w, std::size_t i, doub
   return FrameAxes(moved) * FrameAxes(rest).transpose();
 }
 
+// How part i's flesh at spine coordinate v in [0, 1] is strained: stretched along the spine by
+// 1 + axial strain (a deformable part's; else 1) and, with preserve_volume, scaled across it by
+// 1 / sqrt(stretch) (its volume kept; else 1).
+struct SectionStrain {
+  double stretch = 1.0, scale = 1.0;
+};
+SectionStrain SectionStrainAt(const RigModel& model, const RigWorkspace& w, std::size_t i, double v,
+                              bool preserve_volume) {
+  if (model.parts[i].kind != SpineKind::kDeformable) return {};
+  const std::vector<double>& strain = w.strain[i];
+  const double x = std::clamp(v, 0.0, 1.0) * double(strain.size() - 1);
+  const std::size_t k = std::min(static_cast<std::size_t>(x), strain.size() - 2);
+  const double f = x - double(k);
+  const double stretch = std::max(1.0 + (1.0 - f) * strain[k] + f * strain[k + 1], 1e-6);
+  return {stretch, preserve_volume ? 1.0 / std::sqrt(stretch) : 1.0};
+}
+
 // Each bridged joint's skin bridge for this frame, and the spine samples' undo matrices the
-// vertices on bridges go back to rest space through.
-void SampleBridges(const RigModel& model, RigWorkspace& w) {
+// vertices on bridges go back to rest space through (their turn, stretch and scale undone).
+void SampleBridges(const RigModel& model, RigWorkspace& w, bool preserve_volume) {
   const RigEvaluationLayout& layout = w.plan->layout;
   if (layout.joint_vertices.empty()) return;
   for (std::uint32_t c : layout.bridged_parts) {
@@ -42,14 +59,24 @@ void SampleBridges(const RigModel& model, RigWorkspace& w) {
     Vec3 rest_end, rest_end_tangent;
     const Mat3 child_turn =
         SpineTurn(child, w, c, end_v, &rest_end, &posed.end, &rest_end_tangent, &posed.end_tangent);
+    const SectionStrain parent_strain =
+        SectionStrainAt(model, w, child.parent, child.attachment, preserve_volume);
+    const SectionStrain child_strain = SectionStrainAt(model, w, c, end_v, preserve_volume);
     posed.start_tangent = parent_turn * child.joint.parent_axis;
     posed.start = w.spine_points[c].front() - h * posed.start_tangent;
+    posed.start_scale = parent_strain.scale;
+    posed.end_stretch = child_strain.stretch, posed.end_scale = child_strain.scale;
     SampleJointBridge(child.joint, w.plan->rest_bridges[c], posed, parent_turn, child_turn,
                       &w.bridges[c]);
   }
-  for (const auto& [part, sample] : layout.undo_samples)
-    w.spine_undo[part][sample] = FrameAxes(model.parts[part].spine_frames[sample]) *
-                                 FrameAxes(w.spine_frames[part][sample]).transpose();
+  for (const auto& [part, sample] : layout.undo_samples) {
+    const double v = double(sample) / double(model.parts[part].spine_points.size() - 1);
+    const SectionStrain strain = SectionStrainAt(model, w, part, v, preserve_volume);
+    w.spine_undo[part][sample] =
+        FrameAxes(model.parts[part].spine_frames[sample]) *
+        Vec3(1.0 / strain.scale, 1.0 / strain.scale, 1.0 / strain.stretch).asDiagonal() *
+        FrameAxes(w.spine_frames[part][sample]).transpose();
+  }
 }
 
 Status ValidateLoads(const SpineLoads& loads, std::size_t samples) {
@@ -376,11 +403,7 @@ Status EvaluateRigJob::Run() const {
       Mat3 axes = FrameAxes(frame);
       w.profile_scale[i][p] = 1.0;
       if (preserve_volume && part.kind == SpineKind::kDeformable) {
-        const double x = profile.spine_v * double(n - 1);
-        const std::size_t k = std::min(static_cast<std::size_t>(x), n - 2);
-        const double f = x - double(k);
-        const double strain = (1.0 - f) * w.strain[i][k] + f * w.strain[i][k + 1];
-        const double scale = 1.0 / std::sqrt(std::max(1.0 + strain, 1e-6));
+        const double scale = SectionStrainAt(*model, w, i, profile.spine_v, true).scale;
         w.profile_scale[i][p] = scale;
         axes.col(0) *= scale;
         axes.col(1) *= scale;
@@ -470,7 +493,7 @@ Status EvaluateRigJob::Run() const {
   }
 
   // 6-8. Vertices follow the profiles, then the skin bridges near joints; normals.
-  SampleBridges(*model, w);
+  SampleBridges(*model, w, preserve_volume);
   if (!positions.empty()) {
     const StageOutput<double> out{positions.data()->data(), 3,
                                   normals.empty() ? nullptr : normals.data()->data(), 3};

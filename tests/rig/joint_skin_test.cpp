@@ -35,12 +35,13 @@ namespace WIRERIG_TEST_FILE {
 
 constexpr double kRadius = 0.08;
 
-// The runtime model of a described rig of `mesh`, with rigid bones.
-RigModel RigidModel(const Mesh& mesh, const RigDescription& description, const std::string& name) {
+// The runtime model of a described rig of `mesh`, with rigid bones (or deformable ones).
+RigModel RigidModel(const Mesh& mesh, const RigDescription& description, const std::string& name,
+                    SpineKind kind = SpineKind::kRigid) {
   Result<BuiltRig> rig = BuildRig(mesh, description, name);
   EXPECT_TRUE(rig.ok()) << rig.error();
   RigModelOptions options;
-  options.spine_kind = SpineKind::kRigid;
+  options.spine_kind = kind;
   Result<BuiltRigModel> model = BuildRigModel(mesh, rig.value().rig, options);
   EXPECT_TRUE(model.ok()) << model.error();
   return std::move(model).value().model;
@@ -128,6 +129,53 @@ TEST(JointSkin, EveryBendAndTwistKeepsTheSkinWholeThePerimetersAndTheVolume) {
     std::printf("%-9s folds %zu stretch %.3f perimeter %.3f volume %.4f\n", pose.label.c_str(),
                 quality.folded_edges, quality.worst_stretch, smallest, volume / rest_volume);
   }
+}
+
+// Both segments of a deformable limb squeezed to the same axial strain with their volume kept:
+// the limb is a uniformly shorter, thicker tube, so every skin point, on the joint's bridge as
+// elsewhere, lies at its rest distance from the axis times 1 / sqrt(1 + strain), the in-plane
+// scale that keeps each slice's volume (a bridge that turned its sides rigidly left a ring of
+// rest-sized skin around the joint: a step of 12% of the radius here).
+TEST(JointSkin, AUniformlySqueezedLimbKeepsItsSectionScaleAcrossTheJoint) {
+  const Mesh mesh = MakeCapsule(kRadius, 1.0, 48, 80, 8);
+  const RigModel model =
+      RigidModel(mesh, testing::TwoSegmentLimb(), "capsule", SpineKind::kDeformable);
+  ASSERT_EQ(model.parts.size(), 2u);
+  ASSERT_GT(model.parts[1].joint.blend_length, 0.0);
+  constexpr double kStrain = -0.25;
+  std::vector<std::array<AxialPointLoad, 1>> squeeze(2);
+  std::vector<PartPose> poses(2);
+  for (std::size_t i = 0; i < 2; ++i) {
+    squeeze[i] = {{{1.0, kStrain * model.parts[i].spine_stiffness.axial}}};
+    poses[i].loads.axial_point_loads = squeeze[i];
+  }
+  RigWorkspace workspace = MakeRigWorkspace(model);
+  std::vector<Vec3> positions(model.vertices.size());
+  EvaluateRigJob job;
+  job.model = &model;
+  job.poses = poses;
+  job.workspace = &workspace;
+  job.positions = positions;
+  job.preserve_volume = true;
+  ASSERT_TRUE(job.Run().ok());
+  const double scale = 1.0 / std::sqrt(1.0 + kStrain);
+  // Worst radial error off the joint's bridges and on them. The pair binding (PHYSICS.md
+  // section 6) is exact under similarity motions only: this strain (25% shorter, 15% wider)
+  // puts even the plain tube's skin 0.35% of the radius off; the bridges must add nothing.
+  std::array<double, 2> worst{0.0, 0.0};
+  std::size_t bridged = 0;
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    const Vec3& rest = mesh.welded_positions[v];
+    const double error = std::abs(std::hypot(positions[v].x(), positions[v].z()) -
+                                  scale * std::hypot(rest.x(), rest.z()));
+    bool on_bridge = false;
+    for (const JointInfluence& j : model.vertices[v].joints) on_bridge = on_bridge || j.joint >= 0;
+    bridged += on_bridge;
+    worst[on_bridge] = std::max(worst[on_bridge], error);
+  }
+  EXPECT_GT(bridged, 500u);
+  EXPECT_LT(worst[0], 0.005 * kRadius);
+  EXPECT_LT(worst[1], worst[0] + 1e-6 * kRadius);
 }
 
 TEST(JointSkin, HingeLimitsAndTypeShapeTheRotation) {

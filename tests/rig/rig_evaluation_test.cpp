@@ -661,7 +661,11 @@ TEST(RigEvaluation, FlatVertexPassAgreesWithApplyPairBindingAndTriangleOrderNorm
     Vec3 bridged = Vec3::Zero();
     for (const JointInfluence& j : a.joints) {
       if (j.joint < 0) continue;
+      // (the sample's stretch 1 + strain along it and, volume kept, scale 1 / sqrt(1 + strain)
+      // across it undone too)
+      const double stretch = 1.0 + w.strain[a.part][j.sample], shrink = std::sqrt(stretch);
       const Mat3 undo = FrameAxes(part.spine_frames[j.sample]) *
+                        Vec3(shrink, shrink, 1.0 / stretch).asDiagonal() *
                         FrameAxes(w.spine_frames[a.part][j.sample]).transpose();
       const Vec3 rest =
           part.spine_points[j.sample] + undo * (expected - w.spine_points[a.part][j.sample]);

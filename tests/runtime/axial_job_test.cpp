@@ -134,6 +134,18 @@ TEST(AxialJobDegenerate, LoadAtTheFixedPointGoesIntoTheSupport) {
   for (double x : r.x) EXPECT_EQ(x, 0.0);
 }
 
+// A bar pulled by a force on an end face carries that force through its whole length, the
+// loaded face included (its stress there is the traction F / A): N(1) = F fixed at 0, and
+// N(0) = -(-F) = F for a push on the face at 0 of a bar fixed at 1; a free end carries nothing.
+TEST(AxialJobDegenerate, AnEndFaceLoadIsCarriedAtThatEnd) {
+  const AxialResult pulled = Solve(1.0, kEA, 0.0, {{1.0, 7.0}}, {}, {0.0, 0.5, 1.0});
+  for (double n : pulled.n) EXPECT_EQ(n, 7.0);
+  const AxialResult pushed = Solve(1.0, kEA, 1.0, {{0.0, -3.0}}, {}, {0.0, 0.5, 1.0});
+  for (double n : pushed.n) EXPECT_EQ(n, 3.0);
+  const AxialResult free = Solve(1.0, kEA, 0.0, {{0.5, 7.0}}, {}, {1.0});
+  EXPECT_EQ(free.n[0], 0.0);
+}
+
 TEST(AxialJobDegenerate, LoadsOnOneSideNeverMoveTheOther) {
   const AxialResult r = Solve(1.0, kEA, 0.5, {{0.8, 7.0}}, {{0.6, 0.9, 2.0}}, {0.0, 0.2, 0.49});
   for (double x : r.x) EXPECT_EQ(x, 0.0);

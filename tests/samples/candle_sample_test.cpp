@@ -110,11 +110,12 @@ TEST(CandleSample, SpinesStretchAndShortenByTheClosedForm) {
 // (above v0, or below when v0 = 1: AxialJob's documented convention).
 double NormalForce(const Case& c, double v) {
   double n = 0.0;
+  // The interior side's value at the support and at the ends (a load on an end face counts).
   const bool above = v > c.fixed_at || (v == c.fixed_at && c.fixed_at < 1.0);
   for (int j = 0; j <= 100; ++j) {
     const double vj = j / 100.0, p = c.force * c.load(j);
-    if (above && vj > v) n += p;
-    if (!above && vj < v) n -= p;
+    if (above && (vj > v || (v == 1.0 && j == 100))) n += p;
+    if (!above && (vj < v || (v == 0.0 && j == 0))) n -= p;
   }
   return n;
 }

@@ -35,7 +35,8 @@ struct AxialJob {
   // Outputs, each either empty (not computed) or of samples.size(); displacement is required.
   std::span<double> displacement;  // X(v_i) along +v, m
   // N(v_i), tension > 0, N. At v_i == v0 the value on the side towards the wire's interior
-  // (v0 < 1: just above v0; v0 == 1: just below).
+  // (v0 < 1: just above v0; v0 == 1: just below); likewise at the ends v_i = 0 and 1 (a point
+  // load on the end face counts: N(1) of a tip load F is F).
   std::span<double> normal_force;
 
   Status Validate() const;

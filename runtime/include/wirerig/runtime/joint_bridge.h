@@ -47,6 +47,12 @@ struct BridgeEnds {
   Vec3 start_tangent = Vec3::UnitZ();  // unit
   Vec3 end = Vec3::Zero();             // the child's spine point blend_length along it
   Vec3 end_tangent = Vec3::UnitZ();    // unit
+  // How the sides' flesh at the two ends is scaled in the plane across the bone (about the bone
+  // line) and, at the child's end, stretched along it (1 + axial strain): 1 at rest; a
+  // deformable side under axial load stretches, and scales when it keeps its volume. (The
+  // start stays blend_length before the child's root: the parent's half holds its rest length.)
+  double start_scale = 1.0, end_scale = 1.0;
+  double end_stretch = 1.0;
 };
 
 // The rest bridge's curve sampled at u_k = k / kBridgeSegments, made once per joint (for
@@ -55,7 +61,7 @@ struct RestBridge {
   BridgeEnds ends;
   std::array<Vec3, kBridgeSegments + 1> points;
   std::array<double, kBridgeSegments + 1> curvature;  // 1/m
-  double length = 0.0;  // Simpson's rule over the samples, times 3 kBridgeSegments
+  std::array<double, kBridgeSegments + 1> speed;      // |dX/du|, m
 };
 RestBridge MakeRestBridge(const BridgeEnds& rest);
 
@@ -84,7 +90,8 @@ struct BasicBridgeSamples {
     // short of the centre, so sections never cross.
     V inward = V::Zero();
   };
-  // The two sides' rigid motions: x -> turn * x + offset.
+  // The two sides' motions: x -> turn * x + offset, each a rotation times its end's scale
+  // across the bone (BridgeEnds::start_scale, end_scale).
   M parent_turn = M::Identity(), child_turn = M::Identity();
   V parent_offset = V::Zero(), child_offset = V::Zero();
   std::array<Sample, kBridgeSegments + 1> samples;
@@ -97,10 +104,12 @@ using BridgeSamples = BasicBridgeSamples<double>;
 // Samples the bridge for a pose: `rest` and `posed` ends, and the rotations the parent's and
 // the child's sides have turned by (rest world axes -> world). The rotation field spreads the
 // relative turn's swing and twist (about the rest bone axis joint.axes.col(2)) evenly in u;
-// the cross-sections grow in area by 1 + c 4u(1 - u), c such that the bridge keeps its rest
-// volume (area x length) times joint.growth_scale, evenly or, where that would reach within
-// joint.radius of the bend's centre of curvature, across the bend. At rest (posed == rest,
-// rotations identity) every map is the identity. Allocation-free.
+// the cross-sections are scaled in their plane by the ends' scales blended by smoothstep(u) and
+// grow in area by 1 + c 4u(1 - u), c such that the bridge keeps the volume (area x length) of
+// its flesh (the rest bridge's, with the ends' scales and the child's stretch blended alike)
+// times joint.growth_scale, evenly or, where that would reach within joint.radius of the bend's
+// centre of curvature, across the bend. At rest (posed == rest, rotations identity, scales and
+// stretch 1) every map is the identity. Allocation-free.
 void SampleJointBridge(const JointModel& joint, const RestBridge& rest, const BridgeEnds& posed,
                        const Mat3& parent_rotation, const Mat3& child_rotation, BridgeSamples* out);
 
