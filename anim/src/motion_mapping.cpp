@@ -27,7 +27,7 @@ Result<MotionMapping> ParseMotionMapping(const nlohmann::json& document) {
   try {
     const JsonObject root(document, "");
     root.RejectUnknownKeys(
-        {"format", "version", "source", "channels", "limits", "root_scale", "joints"});
+        {"format", "version", "source", "channels", "limits", "root_scale", "floor", "joints"});
     if (root.String("format") != kFormat)
       throw FieldError("/format", std::string("must be \"") + kFormat + "\"");
     if (root.Integer("version", -1) != MotionMapping::kFormatVersion)
@@ -58,6 +58,8 @@ Result<MotionMapping> ParseMotionMapping(const nlohmann::json& document) {
     mapping.root_scale = root.Keyword<RootScale>(
         "root_scale", {{"leg_length", RootScale::kLegLength}, {"unit", RootScale::kUnit}},
         mapping.root_scale);
+    mapping.floor = root.Keyword<RetargetFloor>(
+        "floor", {{"above", RetargetFloor::kAbove}, {"free", RetargetFloor::kFree}}, mapping.floor);
     const JsonObject joints = root.Object("joints");
     for (const auto& item : root.Required("joints").items()) {
       const std::string path = joints.PathOf(item.key());

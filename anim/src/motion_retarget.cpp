@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "motion_floor.h"
 #include "motion_limits.h"
 #include "motion_rotation.h"
 #include "wirerig/anim/motion_import.h"
@@ -303,6 +304,11 @@ Result<RetargetedMotion> RetargetMotion(const MotionCapture& motion, const Motio
       clip.parts.push_back(std::move(t));
   if (std::string error = ValidateRawClip(clip); !error.empty())
     return Error{motion.source + ": the retargeted clip is not valid: " + error};
+  if (mapping.floor == RetargetFloor::kAbove && root_joint >= 0) {
+    Result<double> lift = LiftAboveFloor(model, model.parts[0].name, &clip);
+    if (!lift) return Error{motion.source + ": " + lift.error()};
+    out.floor_lift = lift.value();
+  }
   return out;
 }
 

@@ -29,10 +29,12 @@
 #include <assimp/Importer.hpp>
 
 #include <unistd.h>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <numbers>
 
 #include <nlohmann/json.hpp>
@@ -444,13 +446,15 @@ TEST(MotionCapture, LoadsCmu0101) {
   EXPECT_DOUBLE_EQ(m.values.back(), -0.9244);  // the last value of the last line
 }
 
-// The mocap sample's scene with its paths made absolute and its mapping's "limits" set to
-// `limits` (a copy of the mapping in `folder`).
-json HumanMocapScene(const fs::path& folder, const std::string& limits) {
+// The mocap sample's scene with its paths made absolute and its mapping's "limits" and "floor"
+// set to `limits` and `floor` (a copy of the mapping in `folder`).
+json HumanMocapScene(const fs::path& folder, const std::string& limits,
+                     const std::string& floor = "free") {
   const fs::path here = fs::path(WIRERIG_SAMPLES_DIR) / "mocap";
   json scene = json::parse(std::ifstream(here / "human_mocap.scene.json"));
   json mapping = json::parse(std::ifstream(here / "human_from_cmu.mapping.json"));
   mapping["limits"] = limits;
+  mapping["floor"] = floor;
   scene["mesh"]["file"] = (here / scene["mesh"]["file"].get<std::string>()).string();
   scene["rig"]["description"] = (here / scene["rig"]["description"].get<std::string>()).string();
   json& motion = scene["clips"][0]["motion"];
@@ -459,7 +463,8 @@ json HumanMocapScene(const fs::path& folder, const std::string& limits) {
   return scene;
 }
 
-// With "limits": "ignore" the capture is reproduced exactly, beyond the rig's limits.
+// With "limits": "ignore" and "floor": "free" the capture is reproduced exactly, beyond the
+// rig's limits and whatever the rig's proportions do to its feet.
 TEST(HumanMocap, PlaysTheCaptureOnTheHuman) {
   const fs::path folder = TempFolder();
   std::unique_ptr<PlayedScene> played = samples::PlayDocument(HumanMocapScene(folder, "ignore"));
@@ -570,6 +575,47 @@ TEST(HumanMocap, PlaysTheCaptureOnTheHuman) {
                                       model.parts[pelvis].spine_points.front().z());
   }
   EXPECT_GT(farthest, 3.0);
+  fs::remove_all(folder);
+}
+
+// The height of the lowest skin point above the rest skin's lowest point (the floor), m, at
+// each 1/30 s of the played clip.
+std::vector<double> LowestSkinHeights(PlayedScene& played) {
+  std::vector<double> heights;
+  double floor = std::numeric_limits<double>::infinity();
+  for (const Vec3& p : played.scene.mesh.welded_positions) floor = std::min(floor, p.y());
+  const double duration = played.playback->clip().duration;
+  for (int k = 0; k / 30.0 <= duration; ++k) {
+    played.Evaluate(k / 30.0);
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const Vec3& p : played.positions) lowest = std::min(lowest, p.y());
+    heights.push_back(lowest - floor);
+  }
+  return heights;
+}
+
+// "floor": "above" (the sample's): where the rig's proportions would sink a sole into the floor
+// the root is lifted, so no skin point goes below it, and the feet still come down to it (the
+// lowest point within 2 cm of the floor on most frames); "free" sinks them by 5 cm and more.
+TEST(HumanMocap, KeepsTheSkinAboveTheFloorAndTheFeetOnIt) {
+  const fs::path folder = TempFolder();
+  for (const std::string floor : {"above", "free"}) {
+    SCOPED_TRACE(floor);
+    std::unique_ptr<PlayedScene> played =
+        samples::PlayDocument(HumanMocapScene(folder, "pass_to_parents", floor));
+    ASSERT_NE(played, nullptr);
+    std::vector<double> heights = LowestSkinHeights(*played);
+    ASSERT_GT(heights.size(), 600u);
+    const double deepest = *std::min_element(heights.begin(), heights.end());
+    std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
+    const double median = heights[heights.size() / 2];
+    if (floor == "above") {
+      EXPECT_GT(deepest, -1e-3);
+      EXPECT_LT(median, 0.02);
+    } else {
+      EXPECT_LT(deepest, -0.05);
+    }
+  }
   fs::remove_all(folder);
 }
 
@@ -949,6 +995,9 @@ TEST(MotionErrors, MappingsMustNameJointsAndPartsThatExist) {
   mapping["limits"] = "soft";
   EXPECT_EQ(error_with(mapping),
             prefix + "/limits: must be \"pass_to_parents\", \"clamp\" or \"ignore\"");
+  mapping = json::parse(kThreeJointMapping);
+  mapping["floor"] = "below";
+  EXPECT_EQ(error_with(mapping), prefix + "/floor: must be \"above\" or \"free\"");
   mapping = json::parse(kThreeJointMapping);
   mapping["source"]["unit_scale"] = -1;
   EXPECT_EQ(error_with(mapping), prefix +

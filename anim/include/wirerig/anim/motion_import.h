@@ -73,6 +73,8 @@ struct RetargetedMotion {
   double root_scale = 1.0;         // metres per capture unit applied to the root's translation
   double rig_leg_length = 0.0;     // m; 0 when the scale came from unit_scale
   double source_leg_length = 0.0;  // capture units; 0 likewise
+  double floor_lift = 0.0;         // m: the most the root was raised to keep the skin above
+                                   // the floor (RetargetFloor::kAbove)
 };
 
 // Errors name the mapping file and field ("<mapping>: /joints/LeftArm: <capture> has no joint

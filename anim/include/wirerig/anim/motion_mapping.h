@@ -56,6 +56,16 @@ enum class RootScale : int {
   kUnit = 1,       // by source.unit_scale alone
 };
 
+// Where the retargeted body may go against the floor (the rest mesh's lowest point: the soles of
+// a figure standing at rest).
+enum class RetargetFloor : int {
+  // Where a frame would put any point of the skin below the floor (the rig's proportions differ
+  // from the subject's), the root is lifted by as much: no point sinks; nothing is pulled down.
+  // The default.
+  kAbove = 0,
+  kFree = 1,  // the capture's root height, scaled, whatever the skin does
+};
+
 struct JointMapping {
   std::string joint;  // the capture's joint
   std::string part;   // the rig's part it drives
@@ -71,6 +81,7 @@ struct MotionMapping {
   RetargetChannels channels = RetargetChannels::kRotation;
   RetargetLimits limits = RetargetLimits::kPassToParents;
   RootScale root_scale = RootScale::kLegLength;
+  RetargetFloor floor = RetargetFloor::kAbove;
   std::vector<JointMapping> joints;  // in the file's key order (sorted by joint name)
 };
 
