@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -64,18 +65,25 @@ const Limb& MakeLimb() {
   return limb;
 }
 
-std::vector<Vec3> Pose(const Limb& limb, const Vec3& degrees) {
-  std::vector<PartPose> poses(limb.model.parts.size());
-  poses[1].rotation = JointRotation(limb.model.parts[1].joint, degrees);
-  RigWorkspace workspace = MakeRigWorkspace(limb.model);
-  std::vector<Vec3> positions(limb.model.vertices.size());
+// The model's vertices for `poses` (volume kept or not).
+std::vector<Vec3> Evaluate(const RigModel& model, std::span<const PartPose> poses,
+                           bool preserve_volume = false) {
+  RigWorkspace workspace = MakeRigWorkspace(model);
+  std::vector<Vec3> positions(model.vertices.size());
   EvaluateRigJob job;
-  job.model = &limb.model;
+  job.model = &model;
   job.poses = poses;
   job.workspace = &workspace;
   job.positions = positions;
+  job.preserve_volume = preserve_volume;
   EXPECT_TRUE(job.Run().ok());
   return positions;
+}
+
+std::vector<Vec3> Pose(const Limb& limb, const Vec3& degrees) {
+  std::vector<PartPose> poses(limb.model.parts.size());
+  poses[1].rotation = JointRotation(limb.model.parts[1].joint, degrees);
+  return Evaluate(limb.model, poses);
 }
 
 TEST(JointSkin, LimbBuildsABridgeOfTheLimbsSize) {
@@ -149,15 +157,7 @@ TEST(JointSkin, AUniformlySqueezedLimbKeepsItsSectionScaleAcrossTheJoint) {
     squeeze[i] = {{{1.0, kStrain * model.parts[i].spine_stiffness.axial}}};
     poses[i].loads.axial_point_loads = squeeze[i];
   }
-  RigWorkspace workspace = MakeRigWorkspace(model);
-  std::vector<Vec3> positions(model.vertices.size());
-  EvaluateRigJob job;
-  job.model = &model;
-  job.poses = poses;
-  job.workspace = &workspace;
-  job.positions = positions;
-  job.preserve_volume = true;
-  ASSERT_TRUE(job.Run().ok());
+  const std::vector<Vec3> positions = Evaluate(model, poses, true);
   const double scale = 1.0 / std::sqrt(1.0 + kStrain);
   // Worst radial error off the joint's bridges and on them. The pair binding (PHYSICS.md
   // section 6) is exact under similarity motions only: this strain (25% shorter, 15% wider)
