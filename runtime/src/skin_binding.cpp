@@ -244,10 +244,12 @@ Status BindToWirePair(const Vec3& p, const WirePolyline& wire_i, const WirePolyl
   if (!regular) normal = OrthonormalizeAgainst(plane_normal, e_hat);
   const Vec3 m_hat = normal.cross(e_hat);
 
-  // Step 5: coordinates in the frame, in units of |e|.
+  // Step 5: coordinates in the frame: along e in units of |e|, across it in units of the
+  // section's size (SectionUnit).
+  const double section = SectionUnit(center - p1, p2 - p1);
   binding.alpha = from_p1.dot(e_hat) / length;
-  binding.beta = from_p1.dot(m_hat) / length;
-  binding.gamma = from_p1.dot(normal) / length;
+  binding.beta = from_p1.dot(m_hat) / section;
+  binding.gamma = from_p1.dot(normal) / section;
   binding.rest_normal = normal;
   binding.rest_edge = e_hat;
   *out = binding;
@@ -263,13 +265,14 @@ Vec3 ApplyPairBinding(const PairBinding& binding, const WirePolyline& wire_i,
   Vec3 e_hat, normal;
   double length = 0.0;
   const bool regular = FrameAxes(e, center - p1, &e_hat, &length, &normal);
-  // Every term below scales with |e'|: p1' is the limit as the wires meet.
+  // No frame where the wires meet: p1'.
   if (length == 0.0) return p1;
   if (!regular)
     normal = OrthonormalizeAgainst(MinimalRotation(binding.rest_edge, e_hat, binding.rest_normal),
                                    e_hat);
   const Vec3 m_hat = normal.cross(e_hat);
-  return p1 + binding.alpha * e + length * (binding.beta * m_hat + binding.gamma * normal);
+  return p1 + binding.alpha * e +
+         SectionUnit(center - p1, e) * (binding.beta * m_hat + binding.gamma * normal);
 }
 
 }  // namespace wirerig

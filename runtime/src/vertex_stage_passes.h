@@ -57,9 +57,10 @@ struct StagePasses {
   const BasicBridgeSamples<Real>* bridges;  // by part
   StageOutput<Real> out;
 
-  // PHYSICS.md section 6, step "apply", for regular frames: with e = p2 - p1, d = c - p1 and
-  // n = e x d, the point is p1 + alpha e + beta (n_hat x e) + gamma |e| n_hat (ApplyPairBinding
-  // up to rounding). Returns the lanes (bits) whose frame needs ApplyPairBinding itself.
+  // PHYSICS.md section 6, step "apply", for regular frames: with e = p2 - p1, d = c - p1,
+  // n = e x d and the section unit s = sqrt(|d|^2 + kEdgeInSectionUnit2 |e|^2), the point is
+  // p1 + alpha e + (beta s / |e|) (n_hat x e) + gamma s n_hat (ApplyPairBinding up to
+  // rounding). Returns the lanes (bits) whose frame needs ApplyPairBinding itself.
   template <class P>
   int PairPack(std::size_t i) const {
     using Value = typename P::Value;
@@ -86,9 +87,11 @@ struct StagePasses {
                            P::Greater(nn, P::Broadcast(B::kSine2) * ee * dd));
     const Value safe_nn = P::Select(ok, nn, one), safe_ee = P::Select(ok, ee, one);
     const V n_hat = (one / P::Sqrt(safe_nn)) * n;
+    const Value section =
+        P::Sqrt(P::Select(ok, dd + P::Broadcast(Real(kEdgeInSectionUnit2)) * ee, one));
     const V p = p1 + P::Load(&st.plan->alpha[i]) * e +
-                P::Load(&st.plan->beta[i]) * simd::Cross(n_hat, e) +
-                (P::Load(&st.plan->gamma[i]) * P::Sqrt(safe_ee)) * n_hat;
+                (P::Load(&st.plan->beta[i]) * section / P::Sqrt(safe_ee)) * simd::Cross(n_hat, e) +
+                (P::Load(&st.plan->gamma[i]) * section) * n_hat;
     P::Store(&s->position.x[i], p.x);
     P::Store(&s->position.y[i], p.y);
     P::Store(&s->position.z[i], p.z);

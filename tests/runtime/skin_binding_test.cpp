@@ -249,8 +249,17 @@ Vec3 RayHit(const std::vector<Vec3>& polygon, double angle) {
   return Vec3::Zero();
 }
 
-TEST(SkinBinding, RatioRuleAndSimilarTrianglesUnderSpineStretch) {
-  // Coaxial frustum; the second wire and its spine point move 0.5 along the axis.
+// The height's unit (skin_binding.h): the distance from p1 to the pair's spine centre c, with
+// a thousandth of the edge, sqrt(|c - p1|^2 + 1e-6 |e|^2).
+double HeightUnit(const Eigen::Vector2d& to_center, const Eigen::Vector2d& e) {
+  return std::sqrt(to_center.squaredNorm() + 1e-6 * e.squaredNorm());
+}
+
+TEST(SkinBinding, RatioRuleAndSectionScaledHeightUnderSpineStretch) {
+  // Coaxial frustum; the second wire and its spine point move 0.5 along the axis. The ratio
+  // rule places the foot of the perpendicular; the height off the edge scales with the
+  // distance from p1 to the spine centre (PHYSICS.md section 6 scales it with |e'| / |e|:
+  // wirerig departs there, skin_binding.h).
   WirePair rest;
   rest.points_i = Profile(64, 1.0, 1.0, Vec3::Zero(), true);
   rest.points_j = Profile(64, 0.6, 0.6, Vec3(0, 0, 1), true, kPi / 64);
@@ -276,12 +285,15 @@ TEST(SkinBinding, RatioRuleAndSimilarTrianglesUnderSpineStretch) {
     const Eigen::Vector2d p3 = p1 + alpha * e;  // foot of the perpendicular
     const double height = (po - p3).norm();
     const double side = cross2(e, po - p3) >= 0.0 ? 1.0 : -1.0;
-    // Deformed: ratio rule for p3', then the similar triangle's height on the same side.
+    // Deformed: ratio rule for p3', then the height, scaled by the unit's change, on the same
+    // side. The spine centre: halfway between the spine points (0, 0) and (0, 1), then 1.5.
     const Eigen::Vector2d p1d = p1, p2d = p2 + Eigen::Vector2d(0.0, shift.z());
     const Eigen::Vector2d ed = p2d - p1d;
     const Eigen::Vector2d p3d = p1d + alpha * ed;
     const Eigen::Vector2d perp = side * Eigen::Vector2d(-ed.y(), ed.x()) / ed.norm();
-    const Eigen::Vector2d pod = p3d + (ed.norm() / e.norm()) * height * perp;
+    const double unit = HeightUnit(Eigen::Vector2d(0.0, 0.5) - p1, e);
+    const double unit_d = HeightUnit(Eigen::Vector2d(0.0, 0.75) - p1d, ed);
+    const Eigen::Vector2d pod = p3d + (unit_d / unit) * height * perp;
     const Vec3 expected = pod.x() * u + Vec3(0.0, 0.0, pod.y());
 
     const PairBinding binding = Bind(rest, p);
@@ -405,7 +417,8 @@ TEST(SkinBinding, SpineOnTheFrameEdgeAtRestUsesTheBindPlane) {
   const PairBinding binding = Bind(rest, p);
   EXPECT_EQ(binding.flags, kBindingMissedFirstWire | kBindingMissedSecondWire);
   EXPECT_NEAR(binding.alpha, 0.5, 1e-16);
-  EXPECT_NEAR(std::abs(binding.beta), 0.5, 1e-16);
+  // The height 0.5 in units of sqrt(|c - p1|^2 + 1e-6 |e|^2), |c - p1| = 0.5, |e| = 1.
+  EXPECT_NEAR(std::abs(binding.beta), 0.5 / std::sqrt(0.25 + 1e-6), 1e-15);
   EXPECT_EQ(binding.gamma, 0.0);
   EXPECT_EQ(Apply(binding, rest), p);
   // A translation keeps the edge direction: the stored normal is used as is.
@@ -464,11 +477,12 @@ TEST(SkinBinding, ReversedDegenerateEdgeGivesAFiniteResult) {
   swapped.spine_j = p1;
   const Vec3 a = Apply(binding, swapped);
   EXPECT_TRUE(IsFinite(a));
-  // alpha is kept along the reversed edge; the height keeps its length.
+  // alpha is kept along the reversed edge; the height is hypot(beta, gamma) units, the unit
+  // now sqrt(|c' - p1'|^2 + 1e-6 |e'|^2) with c' halfway along the edge.
   const Vec3 e = p1 - p2;
   EXPECT_NEAR((a - p2).dot(e) / e.squaredNorm(), binding.alpha, 1e-12);
   EXPECT_NEAR((a - p2 - binding.alpha * e).norm(),
-              e.norm() * std::hypot(binding.beta, binding.gamma), 1e-12);
+              std::sqrt(0.25 + 1e-6) * e.norm() * std::hypot(binding.beta, binding.gamma), 1e-12);
 }
 
 TEST(SkinBinding, InvalidInputIsRefusedWithTheFieldNamed) {

@@ -300,9 +300,10 @@ TEST(HumanSamples, EveryKeyedJointAngleStaysInsideItsLimits) {
 }
 
 TEST(HumanSamples, SkinHoldsOnEveryFrame) {
-  for (const char* scene : {"human/human_wave.scene.json", "human/human_pose.scene.json",
-                            "human/human_shape.scene.json", "human/human_sex.scene.json",
-                            "dancer/dancer.scene.json", "mocap/human_mocap.scene.json"}) {
+  for (const char* scene :
+       {"human/human_wave.scene.json", "human/human_pose.scene.json",
+        "human/human_shape.scene.json", "human/human_sex.scene.json", "human/human_age.scene.json",
+        "dancer/dancer.scene.json", "mocap/human_mocap.scene.json"}) {
     SCOPED_TRACE(scene);
     std::unique_ptr<PlayedScene> played = PlaySample(scene);
     ASSERT_NE(played, nullptr);

@@ -7,8 +7,16 @@
 // and c = (c_i + c_{i+1})/2 store alpha, beta, gamma. Apply rebuilds the frame from the
 // deformed wires and spine points and reproduces p exactly at rest, rigidly under rigid
 // motion, with similar triangles under uniform scale.
+//
+// One departure from PHYSICS.md section 6: p's height off the edge e = p2 - p1 (beta, gamma)
+// is measured in units of the section's size SectionUnit(c - p1, e) ~ |c - p1|, not of |e|.
+// The two agree under rigid motion and uniform scale; where the flesh is strained unevenly they
+// do not: e runs along the bone, so a limb shortened by 14% and widened by 8% (axial load,
+// volume kept) shrank in |e| every height it should have widened, and skin bound far from its
+// wires (an armpit's crease) jumped by 2 cm while its neighbours moved 1 mm.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 
@@ -17,11 +25,21 @@
 
 namespace wirerig {
 
+// SectionUnit's share of the edge, squared.
+inline constexpr double kEdgeInSectionUnit2 = 1e-6;
+
 // One wire: a polyline of points, closed (last joins first) or open.
 struct WirePolyline {
   std::span<const Vec3> points;
   bool closed = false;
 };
+
+// The unit of a bound point's height: sqrt(|c - p1|^2 + (1e-3 |e|)^2), the distance from the
+// edge's first point to the pair's spine centre (the section's size, scaling as the section
+// does), with a thousandth of the edge so it never vanishes where a wire meets the spine.
+inline double SectionUnit(const Vec3& to_center, const Vec3& e) {
+  return std::sqrt(to_center.squaredNorm() + kEdgeInSectionUnit2 * e.squaredNorm());
+}
 
 // Flags recording which fallback of PHYSICS.md section 6 fired at bind time.
 enum BindingFlags : std::uint8_t {
@@ -63,8 +81,7 @@ Status BindToWirePair(const Vec3& p, const WirePolyline& wire_i, const WirePolyl
 //  * e' x (c' - p1') ~ 0 (sine of the angle below 1e-8): n_f' is the rest normal turned by
 //    the minimal rotation taking the rest edge to e', then made perpendicular to e'; if e'
 //    is reversed (1 + cos < 1e-6) the half turn about the rest normal is used (n_f' = n_f).
-//  * e' = 0 (the wires meet): returns p1', the limit of the construction (every other term
-//    scales with |e'|).
+//  * e' = 0 (the wires meet): returns p1' (no frame exists).
 Vec3 ApplyPairBinding(const PairBinding& binding, const WirePolyline& wire_i,
                       const WirePolyline& wire_j, const Vec3& spine_i, const Vec3& spine_j);
 
