@@ -37,6 +37,7 @@ ELBOW = (62.0, 14.0)  # degrees: mean and swing of the elbows' flexion
 KEYS_PER_CYCLE = 20
 TRACKING_HZ = 8.0       # the joints' PD tracking: natural frequency
 TRACKING_DAMPING = 0.7  # and damping ratio (below 1: overshoot, follow-through)
+GRAVITY = 9.81          # m/s^2, on the limbs (the pelvis is keyed)
 # The flesh of the trunk, thighs, shins and upper arms jiggles on the steps (profile wires with
 # inertia): a loop of 1 m perimeter swings at FLESH_HZ, smaller ones faster. Hands, feet, neck
 # and head are left out: their loops wrap thin features (fingers, toes) or bone.
@@ -194,10 +195,10 @@ def main():
         "default_kind": "rigid",
         # The keyed poses are targets: the chain's rigid-body dynamics tracks them (PD at
         # TRACKING_HZ, damping ratio TRACKING_DAMPING) under the pelvis's own accelerations, so
-        # the limbs lag and follow through. No gravity: with no ground contact in the model, it
-        # would sag the stance leg through the floor (the ground carries the body's weight).
+        # the limbs lag and follow through, and hang under gravity (the pelvis follows its
+        # keys: the model has no ground contact to carry the body's weight).
         "playback": {"tracking": {"frequency": TRACKING_HZ, "damping_ratio": TRACKING_DAMPING,
-                                  "gravity": [0.0, 0.0, 0.0]},
+                                  "gravity": [0.0, -GRAVITY, 0.0]},
                      "profile_wires": {"modes": 4, "damping_ratio": FLESH_DAMPING,
                                        "frequency": FLESH_HZ, "parts": FLESH_PARTS}},
         "camera": {"target": [0.0, 0.85, 0.0], "yaw": 1.2, "pitch": 0.12, "distance": 3.2,
