@@ -54,7 +54,7 @@ void FitJointGrowth(std::span<const Vec3> rest, RigModel* model) {
       job.workspace = &workspace;
       job.positions = posed;
       const bool ok = job.Run().ok();
-      return ok ? LimbVolume(limb, posed, model->triangles) / rest_volume : 1.0;
+      return ok ? LimbVolumeRatio(limb, rest, posed, model->triangles) : 1.0;
     };
     double numerator = 0.0, denominator = 0.0;
     for (const Vec3& degrees : bends) {

@@ -18,8 +18,7 @@ SkinMeasures Measure(const SkinQualityReference& reference, std::span<const Vec3
   const SkinQuality q = MeasureSkin(reference, posed);
   m.folded_edges = q.folded_edges;
   m.worst_stretch = q.worst_stretch;
-  const double rest_volume = LimbVolume(limb, rest, triangles);
-  m.volume_ratio = rest_volume != 0.0 ? LimbVolume(limb, posed, triangles) / rest_volume : 1.0;
+  m.volume_ratio = LimbVolumeRatio(limb, rest, posed, triangles);
   for (const CrossSection& s : sections) {
     const double r = CrossSectionPerimeter(s, rest);
     if (r > 0.0)

@@ -24,6 +24,7 @@ Limb LimbOf(const RigModel& model, std::size_t c) {
   }
   for (std::size_t v = 0; v < border.size(); ++v)
     if (border[v]) limb.border.push_back(std::uint32_t(v));
+  limb.surface_border = SurfaceBorder(model.triangles);
   return limb;
 }
 
@@ -33,6 +34,16 @@ double LimbVolume(const Limb& limb, std::span<const Vec3> positions,
   for (std::uint32_t v : limb.border) apex += positions[v];
   if (!limb.border.empty()) apex /= double(limb.border.size());
   return RegionVolume(positions, triangles, limb.flags, apex);
+}
+
+double LimbVolumeRatio(const Limb& limb, std::span<const Vec3> rest, std::span<const Vec3> posed,
+                       std::span<const Triangle> triangles) {
+  const double rest_volume = LimbVolume(limb, rest, triangles);
+  if (rest_volume == 0.0) return 1.0;
+  if (const std::optional<double> change =
+          SurfaceVolumeChange(rest, posed, triangles, limb.surface_border))
+    return 1.0 + *change / rest_volume;
+  return LimbVolume(limb, posed, triangles) / rest_volume;
 }
 
 }  // namespace wirerig

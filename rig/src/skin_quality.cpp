@@ -10,6 +10,9 @@ namespace {
 
 constexpr double kSmoothCos = 0.5;   // cos 60 degrees
 constexpr double kFoldedCos = -0.5;  // cos 120 degrees
+// A border vertex within this fraction of the rest surface's bounding diagonal of its rest
+// place has stayed put (rounding of an evaluation that did not move it).
+constexpr double kStillFraction = 1e-9;
 
 Vec3 TriangleNormal(std::span<const Vec3> p, const Triangle& t) {
   return (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
@@ -73,6 +76,44 @@ double RegionVolume(std::span<const Vec3> positions, std::span<const Triangle> t
   for (const Triangle& t : triangles) {
     if (!(flagged[t[0]] && flagged[t[1]] && flagged[t[2]])) continue;
     six += (positions[t[0]] - apex).dot((positions[t[1]] - apex).cross(positions[t[2]] - apex));
+  }
+  return six / 6.0;
+}
+
+std::vector<std::uint32_t> SurfaceBorder(std::span<const Triangle> triangles) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+  edges.reserve(3 * triangles.size());
+  for (const Triangle& t : triangles)
+    for (std::size_t k = 0; k < 3; ++k) edges.push_back(std::minmax(t[k], t[(k + 1) % 3]));
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::uint32_t> border;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i != 2) border.insert(border.end(), {edges[i].first, edges[i].second});
+    i = j;
+  }
+  std::sort(border.begin(), border.end());
+  border.erase(std::unique(border.begin(), border.end()), border.end());
+  return border;
+}
+
+std::optional<double> SurfaceVolumeChange(std::span<const Vec3> rest, std::span<const Vec3> posed,
+                                          std::span<const Triangle> triangles,
+                                          std::span<const std::uint32_t> border) {
+  if (rest.empty() || posed.size() != rest.size()) return std::nullopt;
+  Vec3 low = rest.front(), high = low;
+  for (const Vec3& p : rest) low = low.cwiseMin(p), high = high.cwiseMax(p);
+  const double still = kStillFraction * (high - low).norm();
+  for (std::uint32_t v : border)
+    if (!((posed[v] - rest[v]).norm() <= still)) return std::nullopt;
+  // The cones from one apex to every triangle: their volume changes by the enclosed volume's
+  // change alone while the border (where caps of the holes would hang) stays.
+  const Vec3 apex = rest.front();
+  double six = 0.0;
+  for (const Triangle& t : triangles) {
+    six += (posed[t[0]] - apex).dot((posed[t[1]] - apex).cross(posed[t[2]] - apex));
+    six -= (rest[t[0]] - apex).dot((rest[t[1]] - apex).cross(rest[t[2]] - apex));
   }
   return six / 6.0;
 }

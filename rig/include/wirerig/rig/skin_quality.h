@@ -4,11 +4,13 @@
 //     and are more than 120 degrees apart after deformation (a flap or a tear);
 //   stretch: the largest edge length over its rest length;
 //   volume of a region: the signed volume of a set of triangles closed by the cone to a point;
+//   change of volume of a surface: exact (divergence theorem) while its border stays put;
 //   perimeter of a cross-section: the loop where a rest plane cuts the surface, followed as
 //     material points (edge, fraction) into the deformed mesh.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -42,6 +44,17 @@ SkinQuality MeasureSkin(const SkinQualityReference& reference, std::span<const V
 // `apex` (positive for outward triangles around the apex), m^3.
 double RegionVolume(std::span<const Vec3> positions, std::span<const Triangle> triangles,
                     std::span<const std::uint8_t> flagged, const Vec3& apex);
+
+// The vertices of the edges not on exactly two triangles (a surface's holes and seams), sorted.
+std::vector<std::uint32_t> SurfaceBorder(std::span<const Triangle> triangles);
+
+// The change of the volume the surface encloses from `rest` to `posed`, m^3: exact for a closed
+// surface, or one whose `border` (SurfaceBorder) stays within 1e-9 of the rest surface's
+// bounding diagonal of its rest place; nullopt when the border moved (the change would depend
+// on how the holes are capped).
+std::optional<double> SurfaceVolumeChange(std::span<const Vec3> rest, std::span<const Vec3> posed,
+                                          std::span<const Triangle> triangles,
+                                          std::span<const std::uint32_t> border);
 
 // A cross-section of the rest surface: where the plane through `point` with unit `normal` cuts
 // the edges with both ends within `radius` of `point`, ordered by angle about the normal.
