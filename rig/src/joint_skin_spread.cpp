@@ -77,17 +77,25 @@ JointInfluence* InfluenceOf(VertexAttachment& a, int joint) {
 
 constexpr double kFixedBridge = 1.0 - 1e-9;
 
-// Whether the vertex's u on `joint` is its own: it rides on the bridge as a cross-section
-// (bridge 1) and lies on no sibling joint's bridge (skin between two legs is no section of
-// either).
-bool Fixed(const RigModel& model, const VertexAttachment& a, const JointInfluence& j) {
-  if (j.bridge < kFixedBridge) return false;
-  const int parent = model.parts[std::size_t(j.joint)].parent;
+// Whether `a` holds an influence of a sibling of `joint` (a joint of the same parent).
+bool OnSiblingJoint(const RigModel& model, const VertexAttachment& a, int joint) {
+  const int parent = model.parts[std::size_t(joint)].parent;
   for (const JointInfluence& other : a.joints)
-    if (other.joint >= 0 && other.joint != j.joint &&
+    if (other.joint >= 0 && other.joint != joint &&
         model.parts[std::size_t(other.joint)].parent == parent)
-      return false;
-  return true;
+      return true;
+  return false;
+}
+
+// Whether the vertex's u on `joint` is its own: it rides on the bridge as a cross-section
+// (bridge 1) and lies on no sibling joint's bridge or spread (skin between two legs is no
+// section of either). `reached`: the vertex as every joint's spread left it (the first pass of
+// SpreadJointBindings), or null.
+bool Fixed(const RigModel& model, const VertexAttachment& a, const JointInfluence& j,
+           const VertexAttachment* reached) {
+  if (j.bridge < kFixedBridge) return false;
+  if (OnSiblingJoint(model, a, j.joint)) return false;
+  return reached == nullptr || !OnSiblingJoint(model, *reached, j.joint);
 }
 
 // Per-vertex buffers shared by the joints (reset where a joint touched them).
@@ -97,10 +105,15 @@ struct Scratch {
 };
 
 // One joint: see the header. `bound`: the vertices bound to it when the spread began (some may
-// have lost it to a stronger joint since). Returns the vertices left out for want of a slot.
+// have lost it to a stronger joint since); `reached`: per vertex, as the first pass left it
+// (empty in the first pass). Returns the vertices left out for want of a slot.
 std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_t> own_samples,
-                        std::size_t c, std::span<const std::uint32_t> bound, Scratch& scratch,
+                        std::size_t c, std::span<const std::uint32_t> bound,
+                        std::span<const VertexAttachment> reached, Scratch& scratch,
                         RigModel* model) {
+  auto fixed_at = [&](std::uint32_t v, const JointInfluence& j) {
+    return Fixed(*model, model->vertices[v], j, reached.empty() ? nullptr : &reached[v]);
+  };
   const PartModel& child = model->parts[c];
   const std::vector<bool> child_side = Subtree(*model, c);
   const std::vector<bool> parent_side = AncestorsOf(*model, child.parent);
@@ -120,7 +133,7 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
     if (j == nullptr) continue;
     distance[v] = 0.0;
     queue.push({0.0, v});
-    if (Fixed(*model, model->vertices[v], *j))
+    if (fixed_at(v, *j))
       fixed_seeds.push_back(v);
     else
       any_free = true;
@@ -140,7 +153,7 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
     queue.pop();
     if (d > distance[v]) continue;
     const JointInfluence* own = InfluenceOf(model->vertices[v], joint);
-    const bool fixed = own != nullptr && Fixed(*model, model->vertices[v], *own);
+    const bool fixed = own != nullptr && fixed_at(v, *own);
     if (!fixed && index[v] < 0) {
       index[v] = std::int32_t(free.size());
       free.push_back(v);
@@ -156,7 +169,7 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
       if (j == nullptr && !parent_side[a.part] && !(below_child && next <= sibling_reach) &&
           !(sibling && next <= sibling_reach))
         continue;  // the child's skin, or another limb's beyond its reach
-      if (j != nullptr && Fixed(*model, a, *j)) continue;
+      if (j != nullptr && fixed_at(nb.vertex, *j)) continue;
       distance[nb.vertex] = next;
       queue.push({next, nb.vertex});
     }
@@ -253,11 +266,23 @@ std::size_t SpreadJointBindings(std::span<const Vec3> rest,
       if (j.joint >= 0) bound[std::size_t(j.joint)].push_back(v);
   Scratch scratch{std::vector<double>(rest.size(), std::numeric_limits<double>::infinity()),
                   std::vector<std::int32_t>(rest.size(), -1)};
-  std::size_t left_out = 0;
-  for (std::size_t c = 1; c < model->parts.size(); ++c)
-    if (model->parts[c].parent >= 0 && model->parts[c].joint.blend_length > 0.0)
-      left_out += SpreadJoint(adjacency, own_samples, c, bound[c], scratch, model);
-  return left_out;
+  // Two passes, so that a joint spread early knows, as one spread late does, which siblings'
+  // spreads reach each vertex: the first spreads every joint to learn that (in one pass a leg
+  // spread first kept as its own cross-sections the skin between the legs that the other
+  // leg's spread reaches, and the mirror-image hips differed: 15 folded edges against 3); the
+  // second spreads every joint again from the per-vertex binding, knowing it.
+  const std::vector<VertexAttachment> binding = model->vertices;
+  auto spread_all = [&](std::span<const VertexAttachment> reached) {
+    std::size_t left_out = 0;
+    for (std::size_t c = 1; c < model->parts.size(); ++c)
+      if (model->parts[c].parent >= 0 && model->parts[c].joint.blend_length > 0.0)
+        left_out += SpreadJoint(adjacency, own_samples, c, bound[c], reached, scratch, model);
+    return left_out;
+  };
+  spread_all({});
+  const std::vector<VertexAttachment> reached = std::move(model->vertices);
+  model->vertices = binding;
+  return spread_all(reached);
 }
 
 }  // namespace wirerig

@@ -11,7 +11,9 @@
 // it rides on the child, so it must blend as the child's skin next to it does (within
 // kSiblingSpreadRadii, as siblings' skin).
 // A vertex whose kJointInfluences slots hold stronger influences is left out; their count is
-// returned.
+// returned. Skin on a sibling joint's bridge or spread (between two legs) is no cross-section
+// of either: every joint is spread twice, the second time knowing what every sibling's first
+// spread reached.
 #pragma once
 
 #include <cstddef>
