@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "limb_volume.h"
+#include "wirerig/rig/skin_quality.h"
 #include "wirerig/runtime/rig_evaluation.h"
 
 namespace wirerig {
@@ -36,12 +37,13 @@ void FitJointGrowth(std::span<const Vec3> rest, RigModel* model) {
   RigWorkspace workspace = MakeRigWorkspace(*model);
   std::vector<Vec3> posed(rest.size());
   std::vector<PartPose> poses(model->parts.size());
+  const std::vector<std::uint32_t> surface_border = SurfaceBorder(model->triangles);
   for (std::size_t c = 1; c < model->parts.size(); ++c) {
     JointModel& joint = model->parts[c].joint;
     if (model->parts[c].parent < 0 || !(joint.blend_length > 0.0)) continue;
     const std::vector<Vec3> bends = FitBends(joint);
     if (bends.empty()) continue;
-    const Limb limb = LimbOf(*model, c);
+    const Limb limb = LimbOf(*model, c, surface_border);
     const double rest_volume = LimbVolume(limb, rest, model->triangles);
     if (!(std::abs(rest_volume) > 0.0)) continue;
     // Volume at growth_scale s: v0 + s (v1 - v0), per bend; least squares for v = rest.

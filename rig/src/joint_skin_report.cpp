@@ -5,6 +5,7 @@
 
 #include "limb_volume.h"
 #include "wirerig/rig/joint_sweep.h"
+#include "wirerig/rig/skin_quality.h"
 
 namespace wirerig {
 namespace {
@@ -53,6 +54,7 @@ std::vector<JointSkinRow> MeasureJointSweep(const RigModel& model, std::span<con
   std::vector<Vec3> posed(n);
   std::vector<float> x(n), y(n), z(n), nx(n), ny(n), nz(n);
   std::vector<BoneMatrix> bones(model.parts.size());
+  const std::vector<std::uint32_t> surface_border = SurfaceBorder(model.triangles);
   std::vector<JointSkinRow> rows;
   for (std::size_t c : chosen) {
     const PartModel& part = model.parts[c];
@@ -63,7 +65,7 @@ std::vector<JointSkinRow> MeasureJointSweep(const RigModel& model, std::span<con
     for (double s : {-0.5, -0.25, 0.0, 0.25, 0.5, 0.75})
       sections.push_back(MakeCrossSection(rest, reference, centre + s * h * axis, axis,
                                           kSectionRadius * joint.radius));
-    const Limb limb = LimbOf(model, c);
+    const Limb limb = LimbOf(model, c, surface_border);
     for (const JointSweepPose& pose : JointSweep(joint)) {
       std::vector<PartPose> poses(model.parts.size());
       poses[c].rotation = JointRotation(joint, pose.degrees);

@@ -4,7 +4,7 @@
 
 namespace wirerig {
 
-Limb LimbOf(const RigModel& model, std::size_t c) {
+Limb LimbOf(const RigModel& model, std::size_t c, std::span<const std::uint32_t> surface_border) {
   std::vector<std::uint8_t> in_subtree(model.parts.size(), 0);
   in_subtree[c] = 1;
   for (std::size_t i = c + 1; i < model.parts.size(); ++i)
@@ -24,7 +24,7 @@ Limb LimbOf(const RigModel& model, std::size_t c) {
   }
   for (std::size_t v = 0; v < border.size(); ++v)
     if (border[v]) limb.border.push_back(std::uint32_t(v));
-  limb.surface_border = SurfaceBorder(model.triangles);
+  limb.surface_border.assign(surface_border.begin(), surface_border.end());
   return limb;
 }
 

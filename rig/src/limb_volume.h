@@ -11,6 +11,7 @@ namespace wirerig {
 
 // The child's side of the joint of part `c`: the vertices of c and its descendants and those on
 // c's bridge (`flags`), and the region's border (its vertices on a triangle that leaves it).
+// `surface_border`: SurfaceBorder(model.triangles) (skin_quality.h), made once per model.
 struct Limb {
   std::vector<std::uint8_t> flags;
   std::vector<std::uint32_t> border;
@@ -18,7 +19,7 @@ struct Limb {
   // seams). While they stay put, the limb's change of volume is exact (LimbVolumeRatio).
   std::vector<std::uint32_t> surface_border;
 };
-Limb LimbOf(const RigModel& model, std::size_t c);
+Limb LimbOf(const RigModel& model, std::size_t c, std::span<const std::uint32_t> surface_border);
 
 // The limb's volume in `positions`, m^3: its triangles closed by the cone to the middle of its
 // border (a nearly flat cap across the limb where it meets the body).
