@@ -83,9 +83,23 @@ double RootRadius(const PartModel& part) {
 // A hinge whose bones meet at more than this at rest (radians) bends its bridge with them.
 constexpr double kBentAtRest = 0.35;
 
+// The length of part `i`'s bone, m: from its joint to the farthest of its children's joints,
+// or its spine's length where that is longer (a leaf: the spine only). A spine runs between
+// its first and last profiles, so it is shorter than the bone of a short segment between two
+// joints (a spine segment's 8 cm spine in a 12 cm bone).
+double BoneLength(const RigModel& model, std::size_t i) {
+  const PartModel& part = model.parts[i];
+  double length = part.spine_length;
+  for (const PartModel& child : model.parts)
+    if (child.parent == int(i))
+      length = std::max(length, (child.spine_points.front() - part.spine_points.front()).norm());
+  return length;
+}
+
 // The joint of a part with a parent: axes from the bone's rest direction and the described
-// axis, limits and type as described, the skin bridge's size from the limb.
-Result<JointModel> MakeJoint(const PartModel& part, const PartModel& parent,
+// axis, limits and type as described, the skin bridge's size from the limb. `bone`: the
+// part's BoneLength.
+Result<JointModel> MakeJoint(const PartModel& part, double bone, const PartModel& parent,
                              const JointDescription& description) {
   JointModel joint;
   joint.type = description.type;
@@ -121,8 +135,7 @@ Result<JointModel> MakeJoint(const PartModel& part, const PartModel& parent,
     joint.parent_radius = std::clamp(last, joint.radius, 1.6 * joint.radius);
   }
   joint.blend_length = description.blend_length.value_or(std::min(
-      {(continues ? kBlendRadii : kBranchBlendRadii) * joint.radius,
-       kBlendMaxFraction * part.spine_length,
+      {(continues ? kBlendRadii : kBranchBlendRadii) * joint.radius, kBlendMaxFraction * bone,
        parent.parent >= 0
            ? kBlendMaxFraction * (part.spine_points.front() - parent.spine_points.front()).norm()
            : std::numeric_limits<double>::infinity()}));
@@ -317,8 +330,8 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
   SetWireProperties(rig, &model);
   for (std::size_t i = 1; i < model.parts.size(); ++i) {
     PartModel& part = model.parts[i];
-    Result<JointModel> joint =
-        MakeJoint(part, model.parts[std::size_t(part.parent)], rig.parts[i].joint);
+    Result<JointModel> joint = MakeJoint(part, BoneLength(model, i),
+                                         model.parts[std::size_t(part.parent)], rig.parts[i].joint);
     if (!joint) return Error{"part '" + part.name + "': " + joint.error()};
     part.joint = joint.value();
   }

@@ -5,9 +5,10 @@
 // rigidly to the end profile for the end caps). Each joint gets its rest frame, type and limits
 // from the rig's joint description and a skin bridge (joint_bridge.h) of half-length
 // min(kBlendRadii (kBranchBlendRadii for a limb off its parent's side) x the limb's radius at
-// the joint, kBlendMaxFraction x the child's spine
-// length, kBlendMaxFraction x the distance from the joint to the parent's own joint, if the
-// parent has one) unless the description sets one, so the bridges of a chain never overlap;
+// the joint, kBlendMaxFraction x the child's bone (from the joint to its farthest child's
+// joint, or along its spine where that is longer), kBlendMaxFraction x the distance from the
+// joint to the parent's own joint, if the parent has one) unless the description sets one, so
+// the bridges of a chain never overlap;
 // vertices near it are bound to it. A vertex lying around another part's spine (at most
 // kNearer times as far from it as from its own, within kAroundRadii of its radius) follows it.
 #pragma once
