@@ -353,7 +353,7 @@ const HumanRig& Human() {
 }
 
 // The joints whose skin holds through their whole sweep, limits included (the hips still fold
-// one edge from 60 degrees of flexion and four at 120, the shoulders two or three edges;
+// one edge from 60 degrees of flexion and three at 120, the shoulders two or three edges;
 // docs/benchmarks.md).
 // Not met yet, and held to what it reaches so it cannot get worse: the elbow at its 115-degree
 // limit (153 degrees from straight) stretches an edge of its crease to 2.19x (2.11x with the
