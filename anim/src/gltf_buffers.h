@@ -31,6 +31,8 @@ int AddJointAccessor(tinygltf::Model& model, std::span<const std::uint16_t> join
 
 // What a normalized short stores: value = q / kShortScale (signed), q / kUnsignedShortScale.
 inline constexpr double kShortScale = 32767.0;
+// A normalized signed byte: value = max(q / kByteScale, -1).
+inline constexpr double kByteScale = 127.0;
 inline constexpr double kUnsignedShortScale = 65535.0;
 
 // Normalized 16-bit accessor (#values / components elements, components from `type`): signed

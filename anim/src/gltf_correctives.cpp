@@ -5,6 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "gltf_buffers.h"
 #include "gltf_meshopt.h"
 
 namespace wirerig::gltf {
@@ -43,15 +44,23 @@ Correctives FitCorrectives(const Skeleton& skeleton, const SkinInfluences& influ
     const double lambda = eigen.eigenvalues()(i);
     if (!(lambda > 1e-14 * largest)) break;  // nothing left to carry
     const Eigen::VectorXd u = eigen.eigenvectors().col(i);
-    const Eigen::VectorXd shape = residuals.transpose() * u / std::sqrt(lambda);
-    const Eigen::VectorXd weight = u * std::sqrt(lambda);
+    Eigen::VectorXd shape = residuals.transpose() * u / std::sqrt(lambda);
+    Eigen::VectorXd weight = u * std::sqrt(lambda);
+    if (options.byte_shapes) {
+      const double largest_component = shape.cwiseAbs().maxCoeff();
+      if (!(largest_component > 0.0)) break;
+      shape = (shape * (kByteScale / largest_component)).array().round() / kByteScale;
+      weight = left * shape / shape.squaredNorm();
+    }
     left.noalias() -= weight * shape.transpose();
     for (Eigen::Index c = 0; c < columns; ++c) out.positions.push_back(float(shape(c)));
     weights.push_back(weight);
     ++out.shape_count;
   }
   const std::size_t shapes = out.shape_count;
-  if (options.delta_bits > 0) RoundLikeExpFilter(out.positions, 3, options.delta_bits);
+  out.byte_shapes = options.byte_shapes;
+  if (options.delta_bits > 0 && !options.byte_shapes)
+    RoundLikeExpFilter(out.positions, 3, options.delta_bits);
   out.weights.assign(keys * shapes, 0.0f);
   for (std::size_t s = 0; s < shapes; ++s)
     for (std::size_t k = 0; k < keys; ++k)

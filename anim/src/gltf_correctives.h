@@ -23,14 +23,20 @@ struct CorrectiveOptions {
   std::size_t max_shapes = 16;
   double max_error = 1e-3;  // m
   int delta_bits = 0;       // > 0: the shapes stored through the EXPONENTIAL filter
+  // Shapes stored as normalized signed bytes (KHR_mesh_quantization): each shape is scaled to
+  // its largest component (the scale goes into its weights) and rounded to q / 127, and its
+  // weights are then fitted to what the shapes before it leave (least squares per key), so the
+  // rounding is carried like any other residual and the error is the stored file's.
+  bool byte_shapes = false;
 };
 
 struct Correctives {
   std::size_t shape_count = 0;
-  std::vector<float> positions;  // #S x #V x 3 bind-space deltas
-  std::vector<float> weights;    // #K x #S, key-major
-  double max_error = 0.0;        // m: skinned, shapes applied, against the bake at the keys
-  double rms_error = 0.0;        // m
+  std::vector<float> positions;  // #S x #V x 3 bind-space deltas (multiples of 1/127: byte_shapes)
+  bool byte_shapes = false;
+  std::vector<float> weights;  // #K x #S, key-major
+  double max_error = 0.0;      // m: skinned, shapes applied, against the bake at the keys
+  double rms_error = 0.0;      // m
 };
 
 // `fit` must carry residuals (FitSkin with residuals) for `bake`.

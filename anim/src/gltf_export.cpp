@@ -124,6 +124,8 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::An
   corrective_options.max_shapes = options.max_correctives;
   corrective_options.max_error = options.corrective_error;
   if (options.compress) corrective_options.delta_bits = gltf::kDeltaBits;
+  // Quantized or compressed files store the shapes as bytes (KHR_mesh_quantization).
+  corrective_options.byte_shapes = options.quantize || options.compress;
   auto correctives = std::make_shared<const gltf::Correctives>(
       gltf::FitCorrectives(skeleton, influences, base, bake, fit, corrective_options));
   report->corrective_count = correctives->shape_count;
@@ -136,6 +138,7 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::An
   set.key_count = correctives->shape_count;
   set.vertex_count = base.Count();
   set.name_prefix = "corrective_";  // POSITION deltas only (gltf_correctives.h)
+  set.byte_positions = correctives->byte_shapes;
   set.deltas = [correctives](std::size_t s, std::span<float> positions, std::span<float>) {
     const std::size_t values = positions.size();
     std::copy_n(correctives->positions.begin() + static_cast<std::ptrdiff_t>(s * values), values,

@@ -20,6 +20,7 @@ namespace {
 constexpr const char* kQuantization = "KHR_mesh_quantization";
 constexpr std::size_t kFloatStride = 3 * sizeof(float);         // 12 bytes
 constexpr std::size_t kShortStride = 4 * sizeof(std::int16_t);  // 8: 4-byte aligned
+constexpr std::size_t kByteStride = 4;                          // 3 bytes padded to 4
 constexpr std::size_t kBlockBytes = std::size_t{4} << 20;       // write blocks, ~4 MB
 
 // Threads for `jobs` independent jobs: up to 2 (the machines wirerig runs on share few cores).
@@ -33,6 +34,11 @@ std::size_t ThreadCount(std::size_t jobs) {
 std::int16_t ToShort(float value) {
   const double scaled = static_cast<double>(value) * kShortScale;
   return static_cast<std::int16_t>(scaled + (scaled >= 0.0 ? 0.5 : -0.5));
+}
+
+// Normalized signed byte of a multiple of 1/127 in [-1, 1] (MorphTargetSet::byte_positions).
+std::int8_t ToByte(float value) {
+  return static_cast<std::int8_t>(std::lround(static_cast<double>(value) * kByteScale));
 }
 
 // Largest rounding of a vertex whose three components are rounded to shorts (half a step each).
@@ -120,6 +126,7 @@ StreamedTargets::StreamedTargets(MorphTargetSet set, std::vector<bool> quantized
 }
 
 std::size_t StreamedTargets::PositionBytes(std::size_t key) const {
+  if (set_.byte_positions) return set_.vertex_count * kByteStride;
   return set_.vertex_count * (quantized_positions_[key] ? kShortStride : kFloatStride);
 }
 
@@ -146,6 +153,13 @@ void StreamedTargets::EncodeKeys(std::size_t first, std::size_t last, std::vecto
     }
     std::memcpy(to, padded.data(), padded.size() * sizeof(std::int16_t));
   };
+  std::vector<std::int8_t> bytes_out(set_.byte_positions ? set_.vertex_count * 4 : 0, 0);
+  const auto pack_bytes = [&](std::span<const float> from, float* to) {
+    for (std::size_t v = 0; v < set_.vertex_count; ++v) {
+      for (std::size_t c = 0; c < 3; ++c) bytes_out[v * 4 + c] = ToByte(from[v * 3 + c]);
+    }
+    std::memcpy(to, bytes_out.data(), bytes_out.size());
+  };
   float* cursor = out.data();
   for (std::size_t k = first; k < last; ++k) {
     float* normals_at = cursor + PositionBytes(k) / sizeof(float);
@@ -156,7 +170,11 @@ void StreamedTargets::EncodeKeys(std::size_t first, std::size_t last, std::vecto
           std::span<float>(NormalsQuantized(k) ? scratch.data() + values : normals_at, values);
     }
     set_.deltas(k, positions, normals);
-    if (PositionsQuantized(k)) pack(positions, cursor);
+    if (PositionsInBytes()) {
+      pack_bytes(positions, cursor);
+    } else if (PositionsQuantized(k)) {
+      pack(positions, cursor);
+    }
     if (NormalsQuantized(k)) pack(normals, normals_at);
     cursor = normals_at + NormalBytes(k) / sizeof(float);
   }
@@ -242,9 +260,12 @@ MorphTargetsAdded AddMorphTargets(tinygltf::Model& model, int mesh_index, MorphT
   MorphTargetsAdded added;
   std::vector<bool> quantized_positions(keys, false);
   std::vector<bool> quantized_normals(keys, false);
+  if (set.byte_positions) {
+    added.quantized_position_targets = keys;
+  }
   for (std::size_t k = 0; k < keys; ++k) {
     if (!quantization.enabled) break;
-    quantized_positions[k] = set.vertex_count > 0 && FitsShorts(stats[k]) &&
+    quantized_positions[k] = !set.byte_positions && set.vertex_count > 0 && FitsShorts(stats[k]) &&
                              kShortRounding <= quantization.max_position_error;
     quantized_normals[k] = set.normals && stats[k].normal_magnitude <= 1.0f;
     if (quantized_positions[k]) {
@@ -262,32 +283,38 @@ MorphTargetsAdded AddMorphTargets(tinygltf::Model& model, int mesh_index, MorphT
   const int target = TINYGLTF_TARGET_ARRAY_BUFFER;
   const std::size_t vertices = set.vertex_count;
   const bool normals = set.normals;
+  const bool in_bytes = set.byte_positions;
   added.stream =
       StreamedTargets(std::move(set), std::move(quantized_positions), std::move(quantized_normals));
   const StreamedTargets& stream = added.stream;
   std::size_t offset = AlignedBufferEnd(model);
   std::vector<std::map<std::string, int>> targets(keys);
   std::vector<tinygltf::Value> names;
-  const auto add = [&](std::size_t bytes, bool quantized) {
-    const int view = AddReservedView(model, offset, bytes, quantized ? kShortStride : 0, target);
+  const auto add = [&](std::size_t bytes, bool quantized, bool in_bytes_here) {
+    const int view = AddReservedView(
+        model, offset, bytes, in_bytes_here ? kByteStride : (quantized ? kShortStride : 0), target);
     offset += bytes;
-    return AddAccessor(model, view,
-                       quantized ? TINYGLTF_COMPONENT_TYPE_SHORT : TINYGLTF_COMPONENT_TYPE_FLOAT,
-                       TINYGLTF_TYPE_VEC3, vertices, quantized);
+    const int type = in_bytes_here ? TINYGLTF_COMPONENT_TYPE_BYTE
+                     : quantized   ? TINYGLTF_COMPONENT_TYPE_SHORT
+                                   : TINYGLTF_COMPONENT_TYPE_FLOAT;
+    return AddAccessor(model, view, type, TINYGLTF_TYPE_VEC3, vertices, quantized);
+  };
+  // min/max in the stored values (bytes, shorts or floats), as glTF asks.
+  const auto stored = [&](float value, bool quantized) {
+    if (in_bytes) return static_cast<double>(ToByte(value));
+    return quantized ? static_cast<double>(ToShort(value)) : static_cast<double>(value);
   };
   for (std::size_t k = 0; k < keys; ++k) {
     const bool quantized = stream.PositionsQuantized(k);
-    const int position = add(stream.PositionBytes(k), quantized);
+    const int position = add(stream.PositionBytes(k), quantized, in_bytes);
     tinygltf::Accessor& accessor = model.accessors[static_cast<std::size_t>(position)];
     for (std::size_t c = 0; c < 3; ++c) {
-      accessor.minValues.push_back(quantized ? ToShort(stats[k].low[c])
-                                             : static_cast<double>(stats[k].low[c]));
-      accessor.maxValues.push_back(quantized ? ToShort(stats[k].high[c])
-                                             : static_cast<double>(stats[k].high[c]));
+      accessor.minValues.push_back(stored(stats[k].low[c], quantized));
+      accessor.maxValues.push_back(stored(stats[k].high[c], quantized));
     }
     targets[k]["POSITION"] = position;
     if (normals) {
-      targets[k]["NORMAL"] = add(stream.NormalBytes(k), stream.NormalsQuantized(k));
+      targets[k]["NORMAL"] = add(stream.NormalBytes(k), stream.NormalsQuantized(k), false);
     }
     names.emplace_back(set.name_prefix + std::to_string(k));
   }

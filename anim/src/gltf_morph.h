@@ -29,6 +29,10 @@ struct MorphTargetSet {
   std::string name_prefix = "key_";  // target k is named name_prefix + k
   std::size_t vertex_count = 0;
   bool normals = false;
+  // Every POSITION delta is a multiple of 1 / 127 in [-1, 1] (the caller rounded them: corrective
+  // shapes scaled into their weights): stored as normalized signed bytes, 4 per vertex
+  // (KHR_mesh_quantization), exactly.
+  bool byte_positions = false;
   DeltaSource deltas;
 };
 
@@ -60,7 +64,11 @@ class StreamedTargets {
   // Bytes of one key's position (or normal) block.
   std::size_t PositionBytes(std::size_t key) const;
   std::size_t NormalBytes(std::size_t key) const;
-  bool PositionsQuantized(std::size_t key) const { return quantized_positions_[key]; }
+  // Shorts, or bytes (MorphTargetSet::byte_positions).
+  bool PositionsQuantized(std::size_t key) const {
+    return set_.byte_positions || quantized_positions_[key];
+  }
+  bool PositionsInBytes() const { return set_.byte_positions; }
   bool NormalsQuantized(std::size_t key) const { return set_.normals && quantized_normals_[key]; }
 
  private:
@@ -76,7 +84,7 @@ class StreamedTargets {
 
 struct MorphTargetsAdded {
   StreamedTargets stream;
-  std::size_t quantized_position_targets = 0;
+  std::size_t quantized_position_targets = 0;  // as shorts or bytes
   std::size_t quantized_normal_targets = 0;
   double quantization_max_error = 0.0;  // m: bound of the position rounding, when quantized
 };

@@ -280,6 +280,8 @@ TEST(GltfExportThree, OctopusPlaysInThreeAsWirerigBakedIt) {
       {"skin", GltfPlayback::kSkin},
       {"skin_residual", GltfPlayback::kSkinResidual},
       {"skin_fitted", GltfPlayback::kSkin, false, false, true},
+      // Corrective shapes as normalized bytes (KHR_mesh_quantization), plain and compressed.
+      {"skin_fitted_quantized", GltfPlayback::kSkin, true, false, true},
       {"skin_fitted_compressed", GltfPlayback::kSkin, false, false, true, true},
   };
   for (const Variant& variant : variants) CheckVariant(baked, variant, dir.path());
