@@ -193,10 +193,7 @@ Vec3 RampDerivative(const RampTerms& r, int k, const Vec3& pa, const Vec3& pb) {
   return pa * (r.start[k] - r.ramp[k]) + pb * (r.ramp[k] - r.end[k]);
 }
 
-// X(v) = X0 + c1 v + c2 v^2 + c3 v^3 + compliance * M(v), M the Macaulay particular solution.
-struct ExactPolynomial {
-  Vec3 c1, c2, c3;
-};
+}  // namespace
 
 ExactPolynomial SolveExactPolynomial(const BendingJob& job, double compliance) {
   // m_k = M^(k)(1) (PHYSICS.md section 2), accumulated without the compliance factor.
@@ -245,6 +242,8 @@ ExactPolynomial SolveExactPolynomial(const BendingJob& job, double compliance) {
   return {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
 }
 
+namespace {
+
 // Evaluates X (and optionally dX/dv, d2X/dv2) at every sample; derivatives are converted to
 // arc length on output. Templated so the displacement-only loop carries no branches.
 template <bool kSlope, bool kCurvature>
@@ -292,6 +291,10 @@ void EvaluateExact(const BendingJob& job, const ExactPolynomial& poly, double co
 void RunExactBending(const BendingJob& job) {
   const double compliance = NormalizedCompliance(job);
   const ExactPolynomial poly = SolveExactPolynomial(job, compliance);
+  if (FitsSegmentedBending(job)) {
+    RunSegmentedBending(job, poly, compliance);
+    return;
+  }
   const bool slope = !job.slope.empty(), curvature = !job.curvature.empty();
   if (slope && curvature)
     EvaluateExact<true, true>(job, poly, compliance);

@@ -62,6 +62,35 @@ TEST(NoAllocation, BendingRunInBothModesWithAllOutputs) {
   }
 }
 
+// Point loads only: the piecewise-cubic path (up to 16 loads) and, past it, the general one.
+TEST(NoAllocation, BendingRunWithPointLoadsOnly) {
+  std::vector<PointLoad> p;
+  for (int j = 0; j < 17; ++j) p.push_back({(j * 7 % 17) / 16.0, Vec3(1, -2, 0.5 * j)});
+  std::vector<double> v(257);
+  for (std::size_t i = 0; i < v.size(); ++i) v[(i * 5) % v.size()] = double(i) / 256.0;
+  std::vector<Vec3> x(v.size()), slope(v.size()), curvature(v.size());
+  for (BoundaryCondition bc :
+       {BoundaryCondition::kSimplySupported, BoundaryCondition::kClamped,
+        BoundaryCondition::kCantileverFree, BoundaryCondition::kCantileverGuided}) {
+    for (std::size_t loads : {std::size_t{3}, std::size_t{16}, std::size_t{17}}) {
+      BendingJob job;
+      job.boundary = bc;
+      job.length = 1.5;
+      job.bending_stiffness = 3.0;
+      job.point_loads = std::span<const PointLoad>(p).first(loads);
+      job.samples = v;
+      job.displacement = x;
+      job.slope = slope;
+      job.curvature = curvature;
+      const long before = g_allocations;
+      const Status status = job.Run();
+      const long after = g_allocations;
+      ASSERT_TRUE(status.ok());
+      EXPECT_EQ(after, before) << ToString(bc) << " with " << loads << " loads";
+    }
+  }
+}
+
 TEST(NoAllocation, AxialRunWithNormalForce) {
   std::vector<AxialPointLoad> p = {{0.2, -1.0}, {0.9, 2.0}};
   std::vector<AxialLineLoad> q = {{0.3, 0.6, 1.0}};

@@ -9,7 +9,9 @@
 // X1 is ignored by the cantilevers: their free end's position is an output.
 //
 // Modes: kExact evaluates the piecewise-polynomial Green's-function solution of PHYSICS.md
-// section 2 (exact for point, uniform and linearly varying patch loads, O(J) per sample).
+// section 2 (exact for point, uniform and linearly varying patch loads, O(J) per sample; with
+// point loads only, at most 16 of them, one cubic per interval between loads: O(J^2) once per
+// Run() and O(1) per sample).
 // kSeries evaluates the paper's sine series, Eqs. (10)-(17), truncated at N terms, with each
 // load's exact sine coefficients; it converges as N^-3 for simply supported and clamped wires
 // and only as N^-1 for cantilevers.
