@@ -1,11 +1,14 @@
 #include "wirerig/rig/profile_curves.h"
 
+#include "wirerig/rig/polygon_crossing.h"
+
 #include "wirerig/runtime/spine_interpolation.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <span>
@@ -18,82 +21,22 @@ constexpr double kFar = std::numeric_limits<double>::max();
 
 // Per-task scratch, reused from profile to profile.
 struct ProfileScratch {
-  struct Box {
-    double x0, x1, y0, y1;
-    std::uint32_t edge;
-  };
-  std::vector<double> x, y;
-  std::vector<Box> boxes;
+  std::vector<double> x, y;  // a profile's points in its plane's coordinates
+  PolygonCrossingScratch crossing;
   std::vector<std::optional<RayHit>> part_hits, mesh_hits;  // per ray
 };
 
-// Orientation of r relative to the line pq (2D coordinates): > 0 to the left.
-inline double Orient(double px, double py, double qx, double qy, double rx, double ry) {
-  return (qx - px) * (ry - py) - (qy - py) * (rx - px);
-}
-
-// Strictly opposite signs.
-inline bool Straddles(double s0, double s1) {
-  return (s0 > 0.0 && s1 < 0.0) || (s0 < 0.0 && s1 > 0.0);
-}
-
-// Whether two non-adjacent edges of the profile's polygon (in the profile plane) properly cross:
-// each edge's endpoints strictly on opposite sides of the other's line. A sweep over the edges'
-// bounding boxes (sorted by their lower x) finds the pairs whose boxes overlap (to a relative
-// 1e-9 of the profile's size); only those get the exact test, O(n log n + pairs) instead of
-// O(n^2) for the loops rays give. `scratch` is reused between calls.
+// Whether the profile's polygon (in the profile plane) crosses itself (PolygonCrossesItself).
 bool SelfIntersects(const ProfileCurve& profile, ProfileScratch& scratch) {
   const std::size_t n = profile.points.size();
-  if (n < 4) return false;
-  scratch.x.resize(n + 1);
-  scratch.y.resize(n + 1);
-  double* x = scratch.x.data();
-  double* y = scratch.y.data();
-  double size = 0.0;
+  scratch.x.resize(n);
+  scratch.y.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 d = profile.points[i] - profile.origin;
-    x[i] = d.dot(profile.frame.normal);
-    y[i] = d.dot(profile.frame.binormal);
-    size = std::max({size, std::abs(x[i]), std::abs(y[i])});
+    scratch.x[i] = d.dot(profile.frame.normal);
+    scratch.y[i] = d.dot(profile.frame.binormal);
   }
-  x[n] = x[0];  // edge n - 1 of a closed profile ends at vertex 0
-  y[n] = y[0];
-  const std::size_t edges = profile.closed ? n : n - 1;
-  const double pad = 1e-9 * size;
-  scratch.boxes.resize(edges);
-  for (std::size_t i = 0; i < edges; ++i) {
-    ProfileScratch::Box& box = scratch.boxes[i];
-    box.x0 = std::min(x[i], x[i + 1]) - pad;
-    box.x1 = std::max(x[i], x[i + 1]) + pad;
-    box.y0 = std::min(y[i], y[i + 1]) - pad;
-    box.y1 = std::max(y[i], y[i + 1]) + pad;
-    box.edge = static_cast<std::uint32_t>(i);
-  }
-  std::sort(scratch.boxes.begin(), scratch.boxes.end(),
-            [](const ProfileScratch::Box& a, const ProfileScratch::Box& b) {
-              return a.x0 < b.x0 || (a.x0 == b.x0 && a.edge < b.edge);
-            });
-  // Edges i < j, j >= i + 2, but not edge n - 1 with edge 0 (adjacent through the seam): each
-  // edge's endpoints strictly on opposite sides of the other's line.
-  auto crosses = [&](std::size_t i, std::size_t j) {
-    if (j < i + 2 || (profile.closed && i == 0 && j == n - 1)) return false;
-    const double ax = x[i], ay = y[i], bx = x[i + 1], by = y[i + 1];
-    if (!Straddles(Orient(ax, ay, bx, by, x[j], y[j]), Orient(ax, ay, bx, by, x[j + 1], y[j + 1])))
-      return false;
-    const double o3 = Orient(x[j], y[j], x[j + 1], y[j + 1], ax, ay);
-    const double o4 = Orient(x[j], y[j], x[j + 1], y[j + 1], bx, by);
-    return ((o3 > 0.0) != (o4 > 0.0)) && o3 != 0.0 && o4 != 0.0;
-  };
-  const std::vector<ProfileScratch::Box>& boxes = scratch.boxes;
-  for (std::size_t p = 0; p < edges; ++p) {
-    for (std::size_t q = p + 1; q < edges && boxes[q].x0 <= boxes[p].x1; ++q) {
-      if (boxes[q].y0 > boxes[p].y1 || boxes[p].y0 > boxes[q].y1) continue;
-      const std::size_t i = std::min(boxes[p].edge, boxes[q].edge);
-      const std::size_t j = std::max(boxes[p].edge, boxes[q].edge);
-      if (crosses(i, j)) return true;
-    }
-  }
-  return false;
+  return PolygonCrossesItself(scratch.x, scratch.y, profile.closed, scratch.crossing);
 }
 
 // Keeps the longest cyclic run of hits, in ray order, starting after a miss.
@@ -153,7 +96,9 @@ CastResult CastRays(const ProfileRequest& request, ProfileCurve& profile,
   Cast(*request.part_bvh, profile, cosines, sines, scratch.part_hits);
   if (request.mesh_bvh) Cast(*request.mesh_bvh, profile, cosines, sines, scratch.mesh_hits);
   for (int j = 0; j < rays; ++j) {
-    const Vec3 direction = cosines[j] * profile.frame.normal + sines[j] * profile.frame.binormal;
+    auto direction = [&] {
+      return Vec3(cosines[j] * profile.frame.normal + sines[j] * profile.frame.binormal);
+    };
     std::optional<RayHit> chosen = scratch.part_hits[j];
     const std::optional<RayHit> first = request.mesh_bvh ? scratch.mesh_hits[j] : std::nullopt;
     // Another part's surface counts when the ray leaves through a junction, or meets it first.
@@ -162,7 +107,7 @@ CastResult CastRays(const ProfileRequest& request, ProfileCurve& profile,
     if (!chosen) chosen = first;
     bool through_hole = false;
     if (!chosen && request.wrap_bvh) {
-      chosen = request.wrap_bvh->Raycast(profile.origin, direction, 0.0, kFar);
+      chosen = request.wrap_bvh->Raycast(profile.origin, direction(), 0.0, kFar);
       through_hole = chosen.has_value();
     }
     hit[j] = chosen.has_value();
@@ -180,7 +125,7 @@ CastResult CastRays(const ProfileRequest& request, ProfileCurve& profile,
       const Triangle& t = request.triangles[chosen->triangle];
       const Vec3& a = request.positions[t[0]];
       const Vec3 normal = (request.positions[t[1]] - a).cross(request.positions[t[2]] - a);
-      if ((normal.dot(direction) < 0.0) != request.inward_facing) ++result.entering;
+      if ((normal.dot(direction()) < 0.0) != request.inward_facing) ++result.entering;
     }
   }
   return result;
@@ -234,6 +179,18 @@ struct RayTable {
     }
   }
 };
+
+// The table for `rays`, made once per thread for each of the first kCachedTables ray counts it
+// is asked for (later ones are made on every call). The tables live as long as the thread.
+const RayTable* CachedRayTable(int rays) {
+  constexpr std::size_t kCachedTables = 16;
+  thread_local std::vector<std::unique_ptr<const RayTable>> tables;
+  for (const auto& table : tables)
+    if (table->cosines.size() == static_cast<std::size_t>(std::max(rays, 0))) return table.get();
+  if (tables.size() == kCachedTables) return nullptr;
+  tables.push_back(std::make_unique<const RayTable>(rays));
+  return tables.back().get();
+}
 
 // Profile k (1-based) of the request: every profile is independent of the others.
 void GenerateProfile(const ProfileRequest& request, const RayTable& table, int k,
@@ -322,7 +279,8 @@ ProfileSet Assemble(std::span<ProfileOutcome> outcomes) {
 // Every profile of every request, as one list of tasks.
 struct BatchTasks {
   std::span<const ProfileRequest> requests;
-  std::vector<RayTable> tables;          // per request
+  std::vector<const RayTable*> tables;   // per request (cached or in `owned`)
+  std::vector<RayTable> owned;           // tables beyond the cache
   std::vector<std::size_t> first;        // per request: its first task; then the total
   std::vector<ProfileOutcome> outcomes;  // per task
 
@@ -332,7 +290,7 @@ struct BatchTasks {
         static_cast<std::size_t>(std::upper_bound(self.first.begin(), self.first.end(), task) -
                                  self.first.begin()) -
         1;
-    GenerateProfile(self.requests[r], self.tables[r], static_cast<int>(task - self.first[r]) + 1,
+    GenerateProfile(self.requests[r], *self.tables[r], static_cast<int>(task - self.first[r]) + 1,
                     self.outcomes[task]);
   }
 };
@@ -343,9 +301,12 @@ std::vector<ProfileSet> GenerateProfiles(std::span<const ProfileRequest> request
                                          const ParallelFor* parallel) {
   BatchTasks batch;
   batch.requests = requests;
+  batch.owned.reserve(requests.size());  // no reallocation: `tables` points into it
   std::size_t total = 0;
   for (const ProfileRequest& request : requests) {
-    batch.tables.emplace_back(request.points_per_profile);
+    const RayTable* table = CachedRayTable(request.points_per_profile);
+    if (!table) table = &batch.owned.emplace_back(request.points_per_profile);
+    batch.tables.push_back(table);
     batch.first.push_back(total);
     total += static_cast<std::size_t>(std::max(request.profile_count, 0));
   }

@@ -28,6 +28,8 @@
 // component is below 1e-150 in magnitude hits nothing.
 #include "wirerig/rig/triangle_bvh.h"
 
+#include "triangle_bvh_shared.h"
+
 #include <algorithm>
 #include <bit>
 #include <cassert>
@@ -44,18 +46,13 @@
 namespace wirerig {
 namespace {
 
+using namespace bvh_shared;
+
 constexpr int kBins = 12;
 constexpr std::uint32_t kMaxLeafSize = 4;
 constexpr int kMaxSahDepth = 48;
 // Deepest possible node: kMaxSahDepth SAH levels, then median splits of < 2^31 triangles.
-constexpr int kStackSize = kMaxSahDepth + 40;
-// order_ entries carry this bit for triangles too thin to hit (see IsDegenerate).
-constexpr std::uint32_t kDegenerateBit = 0x80000000u;
-constexpr std::uint32_t kIndexMask = ~kDegenerateBit;
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-constexpr double kHuge = std::numeric_limits<double>::max();
-constexpr double kMaxT = 1e300;
-constexpr double kTinyDirection = 1e-150;
+static_assert(kStackSize == kMaxSahDepth + 40, "kStackSize (triangle_bvh_shared.h) is the depth");
 constexpr double kBoxPad = 1e-12;
 // Relative widening of a box's exit distance: covers the rounding of the slab test (pbrt's
 // 1 + 2 gamma(3), with room to spare).
@@ -65,7 +62,6 @@ constexpr double kSlabSlack = 8.0 * kEps;
 // within [-1.01, 1.01]^3; the ray's start point is moved into the root box and its direction
 // scaled by a power of two so its largest component is in [1, 2), which bounds every float
 // slab distance of a relevant box by a few units.
-constexpr std::uint32_t kLeafRef = 0x80000000u;  // child: a leaf, whose index is below
 static_assert(kMaxLeafSize <= 4, "ray leaves have 4 triangle slots");
 constexpr float kEmptyBox = 1024.0f;  // unused child slots: the box [1024, -1024], never hit
 // Relative widening of the float exit distance: covers the three roundings of a float slab
@@ -81,11 +77,6 @@ constexpr double kCoarseLimit = 1.0 / 4096.0;
 // Largest float reciprocal direction component: smaller components are treated as this
 // (their slab distances only grow, see Raycast).
 constexpr float kMaxInverse = 1073741824.0f;  // 2^30
-
-// 2^exponent for exponent in [-1022, 1023], exactly.
-inline double PowerOfTwo(int exponent) {
-  return std::bit_cast<double>(static_cast<std::uint64_t>(exponent + 1023) << 52);
-}
 
 // The exponent e of a normal, positive x = m 2^e, m in [1, 2).
 inline int Exponent(double x) {
@@ -798,212 +789,6 @@ std::optional<RayHit> TriangleBvh::Raycast(const Vec3& origin, const Vec3& direc
   const Vec3 &a = positions_[tri[0]], &b = positions_[tri[1]], &c = positions_[tri[2]];
   hit.point = a + hit.u * (b - a) + hit.v * (c - a);
   return hit;
-}
-
-namespace {
-
-// A monotonic stand-in for the angle of (x, y) about the origin, in [0, 4] (the "diamond
-// angle"): 0, 1, 2, 3 along +x, +y, -x, -y, p(angle + pi) = p(angle) + 2 (mod 4), so an arc
-// longer than half a turn is longer than 2, and |dp / dangle| <= 1. (x, y) must not be (0, 0).
-inline double PseudoAngle(double x, double y) {
-  if (y >= 0.0) return x >= 0.0 ? y / (x + y) : 1.0 - x / (y - x);
-  return x < 0.0 ? 2.0 - y / (-x - y) : 3.0 + x / (x - y);
-}
-// A value the compiler cannot contract into a fused multiply-add (see RoundedProduct).
-inline double Rounded(double x) {
-#if defined(__SSE2__)
-  asm("" : "+x"(x));
-#endif
-  return x;
-}
-// Edge without branches: with both products rounded on their own, p0 q1 - p1 q0 is exactly
-// antisymmetric and equals Edge's value (as EdgePair's lanes do).
-inline double FanEdge(const double* p, const double* q) {
-  return Rounded(p[0] * q[1]) - Rounded(p[1] * q[0]);
-}
-// Per fan ray: the watertight test's shear and scale (see Ray).
-struct FanRay {
-  double sx, sy, sz;
-  int kx, ky, kz;
-};
-}  // namespace
-
-void TriangleBvh::RaycastFan(const Vec3& origin, const Vec3& normal, const Vec3& binormal,
-                             std::span<const double> cosines, std::span<const double> sines,
-                             std::span<std::optional<RayHit>> hits) const {
-  const std::size_t n = std::min({hits.size(), cosines.size(), sines.size()});
-  for (std::optional<RayHit>& hit : hits) hit.reset();
-  if (nodes_.empty() || n == 0) return;
-  auto direction = [&](std::size_t j) -> Vec3 { return cosines[j] * normal + sines[j] * binormal; };
-  auto ray_by_ray = [&] {
-    for (std::size_t j = 0; j < n; ++j) hits[j] = Raycast(origin, direction(j), 0.0, kHuge);
-  };
-  // The fan's plane, with unit normal `plane`.
-  Vec3 plane = normal.cross(binormal);
-  const double plane_norm = plane.norm();
-  if (n > kMaxFanRays || !(plane_norm > 1e-3 * normal.norm() * binormal.norm()) ||
-      !(plane_norm < 1e100) || !origin.allFinite())
-    return ray_by_ray();
-  plane /= plane_norm;
-  // The rays: shear constants, the pseudo-angles of their images in (normal, binormal)
-  // coordinates measured from the first ray's (strictly increasing), and how far their
-  // directions stray from the plane (rounding).
-  FanRay rays[kMaxFanRays];
-  double angles[kMaxFanRays];
-  double base = 0.0, stray = 0.0;
-  for (std::size_t j = 0; j < n; ++j) {
-    const Vec3 d = direction(j);
-    const double x = std::abs(d[0]), y = std::abs(d[1]), z = std::abs(d[2]);
-    FanRay& ray = rays[j];
-    ray.kz = z > std::max(x, y) ? 2 : y > x ? 1 : 0;
-    const double length = d.norm();
-    const double u = d.dot(normal), v = d.dot(binormal);
-    if (!(std::abs(d[ray.kz]) >= kTinyDirection) || !(length < 1e100) ||
-        !(u * u + v * v > 1e-6 * length * length))
-      return ray_by_ray();
-    ray.kx = ray.kz == 2 ? 0 : ray.kz + 1;
-    ray.ky = ray.kx == 2 ? 0 : ray.kx + 1;
-    ray.sz = 1.0 / d[ray.kz];
-    ray.sx = d[ray.kx] * ray.sz;
-    ray.sy = d[ray.ky] * ray.sz;
-    angles[j] = PseudoAngle(u, v) - base;
-    if (j == 0) {
-      base = angles[0];
-      angles[0] = 0.0;
-    } else if (angles[j] < 0.0) {
-      angles[j] += 4.0;
-    }
-    if (j > 0 && !(angles[j] > angles[j - 1] && angles[j] < 4.0)) return ray_by_ray();
-    stray = std::max(stray, std::abs(plane.dot(d)) / length);
-  }
-  // Every point a ray can hit lies in the root box, within `reach` of the origin, and so within
-  // reach * stray of the plane: triangles and boxes farther from the plane than `slab` (which
-  // adds room for the rounding of the distances) cannot be hit. A ray that hits a triangle hits
-  // it at a point whose image (in normal, binormal coordinates, a linear map) lies in the
-  // triangle's image, so the ray's angle is within the image's angular extent; kAngleMargin
-  // covers the rounding of the images (vertex images closer to the origin than 1e-6 of their
-  // distance, or triangles whose image surrounds the origin, are tested against every ray).
-  const Node& root = nodes_[0];
-  double reach2 = 0.0;
-  for (int a = 0; a < 3; ++a) {
-    const double d = std::max(std::abs(origin[a] - root.min[a]), std::abs(origin[a] - root.max[a]));
-    reach2 += d * d;
-  }
-  const double reach = std::sqrt(reach2);
-  const double slab = reach * (2.0 * stray + 64.0 * kEps);
-  constexpr double kAngleMargin = 1e-6;
-  constexpr double kNearOrigin2 = 1e-12;
-  double best[kMaxFanRays];
-  double hit_u[kMaxFanRays], hit_v[kMaxFanRays];
-  std::uint32_t hit_triangle[kMaxFanRays];
-  std::fill(best, best + n, kMaxT);
-  std::fill(hit_triangle, hit_triangle + n, kIndexMask);
-  // Raycast's watertight test, for one triangle and ray j.
-  auto test = [&](std::size_t j, const Vec3* vertex, std::uint32_t index) {
-    const FanRay& ray = rays[j];
-    double p[3][3];
-    for (int k = 0; k < 3; ++k) {
-      const double pz = vertex[k][ray.kz] - origin[ray.kz];
-      p[k][0] = (vertex[k][ray.kx] - origin[ray.kx]) - ray.sx * pz;
-      p[k][1] = (vertex[k][ray.ky] - origin[ray.ky]) - ray.sy * pz;
-      p[k][2] = ray.sz * pz;
-    }
-    const double u = FanEdge(p[1], p[2]), v = FanEdge(p[2], p[0]), w = FanEdge(p[0], p[1]);
-    if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return;
-    const double det = u + v + w;
-    const double scaled_t = u * p[0][2] + v * p[1][2] + w * p[2][2];
-    if (!(std::abs(det) > std::abs(scaled_t) * 1e-300)) return;
-    const double t = scaled_t / det;
-    if (!(t > 0.0 && t <= best[j])) return;
-    best[j] = t;
-    hit_triangle[j] = index;
-    hit_u[j] = v / det;
-    hit_v[j] = w / det;
-  };
-  // The rays whose angle (from the first ray's) lies in [a, b].
-  auto test_range = [&](double a, double b, const Vec3* vertex, std::uint32_t index) {
-    for (std::size_t j = static_cast<std::size_t>(std::lower_bound(angles, angles + n, a) - angles);
-         j < n && angles[j] <= b; ++j)
-      test(j, vertex, index);
-  };
-  std::uint32_t stack[kStackSize];
-  int top = 0;
-  std::uint32_t current = 0;
-  for (;;) {
-    const Node& node = nodes_[current];
-    double centre_distance = 0.0, extent = 0.0;
-    for (int a = 0; a < 3; ++a) {
-      centre_distance += plane[a] * (0.5 * (node.min[a] + node.max[a]) - origin[a]);
-      extent += std::abs(plane[a]) * (0.5 * (node.max[a] - node.min[a]));
-    }
-    if (std::abs(centre_distance) <= extent * (1.0 + 1e-12) + slab) {
-      if (node.count == 0) {
-        assert(top < kStackSize);
-        stack[top++] = node.first + 1;
-        current = node.first;
-        continue;
-      }
-      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
-        if (order_[i] & kDegenerateBit) continue;
-        const std::uint32_t index = order_[i];
-        const Triangle& tri = triangles_[index];
-        const Vec3 vertex[3] = {positions_[tri[0]], positions_[tri[1]], positions_[tri[2]]};
-        const Vec3 d[3] = {vertex[0] - origin, vertex[1] - origin, vertex[2] - origin};
-        const double s0 = plane.dot(d[0]), s1 = plane.dot(d[1]), s2 = plane.dot(d[2]);
-        if ((s0 > slab && s1 > slab && s2 > slab) || (s0 < -slab && s1 < -slab && s2 < -slab))
-          continue;
-        bool every_ray = false;
-        double a[3];
-        for (int k = 0; k < 3; ++k) {
-          const double x = d[k].dot(normal), y = d[k].dot(binormal);
-          every_ray = every_ray || !(x * x + y * y > kNearOrigin2 * d[k].squaredNorm());
-          a[k] = every_ray ? 0.0 : PseudoAngle(x, y);
-        }
-        if (!every_ray) {
-          // The extent is the complement of the widest gap between the vertices' angles; with
-          // no gap over half a turn the image surrounds the origin.
-          if (a[1] < a[0]) std::swap(a[0], a[1]);
-          if (a[2] < a[1]) std::swap(a[1], a[2]);
-          if (a[1] < a[0]) std::swap(a[0], a[1]);
-          const double g0 = a[1] - a[0], g1 = a[2] - a[1], g2 = a[0] + 4.0 - a[2];
-          double lo, length;
-          if (g2 >= g0 && g2 >= g1) {
-            lo = a[0], length = a[2] - a[0];
-            every_ray = !(g2 > 2.0 + 4.0 * kAngleMargin);
-          } else if (g0 >= g1) {
-            lo = a[1], length = a[0] + 4.0 - a[1];
-            every_ray = !(g0 > 2.0 + 4.0 * kAngleMargin);
-          } else {
-            lo = a[2], length = a[1] + 4.0 - a[2];
-            every_ray = !(g1 > 2.0 + 4.0 * kAngleMargin);
-          }
-          if (!every_ray) {
-            double from = lo - base - kAngleMargin;
-            if (from < 0.0) from += 4.0;
-            const double to = from + length + 2.0 * kAngleMargin;
-            test_range(from, to, vertex, index);
-            if (to >= 4.0) test_range(-1.0, to - 4.0, vertex, index);
-            continue;
-          }
-        }
-        for (std::size_t j = 0; j < n; ++j) test(j, vertex, index);
-      }
-    }
-    if (top == 0) break;
-    current = stack[--top];
-  }
-  for (std::size_t j = 0; j < n; ++j) {
-    if (hit_triangle[j] == kIndexMask) continue;
-    RayHit hit;
-    hit.t = best[j];
-    hit.triangle = hit_triangle[j];
-    hit.u = hit_u[j];
-    hit.v = hit_v[j];
-    const Triangle& tri = triangles_[hit.triangle];
-    const Vec3 &a = positions_[tri[0]], &b = positions_[tri[1]], &c = positions_[tri[2]];
-    hit.point = a + hit.u * (b - a) + hit.v * (c - a);
-    hits[j] = hit;
-  }
 }
 
 std::optional<ClosestPoint> TriangleBvh::Closest(const Vec3& point) const {

@@ -48,12 +48,13 @@ class TriangleBvh {
   // with j within one turn (e.g. the cosines and sines of 2 pi j / n). hits[j] is what
   // Raycast(origin, direction_j, 0, inf) returns: the same nearest t, and the same triangle and
   // point except where two triangles give exactly that t (a ray through their shared edge or
-  // vertex), when either may be reported. One traversal for the whole fan: only the triangles
-  // reaching the fan's plane are tested, each against the rays within its angular extent seen
-  // from the origin (with a margin); the watertight test is Raycast's. It pays when the rays
+  // vertex), when either may be reported. One traversal of the ray tree for the whole fan
+  // (triangle_bvh_fan.cpp): only the triangles reaching the fan's plane are tested, each
+  // against the rays within the angular extent (with a margin) of its part within rounding of
+  // the plane; the watertight test is Raycast's, operation for operation. It pays when the rays
   // outnumber the triangles the plane cuts. Fans that break the assumptions (more than
-  // kMaxFanRays rays, normal and binormal (nearly) parallel, angles out of order) are cast ray
-  // by ray. Allocation-free.
+  // kMaxFanRays rays, normal and binormal (nearly) parallel, angles out of order, an origin
+  // some 32 or more BVH sizes away) are cast ray by ray. Allocation-free.
   static constexpr std::size_t kMaxFanRays = 512;
   void RaycastFan(const Vec3& origin, const Vec3& normal, const Vec3& binormal,
                   std::span<const double> cosines, std::span<const double> sines,
