@@ -228,27 +228,11 @@ std::uint32_t MedianSplit(std::vector<Prim>& prims, std::uint32_t begin, std::ui
 #if !defined(__SSE2__)
 // 2D cross product p x q, exactly antisymmetric in its arguments whatever the compiler's
 // contraction of a*b - c*d into an FMA: the pair is always evaluated in lexicographic order.
-// (The scalar path's; with SSE2, EdgePair below.)
+// (The scalar path's; with SSE2, bvh_shared::EdgePair.)
 inline double Edge(const double* p, const double* q) {
   if (p[0] < q[0] || (p[0] == q[0] && p[1] < q[1])) return p[0] * q[1] - p[1] * q[0];
   if (p[0] == q[0] && p[1] == q[1]) return 0.0;
   return -(q[0] * p[1] - q[1] * p[0]);
-}
-#endif
-
-#if defined(__SSE2__)
-// A product rounded on its own: the empty asm makes it opaque, so the compiler cannot contract
-// it with a following subtraction into a fused multiply-add.
-inline __m128d RoundedProduct(__m128d a, __m128d b) {
-  __m128d product = _mm_mul_pd(a, b);
-  asm("" : "+x"(product));
-  return product;
-}
-
-// Edge for two lanes at once. With both products rounded separately, p0 q1 - p1 q0 is exactly
-// antisymmetric (and 0 for p == q) as it stands: it equals Edge's value in each lane.
-inline __m128d EdgePair(__m128d px, __m128d py, __m128d qx, __m128d qy) {
-  return _mm_sub_pd(RoundedProduct(px, qy), RoundedProduct(py, qx));
 }
 #endif
 
@@ -721,9 +705,9 @@ std::optional<RayHit> TriangleBvh::Raycast(const Vec3& origin, const Vec3& direc
           y[k] = _mm_sub_pd(_mm_sub_pd(_mm_load_pd(vertex + 2 * ray.ky), oky), _mm_mul_pd(vsy, pz));
           z[k] = _mm_mul_pd(vsz, pz);
         }
-        const __m128d e0 = EdgePair(x[1], y[1], x[2], y[2]);  // u = Edge(b, c)
-        const __m128d e1 = EdgePair(x[2], y[2], x[0], y[0]);  // v = Edge(c, a)
-        const __m128d e2 = EdgePair(x[0], y[0], x[1], y[1]);  // w = Edge(a, b)
+        const __m128d e0 = bvh_shared::EdgePair(x[1], y[1], x[2], y[2]);  // u = Edge(b, c)
+        const __m128d e1 = bvh_shared::EdgePair(x[2], y[2], x[0], y[0]);  // v = Edge(c, a)
+        const __m128d e2 = bvh_shared::EdgePair(x[0], y[0], x[1], y[1]);  // w = Edge(a, b)
         // Missed: some edge function negative and some positive.
         const __m128d zero = _mm_setzero_pd();
         const __m128d lowest = _mm_min_pd(_mm_min_pd(e0, e1), e2);

@@ -61,19 +61,6 @@ inline double FanEdge(const double* p, const double* q) {
   return FanRounded(p[0] * q[1]) - FanRounded(p[1] * q[0]);
 }
 
-#if defined(__SSE2__)
-// A product rounded on its own (no contraction into a fused multiply-add), two lanes.
-inline __m128d FanProduct(__m128d a, __m128d b) {
-  __m128d product = _mm_mul_pd(a, b);
-  asm("" : "+x"(product));
-  return product;
-}
-// FanEdge for two lanes (Raycast's EdgePair).
-inline __m128d FanEdgePair(__m128d px, __m128d py, __m128d qx, __m128d qy) {
-  return _mm_sub_pd(FanProduct(px, qy), FanProduct(py, qx));
-}
-#endif
-
 // Pseudo-angle margin of a triangle's angular extent (covers rounding many times over), and
 // the squared relative distance from the origin under which a point's angle is not trusted.
 constexpr double kAngleMargin = 1e-6;
@@ -245,9 +232,9 @@ void TriangleBvh::RaycastFan(const Vec3& origin, const Vec3& normal, const Vec3&
       _mm_store_pd(z[k], _mm_mul_pd(sz, pz));
     }
     alignas(16) double e[3][2];
-    _mm_store_pd(e[0], FanEdgePair(x[1], y[1], x[2], y[2]));
-    _mm_store_pd(e[1], FanEdgePair(x[2], y[2], x[0], y[0]));
-    _mm_store_pd(e[2], FanEdgePair(x[0], y[0], x[1], y[1]));
+    _mm_store_pd(e[0], bvh_shared::EdgePair(x[1], y[1], x[2], y[2]));
+    _mm_store_pd(e[1], bvh_shared::EdgePair(x[2], y[2], x[0], y[0]));
+    _mm_store_pd(e[2], bvh_shared::EdgePair(x[0], y[0], x[1], y[1]));
     for (int lane = 0; lane < 2; ++lane) {
       const double depth[3] = {z[0][lane], z[1][lane], z[2][lane]};
       finish(j + lane, e[0][lane], e[1][lane], e[2][lane], depth, index);

@@ -6,6 +6,10 @@
 #include <cstdint>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace wirerig::bvh_shared {
 
 // Deepest possible binary node: 48 SAH levels, then median splits of < 2^31 triangles.
@@ -24,5 +28,21 @@ inline constexpr std::uint32_t kLeafRef = 0x80000000u;
 inline double PowerOfTwo(int exponent) {
   return std::bit_cast<double>(static_cast<std::uint64_t>(exponent + 1023) << 52);
 }
+
+#if defined(__SSE2__)
+// A product rounded on its own: the empty asm makes it opaque, so the compiler cannot contract
+// it with a following subtraction into a fused multiply-add.
+inline __m128d RoundedProduct(__m128d a, __m128d b) {
+  __m128d product = _mm_mul_pd(a, b);
+  asm("" : "+x"(product));
+  return product;
+}
+
+// Edge for two lanes at once. With both products rounded separately, p0 q1 - p1 q0 is exactly
+// antisymmetric (and 0 for p == q) as it stands: it equals Edge's value in each lane.
+inline __m128d EdgePair(__m128d px, __m128d py, __m128d qx, __m128d qy) {
+  return _mm_sub_pd(RoundedProduct(px, qy), RoundedProduct(py, qx));
+}
+#endif
 
 }  // namespace wirerig::bvh_shared
