@@ -9,9 +9,14 @@
 // an error naming the file ("the importer crashed / timed out on this file" included), never a
 // crash or a hang. A memory error AddressSanitizer reports inside the child still leaves a crash
 // file (libFuzzer's handler is inherited) although this process goes on.
+#include <pthread.h>
+#include <sanitizer/asan_interface.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <iterator>
 #include <string>
 
@@ -19,6 +24,9 @@
 #include "wirerig/rig/mesh_import.h"
 
 namespace {
+
+// How a forked child that reached its memory limit ends (any status but 0 is "no answer").
+constexpr int kChildOverMemoryLimit = 99;
 
 constexpr const char* kExtensions[] = {"off", "ply", "obj", "stl", "dae",   "x",   "gltf", "glb",
                                        "fbx", "3ds", "ac",  "lwo", "ms3d",  "md2", "nff",  "ase",
@@ -51,10 +59,28 @@ void CheckMesh(const wirerig::Mesh& mesh) {
 
 }  // namespace
 
-// An allocation over the child's memory limit fails as the CLI's does (new throws, the child
-// answers "out of memory") instead of AddressSanitizer ending the child with a report, which the
-// inherited libFuzzer handler would save as a crash although the isolation did its job.
+// Memory over the child's limit. Under AddressSanitizer malloc then returns null, as without
+// it, but a failed `new` does not throw: AddressSanitizer reports "out of memory" and ends the
+// child, and libFuzzer's death callback, inherited through fork, would save the input as a crash
+// although the isolation did its job (the CLI's child, without a sanitizer, answers "out of
+// memory"). So a forked child ends quietly on such a report; every other report it makes (a
+// memory error in the conversion code) still ends it through libFuzzer, as a crash.
 extern "C" const char* __asan_default_options() { return "allocator_may_return_null=1"; }
+
+namespace {
+
+void EndChildOnMemoryLimit(const char* report) {
+  for (const char* limit : {"out of memory", "allocation-size-too-big", "failed to allocate"})
+    if (std::strstr(report, limit) != nullptr) ::_exit(kChildOverMemoryLimit);
+}
+
+const bool kChildReportsWatched = [] {
+  ::pthread_atfork(nullptr, nullptr,
+                   [] { __asan_set_error_report_callback(EndChildOnMemoryLimit); });
+  return true;
+}();
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;

@@ -61,8 +61,15 @@ shopt -s nullglob
 found=("$run_dir"/crash-* "$run_dir"/leak-* "$run_dir"/timeout-* "$run_dir"/oom-*)
 if [ $status -ne 0 ] || [ ${#found[@]} -gt 0 ]; then
   echo "fuzz: $target FAILED (exit status $status); full log: $run_dir/fuzz.log" >&2
+  # What the sanitizers said, and small inputs in base64: a CI log is all a fresh clone keeps.
+  grep -E "ERROR: |SUMMARY: |runtime error: |FATAL: |deadly signal" "$run_dir/fuzz.log" |
+    head -n 20 >&2 || true
   for f in "${found[@]}"; do
     echo "fuzz: input left in $f; replay: $fuzzer $f" >&2
+    if [ "$(stat -c %s "$f")" -le 65536 ]; then
+      echo "fuzz: the input in base64 (base64 -d > input):" >&2
+      base64 -w 120 "$f" >&2
+    fi
   done
   exit 1
 fi
