@@ -92,7 +92,9 @@ RigPart SkinlessPart(const PartDescription& d, const RigDescription& description
   part.joint = d.joint;
   for (std::size_t p = 0; p < rig.parts.size(); ++p)
     if (description.parts[p].name == d.parent) part.parent = int(p);
-  part.attachment = ClosestParameter(spines[std::size_t(part.parent)], part.spine_points.front());
+  // Where its children hang: the parent's flesh they met before the bone came between (its
+  // follow of the parent is rigid, so any point of it will do at rest).
+  part.attachment = ClosestParameter(spines[std::size_t(part.parent)], part.spine_points.back());
   part.spine_wire = rig.parts[std::size_t(part.parent)].spine_wire;
   part.spine_wire.material = description.material;
   return part;

@@ -20,7 +20,7 @@
 
 namespace wirerig {
 
-inline constexpr double kSkinlessSpreadLengths = 1.0;
+inline constexpr double kSkinlessSpreadLengths = 2.0;
 
 // `own_samples`: per vertex, its own part's spine sample nearest it. Returns the vertices left
 // out for want of a free influence slot.
