@@ -20,16 +20,13 @@ std::size_t SpreadSkinlessJoint(const Adjacency& adjacency,
   below[c] = true;
   for (std::size_t p = c + 1; p < model->parts.size(); ++p)
     below[p] = model->parts[p].parent >= 0 && below[std::size_t(model->parts[p].parent)];
-  // Carried: the skin of parts below c, and skin a joint below c moves.
+  // Carried: the skin of parts below c (the bone's children move it by their own motion).
   std::vector<bool> carried(n, false);
   using Item = std::pair<double, std::uint32_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
   std::vector<double> distance(n, std::numeric_limits<double>::infinity());
   for (std::uint32_t v = 0; v < n; ++v) {
-    const VertexAttachment& a = model->vertices[v];
-    bool on = below[a.part];
-    for (const JointInfluence& j : a.joints) on = on || (j.joint >= 0 && below[j.joint]);
-    if (!on) continue;
+    if (!below[model->vertices[v].part]) continue;
     carried[v] = true;
     distance[v] = 0.0;
     queue.push({0.0, v});
@@ -75,16 +72,13 @@ std::size_t SpreadSkinlessJoint(const Adjacency& adjacency,
     if (solver.info() == Eigen::Success) u = solver.solve(rhs);
   }
   std::size_t left_out = 0;
-  auto add = [&](std::uint32_t v, double value) {
-    if (!(value > 0.0)) return;
-    const JointInfluence influence{int(c), own_samples[v], std::min(value, 1.0), 1.0, 0.0, 1.0};
-    left_out += !AddJointInfluence(*model, influence, &model->vertices[v]);
-  };
-  for (std::size_t i = 0; i < free.size() && u.size() == Eigen::Index(free.size()); ++i)
-    add(free[i], u[Eigen::Index(i)]);
-  // The carried skin of other parts rides on c; c's own subtree does so by its parts' motion.
-  for (std::uint32_t v = 0; v < n; ++v)
-    if (carried[v] && !below[model->vertices[v].part]) add(v, 1.0);
+  for (std::size_t i = 0; i < free.size() && u.size() == Eigen::Index(free.size()); ++i) {
+    const double value = std::min(u[Eigen::Index(i)], 1.0);
+    // Below kSkinlessLeastBlend of the bone's motion the vertex keeps its own side's: no slot.
+    if (!(value * value * (3.0 - 2.0 * value) >= kSkinlessLeastBlend)) continue;
+    const JointInfluence influence{int(c), own_samples[free[i]], value, 1.0, 0.0, 1.0};
+    left_out += !AddJointInfluence(*model, influence, &model->vertices[free[i]]);
+  }
   return left_out;
 }
 

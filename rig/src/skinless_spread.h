@@ -1,14 +1,15 @@
 // The skin a skinless bone moves (a clavicle: a joint and a rigid bone, no skin of its own;
 // rig_description.h). Used by SpreadJointBindings after every skinned joint is spread.
 //
-// The bone's children carry its motion: their skin, and the skin their joint bridges move
-// (the chest's skin on a shoulder's bridge: each such bridge's parent end rides on the bone's
-// end), follow the bone fully (u = 1 on its joint). Around them, the skin of every other part
-// within kSkinlessSpreadLengths x the bone's length along the surface gets u harmonic over the
-// surface (edge weights 1 / length): 1 beside that carried skin, 0 at the reach's edge. Its
-// influence on the bone's joint has bridge 0: the vertex follows its own side (the skinned
-// ancestor's) and the bone's rigid motion blended by smoothstep(u), so a shrug lifts the top
-// of the shoulder and fades out over the chest.
+// The bone's children carry its motion on their own skin (their joint bridges' parent ends
+// ride on the bone's end, so a bridge adds only the child's turn relative to the bone). Around
+// that skin, the skin of every other part within kSkinlessSpreadLengths x the bone's length
+// along the surface gets u harmonic over the surface (edge weights 1 / length): 1 beside the
+// children's skin, 0 at the reach's edge. Its influence on the bone's joint has bridge 0: the
+// vertex follows its own side (the skinned ancestor's) and the bone's rigid motion blended by
+// smoothstep(u), so a shrug lifts the top of the shoulder and fades out over the chest. Where
+// smoothstep(u) < kSkinlessLeastBlend the vertex takes no influence (it keeps its slots, which
+// the torso's many bridges need).
 #pragma once
 
 #include <cstddef>
@@ -20,7 +21,8 @@
 
 namespace wirerig {
 
-inline constexpr double kSkinlessSpreadLengths = 2.0;
+inline constexpr double kSkinlessSpreadLengths = 1.5;
+inline constexpr double kSkinlessLeastBlend = 1e-3;
 
 // `own_samples`: per vertex, its own part's spine sample nearest it. Returns the vertices left
 // out for want of a free influence slot.

@@ -68,7 +68,10 @@ void SampleBridges(const RigModel& model, RigWorkspace& w, bool preserve_volume)
       flesh = std::size_t(model.parts[flesh].parent);
     }
     const SectionStrain parent_strain = SectionStrainAt(model, w, flesh, flesh_v, preserve_volume);
-    const SectionStrain child_strain = SectionStrainAt(model, w, c, end_v, preserve_volume);
+    // A skinless child (the clavicle) carries its ancestor's flesh as it is at the bone's root.
+    const SectionStrain child_strain = IsSkinless(child)
+                                           ? SectionStrain{1.0, parent_strain.scale}
+                                           : SectionStrainAt(model, w, c, end_v, preserve_volume);
     posed.start_tangent = parent_turn * child.joint.parent_axis;
     posed.start = w.spine_points[c].front() - h * posed.start_tangent;
     posed.start_scale = parent_strain.scale;
