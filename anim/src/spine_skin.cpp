@@ -32,7 +32,8 @@ std::optional<std::string> CheckInput(const RigModel& model, const Mesh& mesh,
     }
   }
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
-    if (model.parts[p].spine_points.size() < 2 || model.parts[p].profiles.size() < 2) {
+    // A skinless bone (no profiles) has joints but weighs no vertex.
+    if (model.parts[p].spine_points.size() < 2 || model.parts[p].profiles.size() == 1) {
       return Indexed("model.parts", p).append(": fewer than 2 spine points or profiles");
     }
   }

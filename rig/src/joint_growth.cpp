@@ -41,6 +41,7 @@ void FitJointGrowth(std::span<const Vec3> rest, RigModel* model) {
   for (std::size_t c = 1; c < model->parts.size(); ++c) {
     JointModel& joint = model->parts[c].joint;
     if (model->parts[c].parent < 0 || !(joint.blend_length > 0.0)) continue;
+    if (IsSkinless(model->parts[c])) continue;  // its bridge only blends: no growth
     const std::vector<Vec3> bends = FitBends(joint);
     if (bends.empty()) continue;
     const Limb limb = LimbOf(*model, c, surface_border);

@@ -1,5 +1,8 @@
 #include "joint_skin_spread.h"
 
+#include "mesh_adjacency.h"
+#include "skinless_spread.h"
+
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <limits>
@@ -8,50 +11,6 @@
 
 namespace wirerig {
 namespace {
-
-struct Neighbour {
-  std::uint32_t vertex = 0;
-  double weight = 0.0;  // 1 / rest length
-  double length = 0.0;
-};
-// The mesh's edges, per vertex: neighbours of v are list[offsets[v] .. offsets[v + 1]).
-struct Adjacency {
-  std::vector<std::uint32_t> offsets;
-  std::vector<Neighbour> list;
-  std::span<const Neighbour> operator[](std::uint32_t v) const {
-    return {list.data() + offsets[v], list.data() + offsets[v + 1]};
-  }
-};
-
-Adjacency MakeAdjacency(std::span<const Vec3> rest, const std::vector<Triangle>& triangles) {
-  // Every triangle edge both ways, bucketed by vertex, then each bucket deduplicated.
-  const std::size_t n = rest.size();
-  std::vector<std::uint32_t> count(n + 1, 0);
-  for (const Triangle& t : triangles)
-    for (std::uint32_t v : t) count[v + 1] += 2;
-  for (std::size_t v = 0; v < n; ++v) count[v + 1] += count[v];
-  std::vector<std::uint32_t> others(count[n]);
-  std::vector<std::uint32_t> fill(count.begin(), count.end() - 1);
-  for (const Triangle& t : triangles)
-    for (int k = 0; k < 3; ++k) {
-      others[fill[t[k]]++] = t[(k + 1) % 3];
-      others[fill[t[k]]++] = t[(k + 2) % 3];
-    }
-  Adjacency out;
-  out.offsets.assign(n + 1, 0);
-  out.list.reserve(count[n] / 2);
-  for (std::uint32_t a = 0; a < n; ++a) {
-    const auto first = others.begin() + count[a], last = others.begin() + count[a + 1];
-    std::sort(first, last);
-    const auto unique_end = std::unique(first, last);
-    for (auto b = first; b != unique_end; ++b) {
-      const double length = std::max((rest[a] - rest[*b]).norm(), 1e-12);
-      out.list.push_back({*b, 1.0 / length, length});
-    }
-    out.offsets[a + 1] = std::uint32_t(out.list.size());
-  }
-  return out;
-}
 
 // in_subtree[p]: part p is `root` or one of its descendants (parents precede children).
 std::vector<bool> Subtree(const RigModel& model, std::size_t root) {
@@ -79,10 +38,11 @@ constexpr double kFixedBridge = 1.0 - 1e-9;
 
 // Whether `a` holds an influence of a sibling of `joint` (a joint of the same parent).
 bool OnSiblingJoint(const RigModel& model, const VertexAttachment& a, int joint) {
-  const int parent = model.parts[std::size_t(joint)].parent;
+  const int parent = SkinParent(model, std::size_t(joint));
   for (const JointInfluence& other : a.joints)
     if (other.joint >= 0 && other.joint != joint &&
-        model.parts[std::size_t(other.joint)].parent == parent)
+        !IsSkinless(model.parts[std::size_t(other.joint)]) &&
+        SkinParent(model, std::size_t(other.joint)) == parent)
       return true;
   return false;
 }
@@ -163,7 +123,7 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
       if (next > reach || next >= distance[nb.vertex]) continue;
       const VertexAttachment& a = model->vertices[nb.vertex];
       const JointInfluence* j = InfluenceOf(model->vertices[nb.vertex], joint);
-      const bool sibling = model->parts[a.part].parent == child.parent && a.part != c;
+      const bool sibling = SkinParent(*model, a.part) == SkinParent(*model, c) && a.part != c;
       const bool below_child = child_side[a.part] && a.part != c;
       if (fixed && !(below_child && j == nullptr)) continue;  // a fixed seed: only those
       if (j == nullptr && !parent_side[a.part] && !(below_child && next <= sibling_reach) &&
@@ -275,14 +235,16 @@ std::size_t SpreadJointBindings(std::span<const Vec3> rest,
   auto spread_all = [&](std::span<const VertexAttachment> reached) {
     std::size_t left_out = 0;
     for (std::size_t c = 1; c < model->parts.size(); ++c)
-      if (model->parts[c].parent >= 0 && model->parts[c].joint.blend_length > 0.0)
+      if (model->parts[c].parent >= 0 && model->parts[c].joint.blend_length > 0.0 &&
+          !IsSkinless(model->parts[c]))
         left_out += SpreadJoint(adjacency, own_samples, c, bound[c], reached, scratch, model);
     return left_out;
   };
   spread_all({});
   const std::vector<VertexAttachment> reached = std::move(model->vertices);
   model->vertices = binding;
-  return spread_all(reached);
+  const std::size_t left_out = spread_all(reached);
+  return left_out + SpreadSkinlessJoints(adjacency, own_samples, model);
 }
 
 }  // namespace wirerig

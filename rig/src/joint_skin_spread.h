@@ -13,7 +13,8 @@
 // A vertex whose kJointInfluences slots hold stronger influences is left out; their count is
 // returned. Skin on a sibling joint's bridge or spread (between two legs) is no cross-section
 // of either: every joint is spread twice, the second time knowing what every sibling's first
-// spread reached.
+// spread reached. Siblings are joints of the same skinned parent (SkinParent: a shoulder hung
+// from a clavicle is the neck's sibling). Last, skinless bones' joints (skinless_spread.h).
 #pragma once
 
 #include <cstddef>

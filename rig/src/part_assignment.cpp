@@ -94,8 +94,8 @@ Result<PartAssignment> AssignParts(const Mesh& mesh, const RigDescription& descr
   for (std::size_t p = 0; p < part_count; ++p)
     for (const std::string& name : description.parts[p].mesh_parts) claimed_by[name] = int(p);
   std::vector<bool> restricted(part_count, false);
-  for (std::size_t p = 0; p < part_count; ++p)
-    restricted[p] = !description.parts[p].mesh_parts.empty();
+  for (std::size_t p = 0; p < part_count; ++p)  // skinless parts take no vertices at all
+    restricted[p] = !description.parts[p].mesh_parts.empty() || !description.parts[p].skin;
   for (const MeshPart& mesh_part : mesh.parts) {
     const auto it = claimed_by.find(mesh_part.name);
     if (it == claimed_by.end()) continue;

@@ -124,7 +124,10 @@ ReferenceSkin MakeReferenceSkin(const RigModel& model, std::span<const Vec3> res
     const VertexAttachment& a = model.vertices[v];
     double own = 1.0;
     for (const JointInfluence& j : a.joints) {
-      if (j.joint < 0) continue;
+      // A skinless bone's blend (skinless_spread.h) is left out: with it the torso's vertices
+      // needed a fifth bone and lost one of their four (the baselines' spine rows folded 40
+      // edges); a game rig weighs the torso to the chest, the arm to the clavicle's children.
+      if (j.joint < 0 || IsSkinless(model.parts[std::size_t(j.joint)])) continue;
       const double child = SmoothStep(j.u);
       dense[v][std::size_t(j.joint)] += j.weight * child;
       const auto parent = std::size_t(model.parts[std::size_t(j.joint)].parent);

@@ -80,6 +80,26 @@ RigDescription WithoutPart(const RigDescription& description, std::size_t droppe
   return out;
 }
 
+// A skinless bone (rig_description.h): its spine is its central curve's 2 points, its wire a
+// tube as thick as its parent's (it carries no skin, only its children).
+RigPart SkinlessPart(const PartDescription& d, const RigDescription& description, const Rig& rig,
+                     const std::vector<Curve>& spines) {
+  RigPart part;
+  part.name = d.name;
+  part.skin = false;
+  part.central_curve = d.central_curve;
+  part.spine_points = d.central_curve;
+  part.joint = d.joint;
+  for (std::size_t p = 0; p < rig.parts.size(); ++p)
+    if (description.parts[p].name == d.parent) part.parent = int(p);
+  // Where its children hang: the parent's flesh they met before the bone came between (its
+  // follow of the parent is rigid, so any point of it will do at rest).
+  part.attachment = ClosestParameter(spines[std::size_t(part.parent)], part.spine_points.back());
+  part.spine_wire = rig.parts[std::size_t(part.parent)].spine_wire;
+  part.spine_wire.material = description.material;
+  return part;
+}
+
 // One attempt; `failed` gets the part whose profiles missed the surface, if that stopped it.
 Result<BuiltRig> BuildRigOnce(const Mesh& mesh, const RigDescription& description,
                               const std::string& mesh_path, const RigBuildOptions& options,
@@ -115,6 +135,17 @@ Result<BuiltRig> BuildRigOnce(const Mesh& mesh, const RigDescription& descriptio
   std::vector<Curve> spines;
   for (std::size_t i = 0; i < description.parts.size(); ++i) {
     const PartDescription& d = description.parts[i];
+    if (!d.skin) {
+      RigPart part = SkinlessPart(d, description, rig, spines);
+      Result<Curve> spine = BuildSpineCurve(part.spine_points);
+      if (!spine) return Error{"part '" + d.name + "': " + spine.error()};
+      spines.push_back(std::move(spine).value());
+      PartReport report;
+      report.name = d.name;
+      built.report.parts.push_back(report);
+      rig.parts.push_back(std::move(part));
+      continue;
+    }
     Curve central;
     const auto interpolation =
         d.central_curve.size() >= 3 ? CurveInterpolation::kCubic : CurveInterpolation::kLinear;

@@ -34,12 +34,21 @@ std::vector<std::string> ReadNames(const JsonObject& object, std::string_view ke
 
 PartDescription ReadPart(const JsonObject& p, const PartDescription& defaults) {
   p.RejectUnknownKeys({"name", "central_curve", "profile_count", "points_per_profile", "parent",
-                       "mesh_parts", "joint"});
+                       "mesh_parts", "joint", "skin"});
   PartDescription part = defaults;
   part.name = p.String("name");
   part.central_curve = ReadVector3Array(p.Required("central_curve"), p.PathOf("central_curve"));
-  part.profile_count = p.Integer("profile_count", defaults.profile_count);
-  part.points_per_profile = p.Integer("points_per_profile", defaults.points_per_profile);
+  part.skin = p.Bool("skin", true);
+  if (!part.skin) {
+    // A bone with no skin: nothing to cast profiles for (the defaults do not apply).
+    for (const char* key : {"profile_count", "points_per_profile", "mesh_parts"})
+      if (p.Has(key)) throw FieldError(p.PathOf(key), "a skinless part (\"skin\": false) has none");
+    part.profile_count = part.points_per_profile = 0;
+  }
+  if (part.skin) {
+    part.profile_count = p.Integer("profile_count", defaults.profile_count);
+    part.points_per_profile = p.Integer("points_per_profile", defaults.points_per_profile);
+  }
   if (p.Has("parent") && !p.Required("parent").is_null()) part.parent = p.String("parent");
   part.mesh_parts = ReadNames(p, "mesh_parts");
   part.joint = ReadJointDescription(p);
@@ -66,6 +75,33 @@ std::string ParentCycle(const RigDescription& description, std::size_t start) {
       return text;
     }
   }
+}
+
+// Part i's profile counts, or what makes it a bad skinless part: "/<field>: <reason>", empty
+// when valid.
+std::string ValidateSkin(const RigDescription& description, std::size_t i) {
+  const PartDescription& part = description.parts[i];
+  if (part.skin) {
+    if (part.profile_count < 2 || part.profile_count > kMaxProfiles)
+      return "/profile_count: must lie in [2, 4096]";
+    if (part.points_per_profile < 3 || part.points_per_profile > kMaxPointsPerProfile)
+      return "/points_per_profile: must lie in [3, 1024]";
+    return {};
+  }
+  if (part.profile_count != 0 || part.points_per_profile != 0)
+    return "/profile_count: a skinless part (\"skin\": false) has no profiles";
+  if (!part.mesh_parts.empty())
+    return "/mesh_parts: a skinless part (\"skin\": false) owns no mesh parts";
+  if (part.central_curve.size() != 2)
+    return "/central_curve: a skinless part's bone is 2 points (its joint, then its end)";
+  if (i == 0) return "/skin: the root part must have skin";
+  const bool has_child =
+      std::any_of(description.parts.begin(), description.parts.end(),
+                  [&](const PartDescription& other) { return other.parent == part.name; });
+  if (!has_child)
+    return "/skin: a skinless part needs a child (a bone with no skin and nothing hanging from "
+           "it moves nothing)";
+  return {};
 }
 
 }  // namespace
@@ -144,10 +180,7 @@ std::string ValidateRigDescription(const RigDescription& description) {
       if (k > 0 && (p - part.central_curve[k - 1]).norm() <= 0.0)
         return path + "/central_curve/" + std::to_string(k) + ": repeats the previous point";
     }
-    if (part.profile_count < 2 || part.profile_count > kMaxProfiles)
-      return path + "/profile_count: must lie in [2, 4096]";
-    if (part.points_per_profile < 3 || part.points_per_profile > kMaxPointsPerProfile)
-      return path + "/points_per_profile: must lie in [3, 1024]";
+    if (std::string error = ValidateSkin(description, i); !error.empty()) return path + error;
     if (i == 0 && !part.parent.empty()) return path + "/parent: the first part is the root";
     if (i > 0 && part.parent.empty()) return path + "/parent: only the first part may be a root";
     if (part.parent == part.name) return path + "/parent: a part cannot be its own parent";
@@ -162,9 +195,13 @@ std::string ValidateRigDescription(const RigDescription& description) {
     if (std::string error = ValidateJointDescription(part.joint); !error.empty())
       return path + "/joint/" + error;
   }
-  for (int p : description.vertex_part)
+  for (int p : description.vertex_part) {
     if (p < -1 || p >= static_cast<int>(description.parts.size()))
       return "/vertex_part: names a part that does not exist";
+    if (p >= 0 && !description.parts[std::size_t(p)].skin)
+      return "/vertex_part: gives vertices to skinless part '" +
+             description.parts[std::size_t(p)].name + "'";
+  }
   return {};
 }
 

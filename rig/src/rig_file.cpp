@@ -1,5 +1,7 @@
 #include "wirerig/rig/rig_file.h"
 
+#include <algorithm>
+
 #include "wirerig/io/json_text.h"
 
 #include <cmath>
@@ -74,7 +76,8 @@ ProfileCurve ReadProfile(const JsonObject& p) {
 
 RigPart ReadPart(const JsonObject& p, const std::vector<RigPart>& earlier) {
   p.RejectUnknownKeys({"name", "parent", "attachment", "central_curve", "profile_count",
-                       "points_per_profile", "profiles", "spine_points", "spine_wire", "joint"});
+                       "points_per_profile", "profiles", "spine_points", "spine_wire", "joint",
+                       "skin"});
   RigPart part;
   part.name = p.String("name");
   if (part.name.empty()) throw FieldError(p.PathOf("name"), "must not be empty");
@@ -99,19 +102,30 @@ RigPart ReadPart(const JsonObject& p, const std::vector<RigPart>& earlier) {
   part.central_curve = ReadVector3Array(p.Required("central_curve"), p.PathOf("central_curve"));
   if (part.central_curve.size() < 2)
     throw FieldError(p.PathOf("central_curve"), "needs at least 2 points");
-  part.profile_count = p.Integer("profile_count", 0);
-  part.points_per_profile = p.Integer("points_per_profile", 0);
-  if (part.profile_count < 2) throw FieldError(p.PathOf("profile_count"), "must be at least 2");
-  if (part.points_per_profile < 3)
-    throw FieldError(p.PathOf("points_per_profile"), "must be at least 3");
-  RequireArray(p.Required("profiles"), p.PathOf("profiles"));
-  ForEachElement(p, "profiles", [&](const JsonObject& profile) {
-    part.profiles.push_back(ReadProfile(profile));
-    part.profile_wires.push_back(ReadWire(profile, "wire"));
-  });
+  part.skin = p.Bool("skin", true);
+  if (part.skin) {
+    part.profile_count = p.Integer("profile_count", 0);
+    part.points_per_profile = p.Integer("points_per_profile", 0);
+    if (part.profile_count < 2) throw FieldError(p.PathOf("profile_count"), "must be at least 2");
+    if (part.points_per_profile < 3)
+      throw FieldError(p.PathOf("points_per_profile"), "must be at least 3");
+    RequireArray(p.Required("profiles"), p.PathOf("profiles"));
+    ForEachElement(p, "profiles", [&](const JsonObject& profile) {
+      part.profiles.push_back(ReadProfile(profile));
+      part.profile_wires.push_back(ReadWire(profile, "wire"));
+    });
+  } else {
+    // A skinless bone: no profiles; its spine is its 2-point bone.
+    if (earlier.empty()) throw FieldError(p.PathOf("skin"), "the root part must have skin");
+    for (const char* key : {"profile_count", "points_per_profile", "profiles"})
+      if (p.Has(key)) throw FieldError(p.PathOf(key), "a skinless part (\"skin\": false) has none");
+  }
   part.spine_points = ReadVector3Array(p.Required("spine_points"), p.PathOf("spine_points"));
-  if (part.spine_points.size() != part.profiles.size() || part.profiles.size() < 2)
+  if (part.skin && (part.spine_points.size() != part.profiles.size() || part.profiles.size() < 2))
     throw FieldError(p.PathOf("spine_points"), "needs one point per profile, at least 2");
+  if (!part.skin && (part.spine_points.size() != 2 ||
+                     (part.spine_points[1] - part.spine_points[0]).norm() <= 0.0))
+    throw FieldError(p.PathOf("spine_points"), "a skinless part's bone is 2 distinct points");
   for (std::size_t i = 0; i < part.spine_points.size(); ++i)
     RequireFinite(part.spine_points[i], p.PathOf("spine_points") + "/" + std::to_string(i));
   part.spine_wire = ReadWire(p, "spine_wire");
@@ -140,17 +154,22 @@ nlohmann::json RigToJson(const Rig& rig) {
                           {"points", ToJson(p.points)},
                           {"wire", ToJson(part.profile_wires[k])}});
     }
-    parts.push_back({{"name", part.name},
-                     {"parent", part.parent >= 0 ? nlohmann::json(rig.parts[part.parent].name)
-                                                 : nlohmann::json(nullptr)},
-                     {"attachment", part.attachment},
-                     {"central_curve", ToJson(part.central_curve)},
-                     {"profile_count", part.profile_count},
-                     {"points_per_profile", part.points_per_profile},
-                     {"profiles", std::move(profiles)},
-                     {"spine_points", ToJson(part.spine_points)},
-                     {"spine_wire", ToJson(part.spine_wire)},
-                     {"joint", WriteJointDescription(part.joint)}});
+    nlohmann::json out = {{"name", part.name},
+                          {"parent", part.parent >= 0 ? nlohmann::json(rig.parts[part.parent].name)
+                                                      : nlohmann::json(nullptr)},
+                          {"attachment", part.attachment},
+                          {"central_curve", ToJson(part.central_curve)},
+                          {"spine_points", ToJson(part.spine_points)},
+                          {"spine_wire", ToJson(part.spine_wire)},
+                          {"joint", WriteJointDescription(part.joint)}};
+    if (part.skin) {
+      out["profile_count"] = part.profile_count;
+      out["points_per_profile"] = part.points_per_profile;
+      out["profiles"] = std::move(profiles);
+    } else {
+      out["skin"] = false;
+    }
+    parts.push_back(std::move(out));
   }
   return {{"format", "wirerig.rig"},
           {"version", Rig::kFormatVersion},
@@ -190,6 +209,11 @@ Result<Rig> RigFromJson(const nlohmann::json& document) {
     ForEachElement(root, "parts",
                    [&](const JsonObject& p) { rig.parts.push_back(ReadPart(p, rig.parts)); });
     if (rig.parts.empty()) throw FieldError("/parts", "needs at least one part");
+    for (std::size_t i = 0; i < rig.parts.size(); ++i)
+      if (!rig.parts[i].skin &&
+          std::none_of(rig.parts.begin(), rig.parts.end(),
+                       [&](const RigPart& other) { return other.parent == int(i); }))
+        throw FieldError("/parts/" + std::to_string(i) + "/skin", "a skinless part needs a child");
     const nlohmann::json& vertex_part = RequireArray(root.Required("vertex_part"), "/vertex_part");
     if (vertex_part.size() != rig.mesh_vertices)
       throw FieldError("/vertex_part", "needs one entry per mesh vertex (" +
@@ -198,6 +222,8 @@ Result<Rig> RigFromJson(const nlohmann::json& document) {
       if (!vertex_part[i].is_number_integer() || vertex_part[i].get<long long>() < 0 ||
           vertex_part[i].get<long long>() >= static_cast<long long>(rig.parts.size()))
         throw FieldError("/vertex_part/" + std::to_string(i), "must be a part index");
+      if (!rig.parts[vertex_part[i].get<std::size_t>()].skin)
+        throw FieldError("/vertex_part/" + std::to_string(i), "names a skinless part");
       rig.vertex_part.push_back(vertex_part[i].get<int>());
     }
     return rig;

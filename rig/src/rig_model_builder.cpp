@@ -33,7 +33,37 @@ double ProjectOnSamples(const std::vector<Vec3>& samples, const Vec3& p) {
 
 // Mass properties of the solid the part's closed profiles enclose (a tube of their loops with
 // fan caps); an empty MassProperties when the profiles are open or differ in point count.
+// A skinless bone's mass: a solid rod along its bone, kSkinlessRodRadius x its length in radius
+// (an octagonal prism): articulated dynamics need every body to have some.
+MassProperties SkinlessRod(const RigPart& part, double density) {
+  constexpr int kSides = 8;
+  const Vec3 a = part.spine_points.front(), b = part.spine_points.back();
+  const Vec3 axis = (b - a).normalized();
+  const Vec3 x = axis.unitOrthogonal(), y = axis.cross(x);
+  const double r = kSkinlessRodRadius * (b - a).norm();
+  std::vector<Vec3> positions{a, b};
+  for (const Vec3& end : {a, b})
+    for (int k = 0; k < kSides; ++k) {
+      const double angle = 2.0 * std::acos(-1.0) * k / kSides;
+      positions.push_back(end + r * (std::cos(angle) * x + std::sin(angle) * y));
+    }
+  std::vector<Triangle> triangles;
+  for (std::uint32_t k = 0; k < kSides; ++k) {
+    const std::uint32_t i = 2 + k, j = 2 + (k + 1) % kSides;
+    triangles.push_back({0, j, i});
+    triangles.push_back({1, i + kSides, j + kSides});
+    triangles.push_back({i, j, j + kSides});
+    triangles.push_back({i, j + kSides, i + kSides});
+  }
+  MassProperties mass;
+  if (ComputeSolidMassProperties(positions, triangles, density, &mass)) return mass;
+  for (Triangle& t : triangles) std::swap(t[1], t[2]);
+  if (ComputeSolidMassProperties(positions, triangles, density, &mass)) return mass;
+  return {};
+}
+
 MassProperties ProfileSolid(const RigPart& part, double density) {
+  if (part.profiles.empty()) return SkinlessRod(part, density);
   const std::size_t m = part.profiles.front().points.size();
   for (const ProfileCurve& p : part.profiles)
     if (!p.closed || p.points.size() != m) return {};
@@ -98,9 +128,12 @@ double BoneLength(const RigModel& model, std::size_t i) {
 
 // The joint of a part with a parent: axes from the bone's rest direction and the described
 // axis, limits and type as described, the skin bridge's size from the limb. `bone`: the
-// part's BoneLength.
+// part's BoneLength; `parent`: the part's parent, `skin_parent` its nearest skinned ancestor
+// (SkinParent: the parent unless that is a skinless bone), whose flesh the bridge meets.
+// A skinless bone's own joint has no limb: its bridge is only the blend of its two sides' rigid
+// motions (skinless_spread.h), half its bone long, with no radius.
 Result<JointModel> MakeJoint(const PartModel& part, double bone, const PartModel& parent,
-                             const JointDescription& description) {
+                             const PartModel& skin_parent, const JointDescription& description) {
   JointModel joint;
   joint.type = description.type;
   joint.min_degrees = description.min_degrees;
@@ -114,13 +147,20 @@ Result<JointModel> MakeJoint(const PartModel& part, double bone, const PartModel
   joint.axes.col(0) = x;
   joint.axes.col(1) = z.cross(x);
   joint.axes.col(2) = z;
+  if (IsSkinless(part)) {
+    joint.parent_axis = z;
+    joint.blend_length = kSkinlessBlendFraction * part.spine_length;
+    if (Status s = ValidateJoint(joint); !s)
+      return Error{"joint/" + std::string(s.field) + ": " + std::string(s.reason)};
+    return joint;
+  }
   joint.radius = RootRadius(part);
   // A child continuing its parent's chain (hung from the parent's spine end) meets the
   // parent's own flesh there: the parent's radius at its last profile, within 1-1.6 of the
   // child's. A branch off a parent's side (a shoulder on a chest) meets only its own.
   joint.parent_radius = joint.radius;
   const bool continues =
-      part.attachment > 0.85 &&
+      &parent == &skin_parent && part.attachment > 0.85 &&
       (part.spine_points.front() - parent.spine_points.back()).norm() < 2.0 * joint.radius;
   joint.parent_axis = z;
   // A hinge bent at rest (an elbow): the bridge bends with it, entering along the parent's bone.
@@ -129,9 +169,9 @@ Result<JointModel> MakeJoint(const PartModel& part, double bone, const PartModel
     joint.parent_axis = parent_bone;
   if (continues) {
     double sum = 0.0;
-    for (const Vec3& q : parent.profiles.back().local_points) sum += q.head<2>().norm();
+    for (const Vec3& q : skin_parent.profiles.back().local_points) sum += q.head<2>().norm();
     const double last =
-        sum / double(std::max<std::size_t>(1, parent.profiles.back().local_points.size()));
+        sum / double(std::max<std::size_t>(1, skin_parent.profiles.back().local_points.size()));
     joint.parent_radius = std::clamp(last, joint.radius, 1.6 * joint.radius);
   }
   joint.blend_length = description.blend_length.value_or(std::min(
@@ -210,10 +250,11 @@ void BindJoints(const RigModel& model, const std::vector<RestBridge>& rest_bridg
   a->joints = {};
   for (std::size_t c = 1; c < model.parts.size(); ++c) {
     const PartModel& child = model.parts[c];
+    if (IsSkinless(child)) continue;  // its bridge only blends: SpreadSkinlessJoints
     JointSide side;
     if (c == own)
       side = JointSide::kChild;
-    else if (child.parent == int(own))
+    else if (SkinParent(model, c) == int(own))
       side = JointSide::kParent;
     else
       continue;  // another part: its own motion
@@ -303,7 +344,8 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
     out.name = part.name;
     out.parent = part.parent;
     out.attachment = part.attachment;
-    out.kind = options.spine_kind;
+    // A skinless bone is rigid: no flesh to bend it.
+    out.kind = part.skin ? options.spine_kind : SpineKind::kRigid;
     Result<Curve> spine = BuildSpineCurve(part.spine_points);
     if (!spine) return Error{"part '" + part.name + "': " + spine.error()};
     const int samples = std::max(options.min_spine_samples, 4 * int(part.profiles.size()));
@@ -330,8 +372,9 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
   SetWireProperties(rig, &model);
   for (std::size_t i = 1; i < model.parts.size(); ++i) {
     PartModel& part = model.parts[i];
-    Result<JointModel> joint = MakeJoint(part, BoneLength(model, i),
-                                         model.parts[std::size_t(part.parent)], rig.parts[i].joint);
+    Result<JointModel> joint =
+        MakeJoint(part, BoneLength(model, i), model.parts[std::size_t(part.parent)],
+                  model.parts[std::size_t(SkinParent(model, i))], rig.parts[i].joint);
     if (!joint) return Error{"part '" + part.name + "': " + joint.error()};
     part.joint = joint.value();
   }

@@ -20,7 +20,8 @@ RigQuality AssessRig(const BuiltRig& built) {
     q.crossing_profiles += r.profiles.self_intersecting + r.profiles.crossing_neighbour;
     q.escaped_rays += r.profiles.misses;
     q.dropped_profiles += r.profiles.outside_profiles + r.profiles.empty_profiles;
-    if (kept < 2) q.parts_without_profiles.push_back(built.rig.parts[i].name);
+    if (kept < 2 && built.rig.parts[i].skin)  // a skinless bone has none by design
+      q.parts_without_profiles.push_back(built.rig.parts[i].name);
   }
   q.warnings = built.report.warnings.size();
   std::vector<std::string> reasons;

@@ -59,9 +59,19 @@ void SampleBridges(const RigModel& model, RigWorkspace& w, bool preserve_volume)
     Vec3 rest_end, rest_end_tangent;
     const Mat3 child_turn =
         SpineTurn(child, w, c, end_v, &rest_end, &posed.end, &rest_end_tangent, &posed.end_tangent);
-    const SectionStrain parent_strain =
-        SectionStrainAt(model, w, child.parent, child.attachment, preserve_volume);
-    const SectionStrain child_strain = SectionStrainAt(model, w, c, end_v, preserve_volume);
+    // The flesh at the parent's end: a skinless parent's (a clavicle's) skinned ancestor's,
+    // where the bone hangs from it.
+    std::size_t flesh = std::size_t(child.parent);
+    double flesh_v = child.attachment;
+    while (model.parts[flesh].parent >= 0 && IsSkinless(model.parts[flesh])) {
+      flesh_v = model.parts[flesh].attachment;
+      flesh = std::size_t(model.parts[flesh].parent);
+    }
+    const SectionStrain parent_strain = SectionStrainAt(model, w, flesh, flesh_v, preserve_volume);
+    // A skinless child (the clavicle) carries its ancestor's flesh as it is at the bone's root.
+    const SectionStrain child_strain = IsSkinless(child)
+                                           ? SectionStrain{1.0, parent_strain.scale}
+                                           : SectionStrainAt(model, w, c, end_v, preserve_volume);
     posed.start_tangent = parent_turn * child.joint.parent_axis;
     posed.start = w.spine_points[c].front() - h * posed.start_tangent;
     posed.start_scale = parent_strain.scale;

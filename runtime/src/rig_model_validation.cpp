@@ -1,5 +1,6 @@
 // ValidateRigModel (rig_asset.h): what must hold before a model from outside (a parsed asset)
 // may be evaluated.
+#include <algorithm>
 #include <cmath>
 
 #include "wirerig/runtime/rig_asset.h"
@@ -48,8 +49,14 @@ Status ValidatePart(const RigModel& model, std::size_t i) {
   if (!Physical(m.volume) || !Physical(m.mass) || !Finite(m.center) || !m.inertia.allFinite() ||
       !Finite(m.principal_axes) || !m.principal_moments.allFinite())
     return Status::InvalidElement("parts", index, "mass", "must be finite");
-  if (p.profiles.size() < 2)
-    return Status::InvalidElement("parts", index, "profiles", "need at least 2");
+  // A skinless bone (no profiles) is a rigid segment between a parent and at least one child.
+  if (p.profiles.empty() && (i == 0 || p.kind != SpineKind::kRigid ||
+                             std::none_of(model.parts.begin() + index + 1, model.parts.end(),
+                                          [&](const PartModel& c) { return c.parent == index; })))
+    return Status::InvalidElement("parts", index, "profiles",
+                                  "none only for a rigid, skinless bone with a parent and a child");
+  if (p.profiles.size() == 1)
+    return Status::InvalidElement("parts", index, "profiles", "need at least 2 (or none)");
   for (const ProfileModel& profile : p.profiles) {
     if (!(Finite(profile.spine_v) && profile.spine_v >= 0.0 && profile.spine_v <= 1.0))
       return Status::InvalidElement("parts", index, "profiles", "spine_v must lie in [0, 1]");

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
@@ -453,6 +454,49 @@ TEST(JointSkin, HumanShouldersAndHipsSpreadTheirStretchOverTheTorso) {
     EXPECT_NEAR(left.worst_stretch, right.worst_stretch, 0.05);
   }
   for (int m = 1; m < kSkinMethods; ++m) EXPECT_LT(shoulder_folds[0], shoulder_folds[m]) << m;
+}
+
+// The clavicles: skinless bones (no skin of their own) between the chest and the upper arms.
+// Swept through their limits (elevation -10..30 degrees, protraction and retraction 25, twist
+// 10) they fold no edge and stretch none beyond 2x; a 25-degree shrug lifts the top of the
+// shoulder with the arm, fading out over the chest: the skin of the other side's shoulder and
+// below the chest does not move.
+TEST(JointSkin, HumanClaviclesShrugTheShoulderWithTheSkinWhole) {
+  const HumanRig& human = Human();
+  const std::size_t left = human.Part("clavicle_l"), right = human.Part("clavicle_r");
+  ASSERT_TRUE(IsSkinless(human.model.parts[left]));
+  EXPECT_EQ(human.model.parts[human.Part("upper_arm_l")].parent, int(left));
+  const std::vector<JointSkinRow> rows =
+      MeasureJointSweep(human.model, human.mesh.welded_positions, std::vector{left, right});
+  EXPECT_GE(rows.size(), 12u);  // each clavicle up, down, forward, back and twisted both ways
+  for (const JointSkinRow& row : rows) {
+    SCOPED_TRACE(row.joint + " " + row.pose);
+    EXPECT_EQ(row.methods[0].folded_edges, 0u);
+    EXPECT_LT(row.methods[0].worst_stretch, 2.0);
+  }
+  const std::vector<Vec3>& rest = human.mesh.welded_positions;
+  std::vector<PartPose> poses(human.model.parts.size());
+  poses[left].rotation = JointRotation(human.model.parts[left].joint, Vec3(25.0, 0.0, 0.0));
+  const std::vector<Vec3> posed = Evaluate(human.model, poses);
+  const std::size_t chest = human.Part("chest");
+  const std::set<std::size_t> left_arm = {human.Part("upper_arm_l"), human.Part("forearm_l"),
+                                          human.Part("hand_l")};
+  double top_lift = 0.0;  // the chest's skin on top of the left shoulder
+  for (std::size_t v = 0; v < rest.size(); ++v) {
+    const Vec3& p = rest[v];
+    const std::size_t part = human.model.vertices[v].part;
+    if (part == chest && p.x() > 0.13 && p.y() > 1.3)
+      top_lift = std::max(top_lift, posed[v].y() - p.y());
+    if (!left_arm.contains(part) && (p.x() < -0.12 || p.y() < 0.95)) {
+      EXPECT_LT((posed[v] - p).norm(), 1e-9) << v;
+    }
+  }
+  EXPECT_GT(top_lift, 0.03);
+  // The arm's root rides on the clavicle's end: turned 25 degrees about the clavicle's start.
+  const PartModel& arm = human.model.parts[human.Part("upper_arm_l")];
+  const Vec3 start = human.model.parts[left].spine_points.front();
+  const Vec3 expected = start + poses[left].rotation * (arm.spine_points.front() - start);
+  EXPECT_GT(expected.y() - arm.spine_points.front().y(), 0.05);
 }
 
 // A joint's skin away from the limb (bridge fraction strictly between 0 and 1) has the bridge

@@ -57,6 +57,13 @@ void ExpectRigFitsMesh(const Mesh& mesh, const BuiltRig& built) {
   for (std::size_t i = 0; i < built.rig.parts.size(); ++i) {
     const RigPart& part = built.rig.parts[i];
     SCOPED_TRACE("part " + part.name);
+    if (!part.skin) {  // a skinless bone: its 2 spine points inside the body, no profiles
+      EXPECT_TRUE(part.profiles.empty());
+      EXPECT_EQ(part.spine_points.size(), 2u);
+      for (const Vec3& s : part.spine_points)
+        EXPECT_GT(WindingNumber(mesh.welded_positions, closed, s), 0.5) << s.transpose();
+      continue;
+    }
     EXPECT_EQ(built.report.parts[i].profiles.misses, 0u);
     EXPECT_GE(part.profiles.size(), 2u);
     for (const ProfileCurve& profile : part.profiles) {
@@ -118,18 +125,23 @@ TEST(RigBuilder, HumanFromItsDescription) {
   const Result<BuiltRig> built = BuildRig(mesh, description.value(), "human.zae");
   ASSERT_TRUE(built.ok()) << built.error();
   // A bone chain like a game skeleton's.
-  for (const char* name : {"pelvis", "spine_1", "spine_2", "chest", "neck", "head", "upper_arm_l",
-                           "forearm_l", "hand_l", "upper_arm_r", "forearm_r", "hand_r", "thigh_l",
-                           "shin_l", "foot_l", "thigh_r", "shin_r", "foot_r"})
+  for (const char* name : {"pelvis",     "spine_1",     "spine_2",     "chest",     "neck",
+                           "head",       "clavicle_l",  "upper_arm_l", "forearm_l", "hand_l",
+                           "clavicle_r", "upper_arm_r", "forearm_r",   "hand_r",    "thigh_l",
+                           "shin_l",     "foot_l",      "thigh_r",     "shin_r",    "foot_r"})
     EXPECT_TRUE(HasPart(built.value().rig, name)) << name;
   ExpectRigFitsMesh(mesh, built.value());
-  // Upper arms hang from the chest beside its middle (the shoulder joints lie below the top of
-  // the chest's loops), thighs from the bottom of the pelvis, and each segment of a chain from
-  // the end of the one before.
+  // Clavicles hang from the chest beside its middle (the shoulder joints lie below the top of
+  // the chest's loops), upper arms from the clavicles' ends, thighs from the bottom of the
+  // pelvis, and each segment of a chain from the end of the one before.
   for (const RigPart& part : built.value().rig.parts) {
-    if (part.name.starts_with("upper_arm")) {
+    if (part.name.starts_with("clavicle")) {
       EXPECT_GT(part.attachment, 0.2) << part.name;
       EXPECT_EQ(built.value().rig.parts[part.parent].name, "chest");
+    }
+    if (part.name.starts_with("upper_arm")) {
+      EXPECT_GT(part.attachment, 0.9) << part.name;
+      EXPECT_TRUE(built.value().rig.parts[part.parent].name.starts_with("clavicle"));
     }
     if (part.name.starts_with("thigh")) {
       EXPECT_LT(part.attachment, 0.3) << part.name;

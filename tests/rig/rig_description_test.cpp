@@ -168,20 +168,26 @@ TEST(RigDescription, BrokenJointsAndCyclesAreNamed) {
   ExpectRefused(d, "/parts/1/parent: the chain has a cycle: arm -> hand -> arm");
 }
 
-TEST(RigDescription, TheHumanIsABoneChainWithHingedElbowsAndKnees) {
+TEST(RigDescription, TheHumanIsABoneChainWithClaviclesAndHingedElbowsAndKnees) {
   const Result<RigDescription> human =
       LoadRigDescription(std::string(WIRERIG_SAMPLES_DIR) + "/rigs/human.description.json");
   ASSERT_TRUE(human.ok()) << human.error();
   std::map<std::string, const PartDescription*> parts;
   for (const PartDescription& p : human.value().parts) parts[p.name] = &p;
-  ASSERT_EQ(parts.size(), 18u);
+  ASSERT_EQ(parts.size(), 20u);
   for (const char* hinge : {"forearm_l", "forearm_r", "shin_l", "shin_r"}) {
     ASSERT_TRUE(parts.contains(hinge)) << hinge;
     EXPECT_EQ(parts[hinge]->joint.type, JointType::kHinge) << hinge;
   }
   EXPECT_EQ(parts["hand_l"]->parent, "forearm_l");
   EXPECT_EQ(parts["forearm_l"]->parent, "upper_arm_l");
-  EXPECT_EQ(parts["upper_arm_l"]->parent, "chest");
+  EXPECT_EQ(parts["upper_arm_l"]->parent, "clavicle_l");
+  EXPECT_EQ(parts["upper_arm_r"]->parent, "clavicle_r");
+  for (const char* clavicle : {"clavicle_l", "clavicle_r"}) {
+    ASSERT_TRUE(parts.contains(clavicle)) << clavicle;
+    EXPECT_FALSE(parts[clavicle]->skin) << clavicle;
+    EXPECT_EQ(parts[clavicle]->parent, "chest") << clavicle;
+  }
   EXPECT_EQ(parts["foot_r"]->parent, "shin_r");
   EXPECT_EQ(parts["shin_r"]->parent, "thigh_r");
   EXPECT_EQ(parts["thigh_r"]->parent, "pelvis");

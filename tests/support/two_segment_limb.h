@@ -23,4 +23,23 @@ inline RigDescription TwoSegmentLimb() {
   return description;
 }
 
+// The same limb with a skinless bone ("bone", "skin": false, from y = 0.55 down to 0.45) between
+// "upper" (from 0.95 down to 0.55) and "lower" (from 0.45 down to 0.05); both joints' first
+// axis is +X.
+inline RigDescription SkinlessBoneLimb() {
+  RigDescription description = TwoSegmentLimb();
+  description.parts[0].central_curve = {Vec3(0, 0.95, 0), Vec3(0, 0.55, 0)};
+  PartDescription bone;
+  bone.name = "bone";
+  bone.parent = "upper";
+  bone.skin = false;
+  bone.profile_count = bone.points_per_profile = 0;
+  bone.central_curve = {Vec3(0, 0.55, 0), Vec3(0, 0.45, 0)};
+  bone.joint.axis = Vec3::UnitX();
+  description.parts[1].parent = "bone";
+  description.parts[1].central_curve = {Vec3(0, 0.45, 0), Vec3(0, 0.05, 0)};
+  description.parts.insert(description.parts.begin() + 1, bone);
+  return description;
+}
+
 }  // namespace wirerig::testing

@@ -39,7 +39,8 @@ struct SpineSkin {
 // `model` must be built on `mesh` (one attachment per welded vertex). Refuses, naming the field:
 // a spread outside [1, 2]; mesh.weld_map not of #V entries or pointing beyond the welded
 // vertices; model.vertices not one per welded vertex; an attachment whose part or profile is out
-// of range; a part with fewer than 2 spine points or profiles; non-finite rest positions.
+// of range; a part with fewer than 2 spine points, or with 1 profile (skinless bones have
+// none); non-finite rest positions.
 Result<SpineSkin> BuildSpineSkin(const RigModel& model, const Mesh& mesh,
                                  const SpineSkinOptions& options = {});
 

@@ -33,6 +33,9 @@ struct RigPart {
   std::vector<Vec3> spine_points;  // profile centroids; the spine interpolates them (C2 cubic)
   WireProperties spine_wire;
   JointDescription joint;  // how it turns on its parent
+  // false: a skinless bone (rig_description.h): profile_count 0, no profiles, its spine the 2
+  // points of its central curve, no vertices.
+  bool skin = true;
 };
 
 struct Rig {

@@ -7,7 +7,11 @@
 // central curve has at least 2 finite points, consecutive points distinct; profile_count >= 2;
 // 3 <= points_per_profile <= 1024; a parent names an earlier part; exactly the first part has
 // no parent; parents never form a cycle; joints follow ValidateJointDescription; vertex weights,
-// when present, are one per welded vertex.
+// when present, are one per welded vertex and never name a skinless part.
+// A skinless part ("skin": false, a bone such as a clavicle) has a central curve of exactly 2
+// points (its rigid bone, from its joint to its end), no profiles, no mesh parts and no
+// vertices; it is not the root and has at least one child (its skin is its children's and its
+// nearest skinned ancestor's).
 #pragma once
 
 #include <filesystem>
@@ -29,12 +33,13 @@ struct PartDescription {
   // Rough central curve, root end first (the end attached to the parent), metres in the
   // converted mesh frame (+Y up).
   std::vector<Vec3> central_curve;
-  int profile_count = 12;       // profile curves along the part
+  int profile_count = 12;       // profile curves along the part (0 when skinless)
   int points_per_profile = 24;  // rays cast per profile
   std::string parent;           // empty for the root part
   // Optional: only these mesh parts (by MeshPart::name) belong to this part.
   std::vector<std::string> mesh_parts;
   JointDescription joint;  // how it turns on its parent (joint_description.h)
+  bool skin = true;        // false: a skinless bone (profile counts 0, no vertices)
 };
 
 // The most parts a rig may have (a description or a rig file): building is quadratic in them

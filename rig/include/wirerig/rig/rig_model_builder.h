@@ -25,6 +25,10 @@ inline constexpr double kBlendRadii = 2.5;
 // less of the torso.
 inline constexpr double kBranchBlendRadii = 1.5;
 inline constexpr double kBlendMaxFraction = 0.45;
+// A skinless bone's bridge (a blend of its sides' rigid motions): this fraction of its bone.
+inline constexpr double kSkinlessBlendFraction = 0.5;
+// A skinless bone's mass is a solid rod this fraction of its length in radius.
+inline constexpr double kSkinlessRodRadius = 0.1;
 
 struct RigModelOptions {
   int min_spine_samples = 16;  // samples per spine: max(this, 4 x profiles)

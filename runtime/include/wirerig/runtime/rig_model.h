@@ -39,8 +39,10 @@ struct PartModel {
   std::vector<Frame> spine_frames;  // rest rotation-minimizing frames at the samples
   double spine_length = 0.0;        // m
   WireStiffness spine_stiffness;
-  MassProperties mass;                 // of the part's enclosed volume (rigid parts), from its skin
-  std::vector<ProfileModel> profiles;  // in order along the spine, at least 2
+  MassProperties mass;  // of the part's enclosed volume (rigid parts), from its skin
+  // In order along the spine, at least 2; none for a skinless bone (a clavicle: a rigid spine
+  // with a joint and children but no skin or vertices of its own).
+  std::vector<ProfileModel> profiles;
   double max_radius = 0.0;  // largest distance from the spine to a profile point at rest, m
   JointModel joint;         // how the part turns on its parent (parts with a parent)
 };
@@ -90,6 +92,16 @@ struct RigModel {
   std::vector<VertexAttachment> vertices;  // one per welded mesh vertex
   std::vector<Triangle> triangles;         // welded triangles, for normals
 };
+
+inline bool IsSkinless(const PartModel& part) { return part.profiles.empty(); }
+
+// The nearest ancestor of part `part` that has skin (its parent, unless that is a skinless
+// bone): whose skin the part's joint bridge spreads over. -1 for the root.
+inline int SkinParent(const RigModel& model, std::size_t part) {
+  int p = model.parts[part].parent;
+  while (p >= 0 && IsSkinless(model.parts[std::size_t(p)])) p = model.parts[std::size_t(p)].parent;
+  return p;
+}
 
 // Whether part `part` lies strictly below part `ancestor` (its child, grandchild, ...).
 inline bool IsBelowPart(const RigModel& model, std::size_t part, std::size_t ancestor) {
