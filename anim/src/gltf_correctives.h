@@ -4,11 +4,14 @@
 // weights per key as the animation, instead of one target per key.
 //
 // The residuals form a #K x 3#V matrix X; the eigenvectors u_i of X X^T (largest eigenvalue
-// lambda_i first) give shapes X^T u_i / sqrt(lambda_i) and weights u_i sqrt(lambda_i) per key
-// (the SVD of X). Shapes are added until every vertex at every key is within `max_error` of its
-// exact residual (in bind space: the skinning matrix blends rotations, so the skinned error is
-// no larger up to the blend's shrinkage), or `max_shapes` are used. The shapes carry positions
-// only (millimetres of bulge: the skinned normals stand, and each shape costs half the bytes).
+// lambda_i first) give shapes X^T u_i (the SVD of X). Each step takes either PCA's next shape or
+// the worst key's remaining residual as a shape, whole or near its worst vertex only (an
+// error a few keys hold, which PCA ranks by energy and leaves for last), whichever leaves the
+// smaller worst vertex error, its weights per key fitted by least squares to what the shapes before
+// it leave. Shapes are added until every vertex at every key is within `max_error` of its exact
+// residual (in bind space: the skinning matrix blends rotations, so the skinned error is no larger
+// up to the blend's shrinkage), or `max_shapes` are used. The shapes carry positions only
+// (millimetres of bulge: the skinned normals stand, and each shape costs half the bytes).
 #pragma once
 
 #include <cstddef>

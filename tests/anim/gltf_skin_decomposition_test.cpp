@@ -272,6 +272,33 @@ TEST(SkinDecomposition, ACorrectiveShapeCarriesWhatTheJointsCannot) {
   EXPECT_EQ(Export(elbow, options, "loose.glb").corrective_count, 0u);
 }
 
+// An error one key holds (a pose the joints miss once: 8 mm at one vertex of key 7) beside a
+// swelling over every key (5 mm at its peak, far more energy): PCA ranks the swelling first, so
+// with one shape allowed it leaves the 8 mm; the worst key's own residual as the shape leaves
+// only the swelling's other keys (5 mm). With two shapes PCA carries both and is kept.
+TEST(SkinDecomposition, ACorrectiveShapeCarriesAnErrorOneKeyHolds) {
+  Elbow elbow = MakeElbow(/*bulge=*/0.0625, /*true_weights=*/true);
+  std::size_t spike = 0;  // a vertex of the lower part, away from the swelling
+  for (std::size_t v = 0; v < elbow.mesh.positions.size(); ++v)
+    if (std::abs(elbow.mesh.positions[v].y() - 0.2) <
+        std::abs(elbow.mesh.positions[spike].y() - 0.2))
+      spike = v;
+  const std::size_t vertices = elbow.mesh.positions.size();
+  elbow.bake.positions[7 * vertices + spike] += Vec3f(0.008f, 0.0f, 0.0f);
+  GltfExportOptions options = SkinOptions();
+  options.fit_skin = false;
+  options.corrective_error = 1e-4;
+  options.max_correctives = 2;
+  const GltfExportReport two = Export(elbow, options, "two.glb");
+  EXPECT_EQ(two.corrective_count, 2u);
+  EXPECT_LT(two.corrected_max_error, 1e-4);
+  options.max_correctives = 1;
+  const GltfExportReport one = Export(elbow, options, "one.glb");
+  EXPECT_EQ(one.corrective_count, 1u);
+  EXPECT_LT(one.corrected_max_error, 6e-3);  // PCA's first shape alone leaves the 8 mm
+  EXPECT_GT(one.corrected_max_error, 3e-3);  // the swelling's other keys stay
+}
+
 }  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig
