@@ -19,14 +19,15 @@
 #include <cstring>
 #include <iterator>
 #include <string>
+#include <string_view>
 
 #include "fuzz_support.h"
 #include "wirerig/rig/mesh_import.h"
 
 namespace {
 
-// How a forked child that reached its memory limit ends (any status but 0 is "no answer").
-constexpr int kChildOverMemoryLimit = 99;
+// How a forked child ends on a report the isolation contains (any status but 0: "no answer").
+constexpr int kChildContainedReport = 99;
 
 constexpr const char* kExtensions[] = {"off", "ply", "obj", "stl", "dae",   "x",   "gltf", "glb",
                                        "fbx", "3ds", "ac",  "lwo", "ms3d",  "md2", "nff",  "ase",
@@ -59,24 +60,52 @@ void CheckMesh(const wirerig::Mesh& mesh) {
 
 }  // namespace
 
-// Memory over the child's limit. Under AddressSanitizer malloc then returns null, as without
-// it, but a failed `new` does not throw: AddressSanitizer reports "out of memory" and ends the
-// child, and libFuzzer's death callback, inherited through fork, would save the input as a crash
-// although the isolation did its job (the CLI's child, without a sanitizer, answers "out of
-// memory"). So a forked child ends quietly on such a report; every other report it makes (a
-// memory error in the conversion code) still ends it through libFuzzer, as a crash.
+// Reports the forked child makes that are the isolation doing its job, not findings. libFuzzer's
+// death callback, inherited through fork, would save the input as a crash for any report the
+// child makes, although this process goes on and gets its error. Two kinds end the child
+// quietly (the parent still hears "the importer crashed"):
+// - memory over the child's limit: under AddressSanitizer malloc then returns null, as without
+//   it, but a failed `new` does not throw: it reports "out of memory" (the CLI's child, without
+//   a sanitizer, answers "out of memory");
+// - a memory error in Assimp's own code (it is not instrumented: AddressSanitizer sees it only
+//   through its interceptors, as a bad free(), a memcpy out of bounds): the faulting frame, #0 or
+//   #1 below an interceptor, is in libassimp. Such errors are why Assimp runs in a child.
+// Every other report (a memory error in the conversion code, which is ours) still ends the child
+// through libFuzzer, as a crash.
 extern "C" const char* __asan_default_options() { return "allocator_may_return_null=1"; }
 
 namespace {
 
-void EndChildOnMemoryLimit(const char* report) {
+// Line `#n ` of a report's first stack, or empty.
+std::string_view Frame(std::string_view report, const char* tag) {
+  const std::size_t at = report.find(tag);
+  if (at == std::string_view::npos) return {};
+  const std::size_t end = report.find('\n', at);
+  return report.substr(at, end == std::string_view::npos ? end : end - at);
+}
+
+bool FaultsInAssimp(std::string_view report) {
+  const std::string_view first = Frame(report, "#0 "), second = Frame(report, "#1 ");
+  if (first.find("libassimp") != std::string_view::npos) return true;
+  constexpr std::string_view kInterceptors[] = {
+      "in operator new", "in operator delete", "in __interceptor_", "in __asan_", "in malloc",
+      "in free",         "in calloc",          "in realloc",        "in memcpy",  "in memmove",
+      "in memset",       "in strlen"};
+  for (std::string_view interceptor : kInterceptors)
+    if (first.find(interceptor) != std::string_view::npos)
+      return second.find("libassimp") != std::string_view::npos;
+  return false;
+}
+
+void EndChildOnContainedReport(const char* report) {
   for (const char* limit : {"out of memory", "allocation-size-too-big", "failed to allocate"})
-    if (std::strstr(report, limit) != nullptr) ::_exit(kChildOverMemoryLimit);
+    if (std::strstr(report, limit) != nullptr) ::_exit(kChildContainedReport);
+  if (FaultsInAssimp(report)) ::_exit(kChildContainedReport);
 }
 
 const bool kChildReportsWatched = [] {
   ::pthread_atfork(nullptr, nullptr,
-                   [] { __asan_set_error_report_callback(EndChildOnMemoryLimit); });
+                   [] { __asan_set_error_report_callback(EndChildOnContainedReport); });
   return true;
 }();
 

@@ -251,6 +251,21 @@ TEST(IsolatedImport, CorruptedBinaryXFileCrashesOnlyTheChild) {
   ExpectError(imported, path, "the importer crashed on this file (");
 }
 
+// A binary PLY the mesh_import fuzzer made (fuzz/corpus/mesh_import/finding-assimp-ply-bad-free,
+// its first byte the fuzzer's extension choice): Assimp frees a pointer it did not allocate
+// while destroying its scene (a segmentation fault without a sanitizer, a bad-free report
+// under AddressSanitizer). Only the child dies.
+TEST(IsolatedImport, PlyOnWhichAssimpFreesABadPointerCrashesOnlyTheChild) {
+  const fs::path finding =
+      fs::path(WIRERIG_FUZZ_CORPUS_DIR) / "mesh_import/finding-assimp-ply-bad-free";
+  std::ifstream in(finding, std::ios::binary);
+  ASSERT_TRUE(in) << finding;
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 1u);
+  const fs::path path = WriteFile("bad_free.ply", bytes.substr(1));
+  ExpectError(ImportMesh(path, Tight()), path, "the importer crashed on this file (");
+}
+
 // The caller's crash handler (a crash reporter, a sanitizer's, libFuzzer's) is not the child's:
 // the child dies by the signal itself, and the parent names it.
 TEST(IsolatedImport, CallersCrashHandlerDoesNotRunInTheChild) {
