@@ -26,6 +26,7 @@
 #include "wirerig/runtime/joint_bridge.h"
 #include "wirerig/runtime/rig_evaluation.h"
 
+#include "support/evaluate_rig.h"
 #include "support/two_segment_limb.h"
 
 #ifndef WIRERIG_SAMPLES_DIR
@@ -70,16 +71,7 @@ const Limb& MakeLimb() {
 // The model's vertices for `poses` (volume kept or not).
 std::vector<Vec3> Evaluate(const RigModel& model, std::span<const PartPose> poses,
                            bool preserve_volume = false) {
-  RigWorkspace workspace = MakeRigWorkspace(model);
-  std::vector<Vec3> positions(model.vertices.size());
-  EvaluateRigJob job;
-  job.model = &model;
-  job.poses = poses;
-  job.workspace = &workspace;
-  job.positions = positions;
-  job.preserve_volume = preserve_volume;
-  EXPECT_TRUE(job.Run().ok());
-  return positions;
+  return testing::EvaluatePose(model, poses, preserve_volume);
 }
 
 std::vector<Vec3> Pose(const Limb& limb, const Vec3& degrees) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "support/evaluate_rig.h"
 #include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/rig_builder.h"
 #include "wirerig/rig/rig_model_builder.h"
@@ -48,14 +49,7 @@ TEST(LoosePieces, ASeparateSphereRidesRigidlyOnTheLimbItSitsOn) {
 
   std::vector<PartPose> poses(2);
   poses[1].rotation = JointRotation(model.parts[1].joint, Vec3(60, 0, 0));
-  RigWorkspace workspace = MakeRigWorkspace(model);
-  std::vector<Vec3> positions(model.vertices.size());
-  EvaluateRigJob job;
-  job.model = &model;
-  job.poses = poses;
-  job.workspace = &workspace;
-  job.positions = positions;
-  ASSERT_TRUE(job.Run().ok());
+  const std::vector<Vec3> positions = testing::EvaluatePose(model, poses);
 
   const std::vector<Vec3>& rest = mesh.welded_positions;
   double worst = 0.0;

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/evaluate_rig.h"
 #include "support/two_segment_limb.h"
 #include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/rig_builder.h"
@@ -50,15 +51,7 @@ const BoneLimb& Limb() {
 }
 
 std::vector<Vec3> Evaluate(const RigModel& model, std::span<const PartPose> poses) {
-  RigWorkspace workspace = MakeRigWorkspace(model);
-  std::vector<Vec3> positions(model.vertices.size());
-  EvaluateRigJob job;
-  job.model = &model;
-  job.poses = poses;
-  job.workspace = &workspace;
-  job.positions = positions;
-  EXPECT_TRUE(job.Run().ok());
-  return positions;
+  return testing::EvaluatePose(model, poses);
 }
 
 TEST(SkinlessBone, BuildsARigidBoneWithAJointAndNoSkin) {
