@@ -46,6 +46,9 @@ Hermite CurveOf(const BridgeEnds& ends) {
 
 // How near the bend's centre of curvature a section may reach, as a fraction of its radius.
 constexpr double kFit = 0.9;
+// The most a section may widen across the bend: a deep bend's short centre curve would
+// otherwise take all the flesh's volume sideways (the skin there stretched as much).
+constexpr double kMaxAcross = 1.9;
 
 // The in-plane scale of the cross-section where the bent curve has velocity v and acceleration
 // a, growing its area by `area`. Evenly where the bend allows; but the section must not reach
@@ -62,7 +65,7 @@ Mat3 CrossSectionScale(const Vec3& v, const Vec3& a, double area, double limb_ra
   double towards = std::sqrt(area);
   if (curvature * limb_radius > 1e-9)
     towards = std::min(towards, std::max(1.0, kFit / (curvature * limb_radius)));
-  const double across = area / towards;
+  const double across = std::min(area / towards, kMaxAcross);
   Mat3 scale = t * t.transpose();
   if (curvature * limb_radius > 1e-9) {
     const Vec3 n = bend.normalized(), b = t.cross(n);
