@@ -80,6 +80,48 @@ RigDescription WithoutPart(const RigDescription& description, std::size_t droppe
   return out;
 }
 
+// The description without its root (part 0): the root's child with the largest subtree of
+// parts (then the most vertices given by vertex_part) takes its place, its skin and its other
+// children; or nullopt when the root has no child.
+std::optional<RigDescription> WithoutRoot(const RigDescription& description) {
+  const std::size_t n = description.parts.size();
+  const std::string& root = description.parts[0].name;
+  std::vector<std::size_t> subtree(n, 1);  // parents precede children: sum from the back
+  for (std::size_t i = n; i-- > 1;)
+    for (std::size_t p = 0; p < i; ++p)
+      if (description.parts[p].name == description.parts[i].parent) subtree[p] += subtree[i];
+  int heir = -1;
+  std::pair<std::size_t, std::size_t> best{0, 0};
+  for (std::size_t i = 1; i < n; ++i) {
+    if (description.parts[i].parent != root) continue;
+    const std::pair<std::size_t, std::size_t> size{
+        subtree[i], std::size_t(std::count(description.vertex_part.begin(),
+                                           description.vertex_part.end(), int(i)))};
+    if (heir < 0 || size > best) heir = int(i), best = size;
+  }
+  if (heir < 0) return std::nullopt;
+  // New order: the heir, then every other part as it was (parents still precede children).
+  std::vector<int> order{heir};
+  for (int i = 1; i < int(description.parts.size()); ++i)
+    if (i != heir) order.push_back(i);
+  std::vector<int> index_of(description.parts.size(), 0);  // old index -> new
+  for (std::size_t k = 0; k < order.size(); ++k) index_of[std::size_t(order[k])] = int(k);
+  index_of[0] = 0;  // the old root's skin goes to the heir
+  RigDescription out = description;
+  out.parts.clear();
+  for (int i : order) {
+    PartDescription part = description.parts[std::size_t(i)];
+    if (i == heir)
+      part.parent.clear();
+    else if (part.parent == root)
+      part.parent = description.parts[std::size_t(heir)].name;
+    out.parts.push_back(std::move(part));
+  }
+  for (int& p : out.vertex_part)
+    if (p >= 0) p = index_of[std::size_t(p)];
+  return out;
+}
+
 // A skinless bone (rig_description.h): its spine is its central curve's 2 points, its wire a
 // tube as thick as its parent's (it carries no skin, only its children).
 RigPart SkinlessPart(const PartDescription& d, const RigDescription& description, const Rig& rig,
@@ -218,11 +260,18 @@ Result<BuiltRig> BuildRig(const Mesh& mesh, const RigDescription& description,
   for (;;) {
     int failed = -1;
     Result<BuiltRig> built = BuildRigOnce(mesh, attempt, mesh_path, options, &failed);
-    const bool droppable = failed > 0 && !attempt.parts[std::size_t(failed)].parent.empty();
-    if (built || !options.drop_parts_without_profiles || !droppable) {
+    if (built || !options.drop_parts_without_profiles || failed < 0) {
       if (built)
         for (const std::string& d : dropped) built.value().report.warnings.push_back(d);
       return built;
+    }
+    if (failed == 0) {  // the root: its largest child becomes the root and takes its skin
+      std::optional<RigDescription> rerooted = WithoutRoot(attempt);
+      if (!rerooted) return built;
+      dropped.push_back(built.error() + "; dropped: its skin follows '" + rerooted->parts[0].name +
+                        "', the new root");
+      attempt = std::move(*rerooted);
+      continue;
     }
     const PartDescription& part = attempt.parts[std::size_t(failed)];
     dropped.push_back(built.error() + "; dropped: its skin follows '" + part.parent + "'");

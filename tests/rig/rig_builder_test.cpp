@@ -117,6 +117,52 @@ TEST(RigBuilder, PartWithoutProfilesFailsOrIsDroppedToItsParent) {
   EXPECT_TRUE(said("part 'tip': 0 of 12 profiles hit its surface"));  // then its child
 }
 
+// A root that misses the surface (the faerie's automatic torso did) gives its place to its
+// child with the largest subtree, which takes the root's skin and other children; a root
+// without children still fails.
+TEST(RigBuilder, RootWithoutProfilesGivesItsPlaceToItsLargestChild) {
+  const Mesh mesh = MakeCapsule(0.1, 1.0, 24, 20, 6);
+  RigDescription description;
+  PartDescription stray, upper, lower, stub;
+  stray.name = "stray";  // beside the capsule, outside it
+  stray.central_curve = {Vec3(0.5, 0.9, 0), Vec3(0.9, 0.9, 0)};
+  upper.name = "upper";
+  upper.parent = "stray";
+  upper.central_curve = {Vec3(0, 1.05, 0), Vec3(0, 0.5, 0)};
+  lower = upper;
+  lower.name = "lower";
+  lower.parent = "upper";
+  lower.central_curve = {Vec3(0, 0.5, 0), Vec3(0, -0.05, 0)};
+  stub = stray;  // another child of the root, outside too: dropped in turn
+  stub.name = "stub";
+  stub.parent = "stray";
+  stub.central_curve = {Vec3(0.9, 0.9, 0), Vec3(1.2, 0.9, 0)};
+  description.parts = {stray, stub, upper, lower};
+  RigBuildOptions options;
+  options.drop_parts_without_profiles = true;
+  const Result<BuiltRig> built = BuildRig(mesh, description, "capsule", options);
+  ASSERT_TRUE(built.ok()) << built.error();
+  const Rig& rig = built.value().rig;
+  ASSERT_EQ(rig.parts.size(), 2u);
+  EXPECT_EQ(rig.parts[0].name, "upper");
+  EXPECT_EQ(rig.parts[0].parent, -1);
+  EXPECT_EQ(rig.parts[1].name, "lower");
+  EXPECT_EQ(rig.parts[1].parent, 0);
+  const std::vector<std::string>& warnings = built.value().report.warnings;
+  EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
+    return w.find("part 'stray': 0 of 12 profiles hit its surface") != std::string::npos &&
+           w.find("dropped: its skin follows 'upper', the new root") != std::string::npos;
+  }));
+  // Every vertex is bound: the capsule's skin went to the two parts left.
+  EXPECT_EQ(built.value().report.parts[0].vertices + built.value().report.parts[1].vertices,
+            mesh.welded_positions.size());
+  description.parts = {stray};
+  const Result<BuiltRig> alone = BuildRig(mesh, description, "capsule", options);
+  ASSERT_FALSE(alone.ok());
+  EXPECT_EQ(alone.error().rfind("part 'stray': 0 of 12 profiles hit its surface", 0), 0u)
+      << alone.error();
+}
+
 TEST(RigBuilder, HumanFromItsDescription) {
   const Mesh mesh = Import(Asset("assimp/Collada/human.zae"));
   const Result<RigDescription> description =

@@ -21,9 +21,10 @@ struct RigBuildOptions {
   // Optional: a watertight stand-in of an open mesh (AutomaticDescription::wrap); profile rays
   // escaping through the mesh's holes take its hit (ProfileRequest::wrap_bvh).
   const Mesh* wrap = nullptr;
-  // A part other than the root fewer than 2 of whose profiles hit the surface is dropped (its
-  // skin and its children go to its parent; a warning says so) instead of failing the rig: for
-  // automatic descriptions, whose small parts (an eyelid bone, a spur) may miss the surface.
+  // A part fewer than 2 of whose profiles hit the surface is dropped (its skin and its children
+  // go to its parent; a warning says so) instead of failing the rig: for automatic
+  // descriptions, whose small parts (an eyelid bone, a spur) may miss the surface. A root that
+  // misses gives its place, skin and other children to its child with the largest subtree.
   bool drop_parts_without_profiles = false;
 };
 
