@@ -39,15 +39,14 @@ PartDescription ReadPart(const JsonObject& p, const PartDescription& defaults) {
   part.name = p.String("name");
   part.central_curve = ReadVector3Array(p.Required("central_curve"), p.PathOf("central_curve"));
   part.skin = p.Bool("skin", true);
-  if (!part.skin) {
+  if (part.skin) {
+    part.profile_count = p.Integer("profile_count", defaults.profile_count);
+    part.points_per_profile = p.Integer("points_per_profile", defaults.points_per_profile);
+  } else {
     // A bone with no skin: nothing to cast profiles for (the defaults do not apply).
     for (const char* key : {"profile_count", "points_per_profile", "mesh_parts"})
       if (p.Has(key)) throw FieldError(p.PathOf(key), "a skinless part (\"skin\": false) has none");
     part.profile_count = part.points_per_profile = 0;
-  }
-  if (part.skin) {
-    part.profile_count = p.Integer("profile_count", defaults.profile_count);
-    part.points_per_profile = p.Integer("points_per_profile", defaults.points_per_profile);
   }
   if (p.Has("parent") && !p.Required("parent").is_null()) part.parent = p.String("parent");
   part.mesh_parts = ReadNames(p, "mesh_parts");

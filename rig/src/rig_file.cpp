@@ -1,9 +1,8 @@
 #include "wirerig/rig/rig_file.h"
 
-#include <algorithm>
-
 #include "wirerig/io/json_text.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 

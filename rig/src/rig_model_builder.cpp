@@ -31,50 +31,20 @@ double ProjectOnSamples(const std::vector<Vec3>& samples, const Vec3& p) {
   return best_v;
 }
 
-// Mass properties of the solid the part's closed profiles enclose (a tube of their loops with
-// fan caps); an empty MassProperties when the profiles are open or differ in point count.
-// A skinless bone's mass: a solid rod along its bone, kSkinlessRodRadius x its length in radius
-// (an octagonal prism): articulated dynamics need every body to have some.
-MassProperties SkinlessRod(const RigPart& part, double density) {
-  constexpr int kSides = 8;
-  const Vec3 a = part.spine_points.front(), b = part.spine_points.back();
-  const Vec3 axis = (b - a).normalized();
-  const Vec3 x = axis.unitOrthogonal(), y = axis.cross(x);
-  const double r = kSkinlessRodRadius * (b - a).norm();
-  std::vector<Vec3> positions{a, b};
-  for (const Vec3& end : {a, b})
-    for (int k = 0; k < kSides; ++k) {
-      const double angle = 2.0 * std::acos(-1.0) * k / kSides;
-      positions.push_back(end + r * (std::cos(angle) * x + std::sin(angle) * y));
-    }
-  std::vector<Triangle> triangles;
-  for (std::uint32_t k = 0; k < kSides; ++k) {
-    const std::uint32_t i = 2 + k, j = 2 + (k + 1) % kSides;
-    triangles.push_back({0, j, i});
-    triangles.push_back({1, i + kSides, j + kSides});
-    triangles.push_back({i, j, j + kSides});
-    triangles.push_back({i, j + kSides, i + kSides});
-  }
-  MassProperties mass;
-  if (ComputeSolidMassProperties(positions, triangles, density, &mass)) return mass;
-  for (Triangle& t : triangles) std::swap(t[1], t[2]);
-  if (ComputeSolidMassProperties(positions, triangles, density, &mass)) return mass;
-  return {};
-}
-
-MassProperties ProfileSolid(const RigPart& part, double density) {
-  if (part.profiles.empty()) return SkinlessRod(part, density);
-  const std::size_t m = part.profiles.front().points.size();
-  for (const ProfileCurve& p : part.profiles)
-    if (!p.closed || p.points.size() != m) return {};
+// Mass properties of the solid a tube of closed loops encloses (each loop the same number of
+// points, in order from `first_centre` to `last_centre`, which fan-cap its ends); an empty
+// MassProperties when the loops do not close a solid.
+MassProperties LoopSolid(const std::vector<std::vector<Vec3>>& loops, const Vec3& first_centre,
+                         const Vec3& last_centre, double density) {
+  const std::size_t m = loops.front().size();
   std::vector<Vec3> positions;
-  for (const ProfileCurve& p : part.profiles)
-    positions.insert(positions.end(), p.points.begin(), p.points.end());
-  const auto first_centre = std::uint32_t(positions.size());
-  positions.push_back(part.spine_points.front());
-  positions.push_back(part.spine_points.back());
+  for (const std::vector<Vec3>& loop : loops)
+    positions.insert(positions.end(), loop.begin(), loop.end());
+  const auto first = std::uint32_t(positions.size());
+  positions.push_back(first_centre);
+  positions.push_back(last_centre);
   std::vector<Triangle> triangles;
-  const auto count = std::uint32_t(part.profiles.size());
+  const auto count = std::uint32_t(loops.size());
   const auto mm = std::uint32_t(m);
   for (std::uint32_t k = 0; k + 1 < count; ++k)
     for (std::uint32_t j = 0; j < mm; ++j) {
@@ -84,8 +54,8 @@ MassProperties ProfileSolid(const RigPart& part, double density) {
       triangles.push_back({a, d, c});
     }
   for (std::uint32_t j = 0; j < mm; ++j) {
-    triangles.push_back({first_centre, (j + 1) % mm, j});
-    triangles.push_back({first_centre + 1, (count - 1) * mm + j, (count - 1) * mm + (j + 1) % mm});
+    triangles.push_back({first, (j + 1) % mm, j});
+    triangles.push_back({first + 1, (count - 1) * mm + j, (count - 1) * mm + (j + 1) % mm});
   }
   MassProperties mass;
   if (ComputeSolidMassProperties(positions, triangles, density, &mass)) return mass;
@@ -93,6 +63,38 @@ MassProperties ProfileSolid(const RigPart& part, double density) {
   for (Triangle& t : triangles) std::swap(t[1], t[2]);
   if (ComputeSolidMassProperties(positions, triangles, density, &mass)) return mass;
   return {};
+}
+
+// A skinless bone's mass: a solid rod along its bone, kSkinlessRodRadius x its length in radius
+// (an octagonal prism): articulated dynamics need every body to have some.
+MassProperties SkinlessRod(const RigPart& part, double density) {
+  constexpr int kSides = 8;
+  const Vec3 a = part.spine_points.front(), b = part.spine_points.back();
+  const Vec3 axis = (b - a).normalized();
+  const Vec3 x = axis.unitOrthogonal(), y = axis.cross(x);
+  const double r = kSkinlessRodRadius * (b - a).norm();
+  std::vector<std::vector<Vec3>> loops;
+  for (const Vec3& end : {a, b}) {
+    std::vector<Vec3>& loop = loops.emplace_back();
+    for (int k = 0; k < kSides; ++k) {
+      const double angle = 2.0 * std::acos(-1.0) * k / kSides;
+      loop.push_back(end + r * (std::cos(angle) * x + std::sin(angle) * y));
+    }
+  }
+  return LoopSolid(loops, a, b, density);
+}
+
+// Mass properties of the solid the part's closed profiles enclose (a tube of their loops with
+// fan caps); an empty MassProperties when the profiles are open or differ in point count.
+MassProperties ProfileSolid(const RigPart& part, double density) {
+  if (part.profiles.empty()) return SkinlessRod(part, density);
+  const std::size_t m = part.profiles.front().points.size();
+  std::vector<std::vector<Vec3>> loops;
+  for (const ProfileCurve& p : part.profiles) {
+    if (!p.closed || p.points.size() != m) return {};
+    loops.push_back(p.points);
+  }
+  return LoopSolid(loops, part.spine_points.front(), part.spine_points.back(), density);
 }
 
 // The limb's radius at its root: the smallest mean distance from the spine to a profile's
