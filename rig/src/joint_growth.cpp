@@ -4,31 +4,30 @@
 #include <cmath>
 #include <vector>
 
-#include "limb_volume.h"
+#include "joint_region.h"
+#include "wirerig/rig/joint_sweep.h"
 #include "wirerig/rig/skin_quality.h"
 #include "wirerig/runtime/rig_evaluation.h"
 
 namespace wirerig {
 namespace {
 
-constexpr double kFitDegrees = 90.0;
-constexpr double kSmallestBend = 30.0;
+// A scale above 1 is fitted only where 1 folds no edge; a fitted scale is taken back towards
+// the tube's 1 (bisection, kBackOffSteps halvings) while it folds more edges than 1 does, stretches
+// an edge beyond both kStretchAllowed and what 1 stretches, or narrows a cross-section below both
+// kPerimeterAllowed and what 1 narrows it to.
+constexpr double kStretchAllowed = 1.9;
+constexpr double kPerimeterAllowed = 0.96;
+constexpr int kBackOffSteps = 6;
+// A direction whose volume the tube's growth changes by less than this keeps 1: its fit would
+// be large and rest on noise.
+constexpr double kLeastSensitivity = 0.01;
 
-// The joint's bends the fit weighs: per bend axis and direction, kFitDegrees or the limit.
-std::vector<Vec3> FitBends(const JointModel& joint) {
-  std::vector<Vec3> out;
-  if (joint.type == JointType::kFixed) return out;
-  const int axes = joint.type == JointType::kHinge ? 1 : 2;
-  for (int axis = 0; axis < axes; ++axis)
-    for (double sign : {1.0, -1.0}) {
-      const double limit = sign > 0 ? joint.max_degrees[axis] : -joint.min_degrees[axis];
-      const double degrees = std::min(kFitDegrees, limit);
-      if (!(degrees >= kSmallestBend)) continue;
-      Vec3 angles = Vec3::Zero();
-      angles[axis] = sign * degrees;
-      out.push_back(angles);
-    }
-  return out;
+// The bend's direction in JointModel::growth_scales, or -1 for a twist or a two-axis pose.
+int DirectionOf(const Vec3& degrees) {
+  if (degrees.z() != 0.0 || (degrees.x() != 0.0) == (degrees.y() != 0.0)) return -1;
+  if (degrees.x() != 0.0) return degrees.x() > 0.0 ? kGrowPlusX : kGrowMinusX;
+  return degrees.y() > 0.0 ? kGrowPlusY : kGrowMinusY;
 }
 
 }  // namespace
@@ -38,36 +37,71 @@ void FitJointGrowth(std::span<const Vec3> rest, RigModel* model) {
   std::vector<Vec3> posed(rest.size());
   std::vector<PartPose> poses(model->parts.size());
   const std::vector<std::uint32_t> surface_border = SurfaceBorder(model->triangles);
+  const SkinQualityReference reference = MakeSkinQualityReference(rest, model->triangles);
   for (std::size_t c = 1; c < model->parts.size(); ++c) {
     JointModel& joint = model->parts[c].joint;
     if (model->parts[c].parent < 0 || !(joint.blend_length > 0.0)) continue;
     if (IsSkinless(model->parts[c])) continue;  // its bridge only blends: no growth
-    const std::vector<Vec3> bends = FitBends(joint);
-    if (bends.empty()) continue;
-    const Limb limb = LimbOf(*model, c, surface_border);
-    const double rest_volume = LimbVolume(limb, rest, model->triangles);
+    const JointRegion region = MakeJointRegion(*model, c, rest, reference, surface_border);
+    const double rest_volume = LimbVolume(region.limb, rest, model->triangles);
     if (!(std::abs(rest_volume) > 0.0)) continue;
-    // Volume at growth_scale s: v0 + s (v1 - v0), per bend; least squares for v = rest.
-    auto volume = [&](const Vec3& degrees, double scale) {
-      joint.growth_scale = scale;
+    // The limb at a pose with the direction's growth scale set.
+    auto measure = [&](const Vec3& degrees, int direction, double scale) {
+      joint.growth_scales[direction] = scale;
       poses[c].rotation = JointRotation(joint, degrees);
       EvaluateRigJob job;
       job.model = model;
       job.poses = poses;
       job.workspace = &workspace;
       job.positions = posed;
-      const bool ok = job.Run().ok();
-      return ok ? LimbVolumeRatio(limb, rest, posed, model->triangles) : 1.0;
+      if (!job.Run().ok()) return SkinMeasures{};
+      return MeasureJointRegion(reference, rest, posed, region, model->triangles);
     };
-    double numerator = 0.0, denominator = 0.0;
-    for (const Vec3& degrees : bends) {
-      const double v0 = volume(degrees, 0.0), v1 = volume(degrees, 1.0);
-      numerator += (1.0 - v0) * (v1 - v0);
-      denominator += (v1 - v0) * (v1 - v0);
+    const std::vector<JointSweepPose> sweep = JointSweep(joint);
+    for (int direction = 0; direction < 4; ++direction) {
+      std::vector<Vec3> bends;
+      for (const JointSweepPose& pose : sweep)
+        if (DirectionOf(pose.degrees) == direction) bends.push_back(pose.degrees);
+      if (bends.empty()) continue;
+      // Volume at scale s: v0 + s (v1 - v0), per bend; least squares for v = rest.
+      double numerator = 0.0, denominator = 0.0, sensitivity = 0.0;
+      SkinMeasures tube;
+      for (const Vec3& degrees : bends) {
+        const double v0 = measure(degrees, direction, 0.0).volume_ratio;
+        const SkinMeasures one = measure(degrees, direction, 1.0);
+        numerator += (1.0 - one.volume_ratio) * (one.volume_ratio - v0);
+        denominator += (one.volume_ratio - v0) * (one.volume_ratio - v0);
+        sensitivity = std::max(sensitivity, std::abs(one.volume_ratio - v0));
+        tube.Worst(one);
+      }
+      double fitted = 1.0;
+      // More growth than the tube's where the tube already folds the skin would crowd it more
+      // in poses the sweep does not hold (a bend with a twist: a shoulder in the mocap).
+      const double most = tube.folded_edges > 0 ? 1.0 : kMaxGrowthScale;
+      if (sensitivity >= kLeastSensitivity)
+        fitted = std::clamp(1.0 + numerator / denominator, kMinGrowthScale, most);
+      auto acceptable = [&](double scale) {
+        for (const Vec3& degrees : bends) {
+          const SkinMeasures m = measure(degrees, direction, scale);
+          if (m.folded_edges > tube.folded_edges ||
+              m.worst_stretch > std::max(kStretchAllowed, tube.worst_stretch) ||
+              m.smallest_perimeter < std::min(kPerimeterAllowed, tube.smallest_perimeter))
+            return false;
+        }
+        return true;
+      };
+      // Bisection between the tube's 1 (acceptable) and the fit.
+      if (!acceptable(fitted)) {
+        double good = 1.0, bad = fitted;
+        for (int step = 0; step < kBackOffSteps; ++step) {
+          const double middle = 0.5 * (good + bad);
+          (acceptable(middle) ? good : bad) = middle;
+        }
+        fitted = good;
+      }
+      joint.growth_scales[direction] = fitted;
     }
     poses[c] = PartPose{};
-    joint.growth_scale =
-        denominator > 1e-12 ? std::clamp(numerator / denominator, 0.0, kMaxGrowthScale) : 1.0;
   }
 }
 

@@ -3,32 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "limb_volume.h"
+#include "joint_region.h"
 #include "wirerig/rig/joint_sweep.h"
 #include "wirerig/rig/skin_quality.h"
 
 namespace wirerig {
-namespace {
-
-constexpr double kSectionRadius = 1.6;
-
-SkinMeasures Measure(const SkinQualityReference& reference, std::span<const Vec3> rest,
-                     std::span<const Vec3> posed, const std::vector<CrossSection>& sections,
-                     const Limb& limb, const std::vector<Triangle>& triangles) {
-  SkinMeasures m;
-  const SkinQuality q = MeasureSkin(reference, posed);
-  m.folded_edges = q.folded_edges;
-  m.worst_stretch = q.worst_stretch;
-  m.volume_ratio = LimbVolumeRatio(limb, rest, posed, triangles);
-  for (const CrossSection& s : sections) {
-    const double r = CrossSectionPerimeter(s, rest);
-    if (r > 0.0)
-      m.smallest_perimeter = std::min(m.smallest_perimeter, CrossSectionPerimeter(s, posed) / r);
-  }
-  return m;
-}
-
-}  // namespace
 
 void SkinMeasures::Worst(const SkinMeasures& other) {
   folded_edges = std::max(folded_edges, other.folded_edges);
@@ -59,13 +38,7 @@ std::vector<JointSkinRow> MeasureJointSweep(const RigModel& model, std::span<con
   for (std::size_t c : chosen) {
     const PartModel& part = model.parts[c];
     const JointModel& joint = part.joint;
-    const Vec3 centre = part.spine_points.front(), axis = joint.axes.col(2);
-    const double h = joint.blend_length > 0.0 ? joint.blend_length : 2.0 * joint.radius;
-    std::vector<CrossSection> sections;
-    for (double s : {-0.5, -0.25, 0.0, 0.25, 0.5, 0.75})
-      sections.push_back(MakeCrossSection(rest, reference, centre + s * h * axis, axis,
-                                          kSectionRadius * joint.radius));
-    const Limb limb = LimbOf(model, c, surface_border);
+    const JointRegion region = MakeJointRegion(model, c, rest, reference, surface_border);
     for (const JointSweepPose& pose : JointSweep(joint)) {
       std::vector<PartPose> poses(model.parts.size());
       poses[c].rotation = JointRotation(joint, pose.degrees);
@@ -76,7 +49,7 @@ std::vector<JointSkinRow> MeasureJointSweep(const RigModel& model, std::span<con
       job.positions = posed;
       if (!job.Run()) continue;
       JointSkinRow row{part.name, pose.label, {}};
-      row.methods[0] = Measure(reference, rest, posed, sections, limb, model.triangles);
+      row.methods[0] = MeasureJointRegion(reference, rest, posed, region, model.triangles);
       BoneMatricesFromWorkspace(model, workspace, bones);
       std::vector<Vec3> other(n);
       for (int m = 1; m < kSkinMethods; ++m) {
@@ -84,7 +57,7 @@ std::vector<JointSkinRow> MeasureJointSweep(const RigModel& model, std::span<con
         skinning.Run();
         for (std::size_t v = 0; v < n; ++v) other[v] = Vec3(x[v], y[v], z[v]);
         row.methods[std::size_t(m)] =
-            Measure(reference, rest, other, sections, limb, model.triangles);
+            MeasureJointRegion(reference, rest, other, region, model.triangles);
       }
       rows.push_back(std::move(row));
     }

@@ -23,9 +23,9 @@ Status ValidateJoint(const JointModel& joint) {
     return Status::Invalid("radius", "must be finite and >= 0");
   if (!(std::isfinite(joint.parent_radius) && joint.parent_radius >= 0.0))
     return Status::Invalid("parent_radius", "must be finite and >= 0");
-  if (!std::isfinite(joint.growth_scale) || joint.growth_scale < 0.0 ||
-      joint.growth_scale > kMaxGrowthScale)
-    return Status::Invalid("growth_scale", "growth_scale must be in [0, 1]");
+  for (double growth : joint.growth_scales)
+    if (!(std::isfinite(growth) && growth >= kMinGrowthScale && growth <= kMaxGrowthScale))
+      return Status::Invalid("growth_scales", "growth_scales must each be in [-2, 4]");
   return Status::Ok();
 }
 
@@ -52,6 +52,16 @@ void SwingTwist(const Quat& rotation, const Vec3& axis, Quat* swing, Quat* twist
   t = norm > 1e-12 ? Quat(t.coeffs() / norm) : Quat::Identity();
   *twist = t;
   *swing = (rotation * t.conjugate()).normalized();
+}
+
+double BendGrowthScale(const JointModel& joint, const Quat& swing) {
+  // sin^2 of half of 5 degrees: the weight of the tube's scale 1 at small bends.
+  constexpr double kRestWeight = 0.0019;
+  const Vec3 axis = swing.w() < 0.0 ? Vec3(-swing.vec()) : Vec3(swing.vec());
+  const double x = axis.dot(joint.axes.col(0)), y = axis.dot(joint.axes.col(1));
+  const double along_x = joint.growth_scales[x >= 0.0 ? kGrowPlusX : kGrowMinusX];
+  const double along_y = joint.growth_scales[y >= 0.0 ? kGrowPlusY : kGrowMinusY];
+  return (x * x * along_x + y * y * along_y + kRestWeight) / (x * x + y * y + kRestWeight);
 }
 
 Quat ScaleRotation(const Quat& rotation, double t) {

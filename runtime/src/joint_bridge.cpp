@@ -181,10 +181,10 @@ void SampleJointBridge(const JointModel& joint, const RestBridge& rest_bridge,
   // and bump = 4u(1 - u): the sides' own sections at both ends, and c chosen so the bridge keeps
   // the volume of its flesh, integral of area x speed (Simpson's rule over the samples): the
   // rest bridge's, each section scaled by s(u)^2 and stretched by 1 at the start to the child's
-  // stretch at the end (smoothstep(u)), times the joint's growth_scale (the mesh's skin is no
-  // tube of constant section about the curve: the builder fits it). A straight limb strained
-  // evenly keeps its sections: c = 0.
-  // The curves' velocities and accelerations at the samples, computed once.
+  // stretch at the end (smoothstep(u)), times the joint's growth scale for the bend
+  // (BendGrowthScale) (the mesh's skin is no tube of constant section about the curve: the builder
+  // fits it). A straight limb strained evenly keeps its sections: c = 0. The curves' velocities and
+  // accelerations at the samples, computed once.
   std::array<Vec3, kBridgeSegments + 1> velocity, acceleration;
   std::array<double, kBridgeSegments + 1> scale;
   double flesh = 0.0, bent = 0.0, bumped = 0.0;
@@ -200,7 +200,8 @@ void SampleJointBridge(const JointModel& joint, const RestBridge& rest_bridge,
     bent += area * velocity[k].norm();
     bumped += 4.0 * u * (1.0 - u) * area * velocity[k].norm();
   }
-  const double growth = bumped > 0.0 ? joint.growth_scale * (flesh - bent) / bumped : 0.0;
+  const double growth =
+      bumped > 0.0 ? BendGrowthScale(joint, swing) * (flesh - bent) / bumped : 0.0;
   // swing^u and twist^u at u_k = k / kBridgeSegments as powers of their first step.
   const Quat swing_step = ScaleRotation(swing, 1.0 / kBridgeSegments);
   const Quat twist_step = ScaleRotation(twist, 1.0 / kBridgeSegments);

@@ -28,7 +28,8 @@ void WriteJoint(bytes::Writer& w, const JointModel& j) {
   w.U8(std::uint8_t(j.type));
   w.M3(j.axes);
   w.V3(j.min_degrees), w.V3(j.max_degrees), w.V3(j.parent_axis);
-  w.F64(j.blend_length), w.F64(j.radius), w.F64(j.parent_radius), w.F64(j.growth_scale);
+  w.F64(j.blend_length), w.F64(j.radius), w.F64(j.parent_radius);
+  for (double growth : j.growth_scales) w.F64(growth);
 }
 
 void WritePart(bytes::Writer& w, const PartModel& p) {
@@ -83,7 +84,7 @@ JointModel ReadJoint(bytes::Reader& r) {
   j.axes = r.M3();
   j.min_degrees = r.V3(), j.max_degrees = r.V3(), j.parent_axis = r.V3();
   j.blend_length = r.F64(), j.radius = r.F64(), j.parent_radius = r.F64();
-  j.growth_scale = r.F64();
+  for (double& growth : j.growth_scales) growth = r.F64();
   return j;
 }
 

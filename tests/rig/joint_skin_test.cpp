@@ -223,10 +223,10 @@ TEST(JointSkin, ValidateJointNamesTheField) {
   joint = {};
   joint.blend_length = -1;
   EXPECT_EQ(ValidateJoint(joint).field, "blend_length");
-  for (double growth : {-0.1, 1.5, std::nan("")}) {
+  for (double growth : {-2.1, 4.5, std::nan("")}) {
     joint = {};
-    joint.growth_scale = growth;
-    EXPECT_EQ(ValidateJoint(joint).field, "growth_scale");
+    joint.growth_scales[kGrowMinusY] = growth;
+    EXPECT_EQ(ValidateJoint(joint).field, "growth_scales");
   }
   EXPECT_TRUE(ValidateJoint(JointModel{}).ok());
 }
@@ -376,20 +376,47 @@ TEST(JointSkin, HumanSpineNeckHeadElbowsWristsKneesAndAnklesHoldThroughTheirSwee
   }
 }
 
-// The fitted growth of a bridge's cross-sections (FitJointGrowth): a straight tube of constant
-// section keeps its volume with the tube model's growth (Pappus: volume = area x centre-line
-// length), so the straight capsule limb and the human's knees (straight at rest) keep a scale
-// near 1; the elbow, bent by 34 degrees at rest with its flesh off the bone line, needs less.
+// The fitted growth of a bridge's cross-sections (FitJointGrowth), per bend direction: a
+// straight tube of constant section keeps its volume with the tube model's growth (Pappus:
+// volume = area x centre-line length) within its bridge, so the straight capsule limb keeps a
+// scale near 1 every way (1.2: its skin beyond the bridge loses a little volume of its own at
+// the bend's inside); the elbow, bent by 34 degrees at rest with its flesh off the bone line, needs
+// less as it flexes (x+) than the knee, straight at rest.
 TEST(JointSkin, GrowthFitKeepsTheTubesGrowthForStraightLimbsAndLowersItForTheElbow) {
-  EXPECT_GT(MakeLimb().model.parts[1].joint.growth_scale, 0.9);
+  for (double scale : MakeLimb().model.parts[1].joint.growth_scales) EXPECT_NEAR(scale, 1.0, 0.25);
   const HumanRig& human = Human();
-  for (const char* knee : {"shin_l", "shin_r"})
-    EXPECT_GT(human.model.parts[human.Part(knee)].joint.growth_scale, 0.9) << knee;
-  for (const char* elbow : {"forearm_l", "forearm_r"}) {
-    const double scale = human.model.parts[human.Part(elbow)].joint.growth_scale;
-    EXPECT_GT(scale, 0.3) << elbow;
-    EXPECT_LT(scale, 0.8) << elbow;
+  for (const char* side : {"_l", "_r"}) {
+    const std::string knee = std::string("shin") + side, elbow = std::string("forearm") + side;
+    const double knee_flexion =
+        human.model.parts[human.Part(knee.c_str())].joint.growth_scales[kGrowPlusX];
+    const double elbow_flexion =
+        human.model.parts[human.Part(elbow.c_str())].joint.growth_scales[kGrowPlusX];
+    EXPECT_GT(knee_flexion, 0.9) << knee;
+    EXPECT_GT(elbow_flexion, 0.0) << elbow;
+    EXPECT_LT(elbow_flexion, 0.8) << elbow;
   }
+}
+
+// BendGrowthScale: a bend about one axis takes that direction's scale; one between two axes
+// blends them by the squared components; the rest pose and a pure twist take the tube's 1.
+TEST(JointSkin, BendGrowthScaleFollowsTheSwingsDirection) {
+  JointModel joint;
+  joint.axes = Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  joint.growth_scales = {0.5, 2.0, 3.0, -1.0};
+  auto swing = [&](double degrees, const Vec3& axis) {
+    return Quat(Eigen::AngleAxisd(degrees * std::numbers::pi / 180.0, axis));
+  };
+  const Vec3 x = joint.axes.col(0), y = joint.axes.col(1);
+  EXPECT_NEAR(BendGrowthScale(joint, swing(60, x)), 0.5, 2e-2);
+  EXPECT_NEAR(BendGrowthScale(joint, swing(60, -x)), 2.0, 2e-2);
+  EXPECT_NEAR(BendGrowthScale(joint, swing(-60, x)), 2.0, 2e-2);
+  EXPECT_NEAR(BendGrowthScale(joint, swing(60, y)), 3.0, 2e-2);
+  EXPECT_NEAR(BendGrowthScale(joint, swing(60, -y)), -1.0, 2e-2);
+  // Halfway between +X and -Y: the mean of their scales.
+  EXPECT_NEAR(BendGrowthScale(joint, swing(90, (x - y).normalized())), -0.25, 1e-2);
+  EXPECT_DOUBLE_EQ(BendGrowthScale(joint, Quat::Identity()), 1.0);
+  // Continuous through rest: a bend of a tenth of a degree is still nearly the tube's.
+  EXPECT_NEAR(BendGrowthScale(joint, swing(0.1, x)), 1.0, 1e-3);
 }
 
 // The shoulders and hips: the skin spread over the torso keeps every edge within twice its rest
@@ -541,4 +568,5 @@ TEST(JointSkin, HumanJointSkinIsSpreadHarmonicallyOverTheSurface) {
 
 }  // namespace WIRERIG_TEST_FILE
 }  // namespace
+
 }  // namespace wirerig

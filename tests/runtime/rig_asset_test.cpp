@@ -93,9 +93,9 @@ TEST(RigAsset, RoundTripEvaluatesBitIdentically) {
   EXPECT_EQ(SerializeRigAsset(loaded), bytes);
   // A joint's fitted growth survives the trip.
   RigAsset fitted = asset;
-  fitted.model.parts[1].joint.growth_scale = 0.375;
+  fitted.model.parts[1].joint.growth_scales = {0.375, -1.5, 2.25, 4.0};
   ASSERT_TRUE(ParseRigAsset(SerializeRigAsset(fitted), &loaded).ok());
-  EXPECT_EQ(loaded.model.parts[1].joint.growth_scale, 0.375);
+  EXPECT_EQ(loaded.model.parts[1].joint.growth_scales, fitted.model.parts[1].joint.growth_scales);
 }
 
 TEST(RigAsset, RefusesBadHeadersNamingTheField) {
@@ -131,8 +131,8 @@ TEST(RigAsset, RefusesModelsThatCannotBeEvaluated) {
   EXPECT_NE(Refusal(SerializeRigAsset(asset)).find("parts[1].joint"), std::string::npos);
 
   asset = Limb();
-  asset.model.parts[1].joint.growth_scale = 1.5;
-  EXPECT_NE(Refusal(SerializeRigAsset(asset)).find("growth_scale"), std::string::npos);
+  asset.model.parts[1].joint.growth_scales[kGrowPlusY] = 4.5;
+  EXPECT_NE(Refusal(SerializeRigAsset(asset)).find("growth_scales"), std::string::npos);
 
   asset = Limb();
   std::size_t paired = 0;

@@ -19,6 +19,7 @@
 // sections cross.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "wirerig/runtime/conventions.h"
@@ -51,12 +52,23 @@ struct JointModel {
   // The same on the parent's side (a thicker upper arm above an elbow), m; 0: radius.
   double parent_radius = 0.0;
   // How much of the bridge curve's shortening its cross-sections take up as area growth
-  // (SampleJointBridge): 1 keeps the volume of a tube of constant section along the curve; the
-  // rig builder lowers it where the limb's own skin would gain volume (FitJointGrowth: an
-  // elbow bent at rest), in [0, kMaxGrowthScale].
-  double growth_scale = 1.0;
+  // (SampleJointBridge), per bend direction (GrowthDirection): 1 keeps the volume of a tube of
+  // constant section along the curve; the rig builder fits each to the mesh's limb volume
+  // (FitJointGrowth: an elbow bent at rest takes less, a wrist bent back more), in
+  // [kMinGrowthScale, kMaxGrowthScale].
+  std::array<double, 4> growth_scales = {1.0, 1.0, 1.0, 1.0};
 };
-inline constexpr double kMaxGrowthScale = 1.0;
+inline constexpr double kMinGrowthScale = -2.0;
+inline constexpr double kMaxGrowthScale = 4.0;
+
+// The bend directions of JointModel::growth_scales: about +X, -X, +Y, -Y.
+enum GrowthDirection : int { kGrowPlusX = 0, kGrowMinusX = 1, kGrowPlusY = 2, kGrowMinusY = 3 };
+
+// The growth scale of a bend by `swing` (a rotation about an axis across the joint's Z, rest
+// world axes): the directions' scales weighted by the squares of the swing axis's X and Y
+// components, blended towards 1 (the tube's) below a few degrees of bend so that it is
+// continuous through the rest pose.
+double BendGrowthScale(const JointModel& joint, const Quat& swing);
 
 // Empty reason when the joint is valid: finite orthonormal right-handed axes, limits finite with
 // min <= max, blend_length and radius finite and >= 0. Fields named "axes", "limits",

@@ -23,8 +23,9 @@
 namespace wirerig {
 
 // 2: JointModel::growth_scale; 3: a vertex's joint influences as a count and those in use;
-// 4: a pair binding's beta and gamma in section units (skin_binding.h, SectionUnit).
-inline constexpr std::uint32_t kRigAssetVersion = 4;
+// 4: a pair binding's beta and gamma in section units (skin_binding.h, SectionUnit);
+// 5: JointModel::growth_scales per bend direction.
+inline constexpr std::uint32_t kRigAssetVersion = 5;
 inline constexpr std::size_t kRigAssetHeaderSize = 20;
 
 struct RigAsset {
