@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -28,6 +29,10 @@ constexpr double kComponentFraction = 0.05;  // smaller separate skeleton pieces
 constexpr double kLowFraction = 0.25;        // leg ends lie in this lowest fraction of height
 constexpr double kExtendFraction = 0.8;      // free ends move this far towards the surface
 constexpr int kRadiusSamples = 12;           // radius samples per branch
+constexpr double kCarryRadius = 2.0;    // the torso goes on into a branch while it is this many
+                                        // times the branch's own (outer) thickness ...
+constexpr double kCarryKeep = 0.5;      // ... leaving the branch at least this much of its length
+constexpr double kCarryDegrees = 55.0;  // a branch within this of the torso's line carries it on
 
 // Brute-force distance and ray queries against the mesh surface (few hundred queries per
 // description, so no acceleration structure beyond bounding-sphere culling).
@@ -204,6 +209,7 @@ class Describer {
   double SideMass(int node, int excluded) const;
   void ExtendEnds(SkeletonPart& part) const;
   void Name();
+  void CarryTorsoOn();
   std::size_t LimbSplit(const std::vector<Vec3>& curve) const;
 
   const std::vector<Vec3>& mesh_positions_;
@@ -598,6 +604,68 @@ void Describer::ExtendEnds(SkeletonPart& part) const {
   }
 }
 
+// The body goes on past the torso's junctions where one branch carries on the torso's line (a
+// quadruped's rump towards its tail, its chest towards its neck): the skeleton's torso edge runs
+// only between the junctions, so without this the rump would turn with the tail. The torso's
+// curve takes the branch's stretch while the branch is at least kCarryRadius times as thick as
+// its own outer half (SkeletonPart::radius), leaving it at least kCarryKeep of its length; the
+// branch then starts where it has narrowed (the tail's root, the neck). An end with two such
+// branches (a biped's legs) carries on into neither; limbs never carry it.
+bool IsLimb(const std::string& name);
+
+void Describer::CarryTorsoOn() {
+  SkeletonPart& torso = parts_[0];
+  if (torso.curve.size() < 2) return;
+  const double radius = MeanRadius(torso.curve);
+  if (!(radius > 0.0)) return;
+  // A point about two torso radii along a curve from its start.
+  auto along = [&](const std::vector<Vec3>& curve) {
+    double walked = 0.0;
+    std::size_t i = 1;
+    while (i + 1 < curve.size() && walked + (curve[i] - curve[i - 1]).norm() < 2.0 * radius) {
+      walked += (curve[i] - curve[i - 1]).norm();
+      ++i;
+    }
+    return curve[i];
+  };
+  // The torso's line, taken before either end moves.
+  const Vec3 front = torso.curve.front(), back = torso.curve.back();
+  for (const bool at_end : {false, true}) {
+    const Vec3 end = at_end ? back : front;
+    const Vec3 outward = (at_end ? Vec3(back - front) : Vec3(front - back)).normalized();
+    int chosen = -1, found = 0;
+    for (std::size_t i = 1; i < parts_.size(); ++i) {
+      const SkeletonPart& part = parts_[i];
+      if (part.parent != 0 || part.cycle || IsLimb(part.name) || part.curve.size() < 3) continue;
+      if ((part.curve.front() - end).norm() > radius) continue;
+      const Vec3 direction = (along(part.curve) - part.curve.front()).normalized();
+      if (direction.dot(outward) < std::cos(kCarryDegrees * std::numbers::pi / 180.0)) continue;
+      chosen = static_cast<int>(i);
+      ++found;
+    }
+    if (found != 1) continue;
+    std::vector<Vec3>& curve = parts_[chosen].curve;
+    const double length = PolylineLength(curve), keep = kCarryKeep * length;
+    double walked = 0.0;
+    std::size_t k = 0;
+    while (k + 1 < curve.size() &&
+           surface_.Distance(curve[k + 1]) >= kCarryRadius * parts_[chosen].radius &&
+           length - walked - (curve[k + 1] - curve[k]).norm() >= keep) {
+      walked += (curve[k + 1] - curve[k]).norm();
+      ++k;
+    }
+    if (k == 0) continue;
+    // The torso's curve gains curve[1..k] beyond its end; the branch starts at curve[k].
+    std::vector<Vec3> carried(curve.begin() + 1, curve.begin() + long(k) + 1);
+    if (at_end) {
+      torso.curve.insert(torso.curve.end(), carried.begin(), carried.end());
+    } else {
+      torso.curve.insert(torso.curve.begin(), carried.rbegin(), carried.rend());
+    }
+    curve.erase(curve.begin(), curve.begin() + long(k));
+  }
+}
+
 void Reverse(SkeletonPart& part) {
   std::reverse(part.curve.begin(), part.curve.end());
   std::reverse(part.nodes.begin(), part.nodes.end());
@@ -969,6 +1037,7 @@ Result<RigDescription> Describer::Run() {
     if (parts_[i].parent >= 0) parts_[parts_[i].parent].subtree_mass += parts_[i].subtree_mass;
   }
   Name();
+  CarryTorsoOn();
   for (SkeletonPart& part : parts_) ExtendEnds(part);
 
   // Output order: torso, the named parts in a fixed order, the rest as found (parents first).

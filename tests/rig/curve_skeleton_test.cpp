@@ -402,6 +402,20 @@ TEST(CurveSkeleton, CowIsAQuadrupedWithHeadAndTail) {
   EXPECT_LT((tail->central_curve.back() - hips).dot(axis), 0.0);
   EXPECT_GT(head->central_curve.back().x(), 0.4);
   EXPECT_LT(tail->central_curve.back().x(), -0.4);
+  // The torso carries on past its junctions into the rump and the chest: the tail starts a
+  // tenth of the body behind the hind legs' tops, the head ahead of the front legs' (the
+  // skeleton's torso edge ends at the legs' junctions, and the tail and head started there,
+  // taking the rump and the chest).
+  const double body = (head->central_curve.back() - tail->central_curve.back()).dot(axis);
+  for (const PartDescription& part : description.parts) {
+    if (!part.name.ends_with("_upper")) continue;
+    const Vec3& top = part.central_curve.front();
+    if (part.name.starts_with("leg_front")) {
+      EXPECT_GT((head->central_curve.front() - top).dot(axis), 0.05 * body) << part.name;
+    } else {
+      EXPECT_GT((top - tail->central_curve.front()).dot(axis), 0.1 * body) << part.name;
+    }
+  }
 
   double ground = 1e9;
   for (const Vec3& p : mesh.welded_positions) ground = std::min(ground, p.y());
@@ -486,6 +500,11 @@ TEST(CurveSkeleton, StandingManIsABiped) {
   ASSERT_TRUE(torso && head);
   EXPECT_LT(torso->central_curve.front().y(), torso->central_curve.back().y());  // hips first
   EXPECT_GT(head->central_curve.back().y(), torso->central_curve.back().y());
+  // The torso carries on into the chest above the shoulders: the head starts at the neck,
+  // above every point of the arms' curves.
+  for (const char* arm : {"upper_arm_l", "upper_arm_r"})
+    for (const Vec3& p : Find(description, arm)->central_curve)
+      EXPECT_GT(head->central_curve.front().y(), p.y()) << arm;
   // He faces +Z, so his left is +X.
   EXPECT_GT(Find(description, "forearm_l")->central_curve.back().x(), 0.05);
   EXPECT_LT(Find(description, "forearm_r")->central_curve.back().x(), -0.05);
