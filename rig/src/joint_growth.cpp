@@ -1,6 +1,7 @@
 #include "joint_growth.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -19,8 +20,8 @@ namespace {
 constexpr double kStretchAllowed = 1.9;
 constexpr double kPerimeterAllowed = 0.96;
 constexpr int kBackOffSteps = 6;
-// A direction whose volume the tube's growth changes by less than this keeps 1: its fit would
-// be large and rest on noise.
+// A direction whose volume the tube's growth changes by less than this is not fitted (its fit
+// would be large and rest on noise): it keeps 1, or its opposite direction's scale.
 constexpr double kLeastSensitivity = 0.01;
 
 // The bend's direction in JointModel::growth_scales, or -1 for a twist or a two-axis pose.
@@ -58,6 +59,7 @@ void FitJointGrowth(std::span<const Vec3> rest, RigModel* model) {
       return MeasureJointRegion(reference, rest, posed, region, model->triangles);
     };
     const std::vector<JointSweepPose> sweep = JointSweep(joint);
+    std::array<bool, 4> fitted_here = {false, false, false, false};
     for (int direction = 0; direction < 4; ++direction) {
       std::vector<Vec3> bends;
       for (const JointSweepPose& pose : sweep)
@@ -78,8 +80,9 @@ void FitJointGrowth(std::span<const Vec3> rest, RigModel* model) {
       // More growth than the tube's where the tube already folds the skin would crowd it more
       // in poses the sweep does not hold (a bend with a twist: a shoulder in the mocap).
       const double most = tube.folded_edges > 0 ? 1.0 : kMaxGrowthScale;
-      if (sensitivity >= kLeastSensitivity)
-        fitted = std::clamp(1.0 + numerator / denominator, kMinGrowthScale, most);
+      if (sensitivity < kLeastSensitivity) continue;
+      fitted_here[std::size_t(direction)] = true;
+      fitted = std::clamp(1.0 + numerator / denominator, kMinGrowthScale, most);
       auto acceptable = [&](double scale) {
         for (const Vec3& degrees : bends) {
           const SkinMeasures m = measure(degrees, direction, scale);
@@ -101,6 +104,12 @@ void FitJointGrowth(std::span<const Vec3> rest, RigModel* model) {
       }
       joint.growth_scales[direction] = fitted;
     }
+    // A direction left unfitted takes its opposite's scale where that was fitted, so that the
+    // scale does not jump as a bend passes through rest (an elbow swinging about its bent rest
+    // pose in a walk).
+    for (std::size_t d = 0; d < 4; ++d)
+      if (!fitted_here[d] && fitted_here[d ^ 1])
+        joint.growth_scales[d] = joint.growth_scales[d ^ 1];
     poses[c] = PartPose{};
   }
 }

@@ -55,13 +55,15 @@ void SwingTwist(const Quat& rotation, const Vec3& axis, Quat* swing, Quat* twist
 }
 
 double BendGrowthScale(const JointModel& joint, const Quat& swing) {
-  // sin^2 of half of 5 degrees: the weight of the tube's scale 1 at small bends.
+  // sin^2 of half of 5 degrees: the weight of the directions' mean at small bends.
   constexpr double kRestWeight = 0.0019;
   const Vec3 axis = swing.w() < 0.0 ? Vec3(-swing.vec()) : Vec3(swing.vec());
   const double x = axis.dot(joint.axes.col(0)), y = axis.dot(joint.axes.col(1));
   const double along_x = joint.growth_scales[x >= 0.0 ? kGrowPlusX : kGrowMinusX];
   const double along_y = joint.growth_scales[y >= 0.0 ? kGrowPlusY : kGrowMinusY];
-  return (x * x * along_x + y * y * along_y + kRestWeight) / (x * x + y * y + kRestWeight);
+  const std::array<double, 4>& g = joint.growth_scales;
+  const double mean = 0.25 * (g[0] + g[1] + g[2] + g[3]);
+  return (x * x * along_x + y * y * along_y + kRestWeight * mean) / (x * x + y * y + kRestWeight);
 }
 
 Quat ScaleRotation(const Quat& rotation, double t) {

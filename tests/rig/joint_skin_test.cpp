@@ -398,7 +398,8 @@ TEST(JointSkin, GrowthFitKeepsTheTubesGrowthForStraightLimbsAndLowersItForTheElb
 }
 
 // BendGrowthScale: a bend about one axis takes that direction's scale; one between two axes
-// blends them by the squared components; the rest pose and a pure twist take the tube's 1.
+// blends them by the squared components; the rest pose and a pure twist take the four scales'
+// mean.
 TEST(JointSkin, BendGrowthScaleFollowsTheSwingsDirection) {
   JointModel joint;
   joint.axes = Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()).toRotationMatrix();
@@ -414,9 +415,9 @@ TEST(JointSkin, BendGrowthScaleFollowsTheSwingsDirection) {
   EXPECT_NEAR(BendGrowthScale(joint, swing(60, -y)), -1.0, 2e-2);
   // Halfway between +X and -Y: the mean of their scales.
   EXPECT_NEAR(BendGrowthScale(joint, swing(90, (x - y).normalized())), -0.25, 1e-2);
-  EXPECT_DOUBLE_EQ(BendGrowthScale(joint, Quat::Identity()), 1.0);
-  // Continuous through rest: a bend of a tenth of a degree is still nearly the tube's.
-  EXPECT_NEAR(BendGrowthScale(joint, swing(0.1, x)), 1.0, 1e-3);
+  EXPECT_DOUBLE_EQ(BendGrowthScale(joint, Quat::Identity()), 1.125);
+  // Continuous through rest: a bend of a tenth of a degree is still nearly the mean.
+  EXPECT_NEAR(BendGrowthScale(joint, swing(0.1, x)), 1.125, 1e-3);
 }
 
 // The shoulders and hips: the skin spread over the torso keeps every edge within twice its rest

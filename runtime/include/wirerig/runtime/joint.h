@@ -66,7 +66,7 @@ enum GrowthDirection : int { kGrowPlusX = 0, kGrowMinusX = 1, kGrowPlusY = 2, kG
 
 // The growth scale of a bend by `swing` (a rotation about an axis across the joint's Z, rest
 // world axes): the directions' scales weighted by the squares of the swing axis's X and Y
-// components, blended towards 1 (the tube's) below a few degrees of bend so that it is
+// components, blended towards the four scales' mean below a few degrees of bend so that it is
 // continuous through the rest pose.
 double BendGrowthScale(const JointModel& joint, const Quat& swing);
 
