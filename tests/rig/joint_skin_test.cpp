@@ -394,6 +394,14 @@ TEST(JointSkin, GrowthFitKeepsTheTubesGrowthForStraightLimbsAndLowersItForTheElb
     EXPECT_GT(knee_flexion, 0.9) << knee;
     EXPECT_GT(elbow_flexion, 0.0) << elbow;
     EXPECT_LT(elbow_flexion, 0.8) << elbow;
+    // Extension barely changes either limb's volume with growth (under 1%): it is not fitted
+    // and takes the flexion's scale, so the scale does not jump as the joint passes rest.
+    EXPECT_EQ(human.model.parts[human.Part(knee.c_str())].joint.growth_scales[kGrowMinusX],
+              knee_flexion)
+        << knee;
+    EXPECT_EQ(human.model.parts[human.Part(elbow.c_str())].joint.growth_scales[kGrowMinusX],
+              elbow_flexion)
+        << elbow;
   }
 }
 
