@@ -163,6 +163,11 @@ void MakeVertexStagePlan(const RigModel& model, const RigEvaluationLayout& layou
       compact[f] = static_cast<std::uint32_t>(s.bt0.size());
       s.bt0.push_back(s.t0[f]), s.bt1.push_back(s.t1[f]), s.bt2.push_back(s.t2[f]);
     }
+  std::vector<bool> corner(n, false);
+  for (const std::vector<std::uint32_t>* c : {&s.bt0, &s.bt1, &s.bt2})
+    for (const std::uint32_t slot : *c) corner[slot] = true;
+  for (std::size_t i = 0; i < n; ++i)
+    if (corner[i]) s.bridged_corners.push_back(static_cast<std::uint32_t>(i));
   s.bridged_triangle_offsets = {0};
   for (const std::uint32_t slot : s.bridged_slot) {
     for (std::uint32_t t = s.slot_triangle_offsets[slot]; t < s.slot_triangle_offsets[slot + 1];

@@ -287,22 +287,42 @@ struct StagePasses {
     self.FaceNormalTask(k, plan.t0, plan.t1, plan.t2);
   }
 
-  template <class P>
-  void FaceNormalAndScatter(std::size_t f) const {
-    S& st = *s;
-    const auto n = FaceNormalOf<P>(&st.plan->t0[f], &st.plan->t1[f], &st.plan->t2[f]);
-    P::ScatterAdd4(st.normal_sum.data(), n.x, n.y, n.z, &st.plan->t0[f], &st.plan->t1[f],
-                   &st.plan->t2[f]);
+  // Triangles [0, c0.size()) of corner lists c0, c1, c2: each normal added into its corners'
+  // sums (normal_sum) in triangle order, packs at a time.
+  void ScatterFaceNormals(const std::vector<std::uint32_t>& c0,
+                          const std::vector<std::uint32_t>& c1,
+                          const std::vector<std::uint32_t>& c2) const {
+    auto scatter = [&](auto pack, std::size_t f) {
+      using P = decltype(pack);
+      const auto n = FaceNormalOf<P>(&c0[f], &c1[f], &c2[f]);
+      P::ScatterAdd4(s->normal_sum.data(), n.x, n.y, n.z, &c0[f], &c1[f], &c2[f]);
+    };
+    std::size_t f = 0;
+    for (; f + Wide::kWidth <= c0.size(); f += Wide::kWidth) scatter(Wide{}, f);
+    for (; f < c0.size(); ++f) scatter(One{}, f);
   }
 
   // One thread: every triangle's normal added into its vertices' sums in triangle order.
   void ScatterNormals() const {
     S& st = *s;
     std::fill(st.normal_sum.begin(), st.normal_sum.end(), Real(0));
-    const std::size_t triangles = st.plan->t0.size();
-    std::size_t f = 0;
-    for (; f + Wide::kWidth <= triangles; f += Wide::kWidth) FaceNormalAndScatter<Wide>(f);
-    for (; f < triangles; ++f) FaceNormalAndScatter<One>(f);
+    ScatterFaceNormals(st.plan->t0, st.plan->t1, st.plan->t2);
+  }
+
+  // One thread, rotating: the triangles with a bridged vertex scattered into their corners'
+  // sums (those zeroed first), the bridged vertices' sums then taken as their normals: the
+  // same terms in the same order as ScatterNormals.
+  void ScatterBridgedNormals() const {
+    S& st = *s;
+    const VertexStagePlan<Real>& plan = *st.plan;
+    for (const std::uint32_t slot : plan.bridged_corners)
+      std::fill_n(&st.normal_sum[4 * std::size_t(slot)], 4, Real(0));
+    ScatterFaceNormals(plan.bt0, plan.bt1, plan.bt2);
+    for (const std::uint32_t slot : plan.bridged_slot) {
+      const Real* sum = &st.normal_sum[4 * std::size_t(slot)];
+      st.rotated_normal.x[slot] = sum[0], st.rotated_normal.y[slot] = sum[1];
+      st.rotated_normal.z[slot] = sum[2];
+    }
   }
 
   // face_normal[faces[t]] summed for t in [begin, end): over a slot's triangles in increasing
@@ -481,12 +501,15 @@ void RunStage(const RigModel& model, RigWorkspace& w, VertexStage<Real>& s,
     RunTasks(parallel, s.plan->bucket_task_starts.size() - 1, &Passes::Buckets, &passes);
     RunTasks(parallel, Tasks(s.plan->bridged_slot.size()), &Passes::Sums, &passes);
   }
-  if (rotate) {
+  const bool one_thread = parallel == nullptr || parallel->concurrency() <= 1;
+  if (rotate && one_thread) {
     // The rest normals turned with the vertices; the bridged vertices' from their triangles.
+    passes.ScatterBridgedNormals();
+  } else if (rotate) {
     RunTasks(parallel, Tasks(s.plan->bt0.size()), &Passes::BridgedFaceNormals, &passes);
     RunTasks(parallel, Tasks(s.plan->bridged_slot.size()), &Passes::BridgedNormals, &passes);
   } else if (output.normals) {
-    if (parallel == nullptr || parallel->concurrency() <= 1) {
+    if (one_thread) {
       passes.ScatterNormals();
     } else {
       RunTasks(parallel, Tasks(s.plan->t0.size()), &Passes::FaceNormals, &passes);

@@ -68,6 +68,7 @@ struct VertexStagePlan {
   Coordinates rest_normal_local;
   std::vector<std::uint32_t> bt0, bt1, bt2;
   std::vector<std::uint32_t> bridged_triangle_offsets, bridged_triangles;
+  std::vector<std::uint32_t> bridged_corners;  // every corner of those, once, increasing
 };
 
 // The stage's per-frame buffers, one set per workspace.
