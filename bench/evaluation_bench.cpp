@@ -15,7 +15,8 @@
 //    lets it use eight lanes where the CPU has AVX2, avx2:0 keeps SSE2's four);
 //    BM_ReferenceLinearBlend: linear blend skinning as engines write it (float, one array per
 //    attribute, 4 influences, vectorised as ozz-animation's SkinningJob; rig/reference_skinning.h),
-//    one bone per part, same pose.
+//    one bone per part, same pose. The *_rotated_normals rows: the float evaluation with its
+//    normals the rest normals turned with each vertex's frame (NormalMode::kRotated).
 //  * BM_BindingPrecompute: BuildRigModel alone on the subdivided mesh. Target: under 200 ms
 //    for 100k vertices. BM_MakeWorkspace: MakeRigWorkspace on it (flat binding layout).
 // One thread each unless named; meshes, rigs, models and skins are built once, outside the timed
@@ -425,7 +426,8 @@ void BM_WireEvaluation(benchmark::State& state, const Scene& (*get)()) {
 
 // The same frame into float engine buffers (interleaved position and normal, stride 6): the
 // float evaluation, four vertices at a time. state.range(0): threads, as above.
-void BM_WireEvaluationFloat(benchmark::State& state, const Scene& (*get)()) {
+void BM_WireEvaluationFloat(benchmark::State& state, const Scene& (*get)(),
+                            NormalMode normal_mode = NormalMode::kFromTriangles) {
   const Scene& scene = get();
   const auto threads = static_cast<std::size_t>(state.range(0));
   const ThreadPool* pool = threads > 1 ? &Pool(threads) : nullptr;
@@ -441,6 +443,7 @@ void BM_WireEvaluationFloat(benchmark::State& state, const Scene& (*get)()) {
   job.float_normal_stride = 6;
   job.parallel = pool;
   job.allow_avx2 = state.range(1) != 0;
+  job.normal_mode = normal_mode;
   for (auto _ : state) {
     const Status status = job.Run();
     if (!status) {
@@ -585,6 +588,17 @@ BENCHMARK_CAPTURE(BM_WireEvaluationFloat, subdivided_2_threads, &Subdivided)
     ->ArgNames({"threads", "avx2"})
     ->Args({2, 1})
     ->UseRealTime()
+    ->ComputeStatistics("min", Minimum)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_WireEvaluationFloat, human_rotated_normals, &Human, NormalMode::kRotated)
+    ->ArgNames({"threads", "avx2"})
+    ->Args({1, 1})
+    ->ComputeStatistics("min", Minimum)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_WireEvaluationFloat, subdivided_rotated_normals, &Subdivided,
+                  NormalMode::kRotated)
+    ->ArgNames({"threads", "avx2"})
+    ->Args({1, 1})
     ->ComputeStatistics("min", Minimum)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_BindingPrecompute, subdivided, &Subdivided)->Unit(benchmark::kMillisecond);

@@ -36,6 +36,7 @@ struct wr_context {
   const wr_clip* clip = nullptr;  // playing, or null
   double clip_time = 0.0;
   wirerig::ClipPlaybackBuffers clip_buffers;  // made for `clip`
+  wirerig::NormalMode normal_mode = wirerig::NormalMode::kFromTriangles;
 };
 
 namespace {
@@ -262,6 +263,17 @@ void wr_context_reset(wr_context* context) {
   context->clip = nullptr;
 }
 
+wr_status wr_context_set_normal_mode(wr_context* context, wr_normal_mode mode) {
+  if (context == nullptr)
+    return Fail(WR_INVALID_ARGUMENT, "wr_context_set_normal_mode: context is null");
+  if (mode != WR_NORMALS_FROM_TRIANGLES && mode != WR_NORMALS_ROTATED)
+    return Fail(WR_INVALID_ARGUMENT,
+                "wr_context_set_normal_mode: mode must be from triangles or rotated");
+  context->normal_mode = mode == WR_NORMALS_ROTATED ? wirerig::NormalMode::kRotated
+                                                    : wirerig::NormalMode::kFromTriangles;
+  return WR_OK;
+}
+
 wr_status wr_context_set_joint_angles(wr_context* context, uint32_t part, float x_degrees,
                                       float y_degrees, float z_degrees) {
   if (wr_status s = CheckPart("wr_context_set_joint_angles", context, part); s != WR_OK) return s;
@@ -353,6 +365,7 @@ wr_status wr_context_evaluate(wr_context* context, wr_vertex_order order, float*
   if (normals != nullptr) job.float_normals = std::span(normals, capacity);
   job.float_normal_stride = normal_stride;
   if (order == WR_ORDER_SOURCE) job.float_vertex_order = asset.vertex_order;
+  job.normal_mode = context->normal_mode;
   const wirerig::Status status = job.Run();
   if (!status)
     return Fail(WR_INVALID_ARGUMENT, "wr_context_evaluate: " + wirerig::ToString(status));

@@ -30,6 +30,7 @@
 
 #include "isolated_import.h"
 #include "wirerig/io/input_file.h"
+#include "wirerig/runtime/cofactors.h"
 
 namespace wirerig {
 namespace {
@@ -287,16 +288,6 @@ std::optional<Mat4> ToMat4(const aiMatrix4x4& a) {
     }
   }
   return m;
-}
-
-// Columns c0, c1, c2 of `l`: the cofactor matrix [c1 x c2, c2 x c0, c0 x c1] is det(l) times
-// the inverse transpose, computed without dividing.
-Mat3 Cofactors(const Mat3& l) {
-  Mat3 cof;
-  cof.col(0) = l.col(1).cross(l.col(2));
-  cof.col(1) = l.col(2).cross(l.col(0));
-  cof.col(2) = l.col(0).cross(l.col(1));
-  return cof;
 }
 
 // Inverse of an affine transform, or nullopt when its linear part is (nearly) singular.

@@ -505,8 +505,9 @@ Status EvaluateRigJob::Run() const {
   // 6-8. Vertices follow the profiles, then the skin bridges near joints; normals.
   SampleBridges(*model, w, preserve_volume);
   if (!positions.empty()) {
-    const StageOutput<double> out{positions.data()->data(), 3,
-                                  normals.empty() ? nullptr : normals.data()->data(), 3};
+    StageOutput<double> out{positions.data()->data(), 3,
+                            normals.empty() ? nullptr : normals.data()->data(), 3};
+    out.normal_mode = normal_mode;
     RunVertexStage(*model, w, w.stage64, out, parallel);
   } else {
     const StageOutput<float> out{float_positions.data(),
@@ -515,7 +516,8 @@ Status EvaluateRigJob::Run() const {
                                  float_normal_stride,
                                  float_vertex_order.empty() ? nullptr : float_vertex_order.data(),
                                  float_vertex_order.size(),
-                                 allow_avx2};
+                                 allow_avx2,
+                                 normal_mode};
     RunVertexStage(*model, w, w.stage32, out, parallel);
   }
   return Status::Ok();

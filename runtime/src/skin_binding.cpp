@@ -256,23 +256,47 @@ Status BindToWirePair(const Vec3& p, const WirePolyline& wire_i, const WirePolyl
   return Status::Ok();
 }
 
-Vec3 ApplyPairBinding(const PairBinding& binding, const WirePolyline& wire_i,
-                      const WirePolyline& wire_j, const Vec3& spine_i, const Vec3& spine_j) {
-  const Vec3 p1 = PointOnWire(wire_i, binding.k1, binding.lambda1);
+namespace {
+
+// Apply's frame for deformed wires: p1', e' = p2' - p1', the centre c' and the axes (e_hat,
+// m_hat = n_f x e_hat, n_f) as columns. False (axes not set) where the wires meet, e' = 0.
+bool DeformedFrame(const PairBinding& binding, const WirePolyline& wire_i,
+                   const WirePolyline& wire_j, const Vec3& spine_i, const Vec3& spine_j, Vec3* p1,
+                   Vec3* e, Vec3* center, Mat3* axes) {
+  *p1 = PointOnWire(wire_i, binding.k1, binding.lambda1);
   const Vec3 p2 = PointOnWire(wire_j, binding.k2, binding.lambda2);
-  const Vec3 center = 0.5 * (spine_i + spine_j);
-  const Vec3 e = p2 - p1;
+  *center = 0.5 * (spine_i + spine_j);
+  *e = p2 - *p1;
   Vec3 e_hat, normal;
   double length = 0.0;
-  const bool regular = FrameAxes(e, center - p1, &e_hat, &length, &normal);
-  // No frame where the wires meet: p1'.
-  if (length == 0.0) return p1;
+  const bool regular = FrameAxes(*e, *center - *p1, &e_hat, &length, &normal);
+  if (length == 0.0) return false;
   if (!regular)
     normal = OrthonormalizeAgainst(MinimalRotation(binding.rest_edge, e_hat, binding.rest_normal),
                                    e_hat);
-  const Vec3 m_hat = normal.cross(e_hat);
+  axes->col(0) = e_hat;
+  axes->col(1) = normal.cross(e_hat);
+  axes->col(2) = normal;
+  return true;
+}
+
+}  // namespace
+
+Vec3 ApplyPairBinding(const PairBinding& binding, const WirePolyline& wire_i,
+                      const WirePolyline& wire_j, const Vec3& spine_i, const Vec3& spine_j) {
+  Vec3 p1, e, center;
+  Mat3 axes;
+  // No frame where the wires meet: p1'.
+  if (!DeformedFrame(binding, wire_i, wire_j, spine_i, spine_j, &p1, &e, &center, &axes)) return p1;
   return p1 + binding.alpha * e +
-         SectionUnit(center - p1, e) * (binding.beta * m_hat + binding.gamma * normal);
+         SectionUnit(center - p1, e) * (binding.beta * axes.col(1) + binding.gamma * axes.col(2));
+}
+
+bool ApplyPairFrame(const PairBinding& binding, const WirePolyline& wire_i,
+                    const WirePolyline& wire_j, const Vec3& spine_i, const Vec3& spine_j,
+                    Mat3* axes) {
+  Vec3 p1, e, center;
+  return DeformedFrame(binding, wire_i, wire_j, spine_i, spine_j, &p1, &e, &center, axes);
 }
 
 }  // namespace wirerig

@@ -147,6 +147,34 @@ void MakeVertexStagePlan(const RigModel& model, const RigEvaluationLayout& layou
   for (std::size_t f = 0; f < model.triangles.size(); ++f)
     for (std::uint32_t index : model.triangles[f])
       s.slot_triangles[fill[s.slot_of_vertex[index]]++] = static_cast<std::uint32_t>(f);
+
+  // Rotated normals: the rest normals in the slots' frames; the bridged slots' triangles.
+  const std::vector<Vec3> local = RestNormalsInSlotFrames(model, layout, s.vertex_of_slot);
+  s.rest_normal_local.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    s.rest_normal_local.x[i] = Real(local[i].x()), s.rest_normal_local.y[i] = Real(local[i].y());
+    s.rest_normal_local.z[i] = Real(local[i].z());
+  }
+  std::vector<bool> bridged(n, false);
+  for (const std::uint32_t slot : s.bridged_slot) bridged[slot] = true;
+  std::vector<std::uint32_t> compact(s.t0.size(), 0);  // triangle -> bridged triangle j
+  for (std::size_t f = 0; f < s.t0.size(); ++f)
+    if (bridged[s.t0[f]] || bridged[s.t1[f]] || bridged[s.t2[f]]) {
+      compact[f] = static_cast<std::uint32_t>(s.bt0.size());
+      s.bt0.push_back(s.t0[f]), s.bt1.push_back(s.t1[f]), s.bt2.push_back(s.t2[f]);
+    }
+  std::vector<bool> corner(n, false);
+  for (const std::vector<std::uint32_t>* c : {&s.bt0, &s.bt1, &s.bt2})
+    for (const std::uint32_t slot : *c) corner[slot] = true;
+  for (std::size_t i = 0; i < n; ++i)
+    if (corner[i]) s.bridged_corners.push_back(static_cast<std::uint32_t>(i));
+  s.bridged_triangle_offsets = {0};
+  for (const std::uint32_t slot : s.bridged_slot) {
+    for (std::uint32_t t = s.slot_triangle_offsets[slot]; t < s.slot_triangle_offsets[slot + 1];
+         ++t)
+      s.bridged_triangles.push_back(compact[s.slot_triangles[t]]);
+    s.bridged_triangle_offsets.push_back(static_cast<std::uint32_t>(s.bridged_triangles.size()));
+  }
 }
 
 template <class Real>
@@ -170,6 +198,8 @@ void MakeVertexStage(const RigModel& model, const RigEvaluationLayout& layout,
   const std::size_t padded = (n + kBucketMultiple - 1) / kBucketMultiple * kBucketMultiple;
   s.normal_sum.assign(4 * padded, Real(0));
   s.unit_normal.resize(padded);
+  s.rotated_normal.resize(padded);
+  s.cap_normal_axes.assign(profiles, VertexStage<Real>::M::Identity());
   s.undo.assign(layout.undo_samples.size(), VertexStage<Real>::M::Identity());
   s.undo_rest_point.assign(layout.undo_samples.size(), VertexStage<Real>::V::Zero());
   s.undo_point.assign(layout.undo_samples.size(), VertexStage<Real>::V::Zero());

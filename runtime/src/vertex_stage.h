@@ -3,7 +3,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
+#include <vector>
 
+#include "wirerig/runtime/cofactors.h"
 #include "wirerig/runtime/rig_evaluation.h"
 #include "wirerig/runtime/vertex_stage.h"
 
@@ -21,7 +24,14 @@ struct StageOutput {
   const std::uint32_t* order = nullptr;
   std::size_t order_size = 0;
   bool allow_avx2 = true;  // float: eight lanes where the CPU has AVX2 (identical results)
+  NormalMode normal_mode = NormalMode::kFromTriangles;
 };
+
+// Each slot's rest normal (area-weighted over the rest mesh's triangles, unit; zero where the
+// sum vanishes) in the slot's rest frame: a pair slot's along its pair frame's axes
+// (ApplyPairFrame: e_hat, m_hat, n_hat), a cap slot's along its cap frame's axes. By slot.
+std::vector<Vec3> RestNormalsInSlotFrames(const RigModel& model, const RigEvaluationLayout& layout,
+                                          std::span<const std::uint32_t> vertex_of_slot);
 
 // The stage's plan for `model`; `layout` holds the joint entries and undo samples.
 template <class Real>

@@ -57,11 +57,17 @@ struct StagePasses {
   const BasicBridgeSamples<Real>* bridges;  // by part
   StageOutput<Real> out;
 
+  // Whether the normals are the rest normals turned (NormalMode::kRotated).
+  bool Rotating() const { return out.normals && out.normal_mode == NormalMode::kRotated; }
+
   // PHYSICS.md section 6, step "apply", for regular frames: with e = p2 - p1, d = c - p1,
   // n = e x d and the section unit s = sqrt(|d|^2 + kEdgeInSectionUnit2 |e|^2), the point is
   // p1 + alpha e + (beta s / |e|) (n_hat x e) + gamma s n_hat (ApplyPairBinding up to
-  // rounding). Returns the lanes (bits) whose frame needs ApplyPairBinding itself.
-  template <class P>
+  // rounding). kRotate: also the rest normal turned with the frame, |e| (a e_hat + b m_hat +
+  // c n_hat) for its components (a, b, c) in the rest frame (m_hat = n_hat x e_hat; the length
+  // is normalised away by Output). Returns the lanes (bits) whose frame needs ApplyPairBinding
+  // itself.
+  template <class P, bool kRotate>
   int PairPack(std::size_t i) const {
     using Value = typename P::Value;
     using V = simd::V3<Value>;
@@ -89,16 +95,27 @@ struct StagePasses {
     const V n_hat = (one / P::Sqrt(safe_nn)) * n;
     const Value section =
         P::Sqrt(P::Select(ok, dd + P::Broadcast(Real(kEdgeInSectionUnit2)) * ee, one));
+    const Value length = P::Sqrt(safe_ee);
+    const V m = simd::Cross(n_hat, e);
     const V p = p1 + P::Load(&st.plan->alpha[i]) * e +
-                (P::Load(&st.plan->beta[i]) * section / P::Sqrt(safe_ee)) * simd::Cross(n_hat, e) +
+                (P::Load(&st.plan->beta[i]) * section / length) * m +
                 (P::Load(&st.plan->gamma[i]) * section) * n_hat;
     P::Store(&s->position.x[i], p.x);
     P::Store(&s->position.y[i], p.y);
     P::Store(&s->position.z[i], p.z);
+    if constexpr (kRotate) {
+      const typename S::Coordinates& rest = st.plan->rest_normal_local;
+      const V normal = P::Load(&rest.x[i]) * e + P::Load(&rest.y[i]) * m +
+                       (P::Load(&rest.z[i]) * length) * n_hat;
+      P::Store(&s->rotated_normal.x[i], normal.x);
+      P::Store(&s->rotated_normal.y[i], normal.y);
+      P::Store(&s->rotated_normal.z[i], normal.z);
+    }
     return ~P::Bits(ok) & ((1 << P::kWidth) - 1);
   }
 
-  // ApplyPairBinding itself (double), on the wires as spans.
+  // ApplyPairBinding itself (double), on the wires as spans; rotating, the rest normal turned
+  // by ApplyPairFrame (zero, so +Y out of Output, where the wires meet and no frame exists).
   void SlowPair(std::size_t slot) const {
     const std::uint32_t vertex = s->plan->vertex_of_slot[slot];
     const VertexAttachment& a = model->vertices[vertex];
@@ -111,17 +128,26 @@ struct StagePasses {
                                     w->profile_origins[a.part][a.profile + 1]);
     s->position.x[slot] = Real(p.x()), s->position.y[slot] = Real(p.y());
     s->position.z[slot] = Real(p.z());
+    if (!Rotating()) return;
+    const typename S::Coordinates& rest = s->plan->rest_normal_local;
+    Mat3 axes;
+    Vec3 normal = Vec3::Zero();
+    if (ApplyPairFrame(a.pair, wire_i, wire_j, w->profile_origins[a.part][a.profile],
+                       w->profile_origins[a.part][a.profile + 1], &axes))
+      normal = axes * Vec3(rest.x[slot], rest.y[slot], rest.z[slot]);
+    s->rotated_normal.x[slot] = Real(normal.x()), s->rotated_normal.y[slot] = Real(normal.y());
+    s->rotated_normal.z[slot] = Real(normal.z());
   }
 
-  template <class P>
+  template <class P, bool kRotate>
   void Pairs(std::size_t begin, std::size_t end) const {
     std::size_t i = begin;
     for (; i + P::kWidth <= end; i += P::kWidth)
-      if (const int failed = PairPack<P>(i))
+      if (const int failed = PairPack<P, kRotate>(i))
         for (int l = 0; l < P::kWidth; ++l)
           if (failed & (1 << l)) SlowPair(i + std::size_t(l));
     for (; i < end; ++i)
-      if (PairPack<One>(i)) SlowPair(i);
+      if (PairPack<One, kRotate>(i)) SlowPair(i);
   }
 
   // Task k: pair slots [k kTaskSize, (k + 1) kTaskSize), then the cap slots likewise.
@@ -129,8 +155,14 @@ struct StagePasses {
     const auto& self = *static_cast<const StagePasses*>(context);
     S& st = *self.s;
     const std::size_t pair_tasks = Tasks(st.plan->pair_count);
+    const bool rotate = self.Rotating();
     if (k < pair_tasks) {
-      self.template Pairs<Wide>(k * kTaskSize, std::min(st.plan->pair_count, (k + 1) * kTaskSize));
+      const std::size_t begin = k * kTaskSize;
+      const std::size_t end = std::min(st.plan->pair_count, (k + 1) * kTaskSize);
+      if (rotate)
+        self.template Pairs<Wide, true>(begin, end);
+      else
+        self.template Pairs<Wide, false>(begin, end);
       return;
     }
     const std::size_t caps = st.plan->cap_profile.size();
@@ -144,6 +176,12 @@ struct StagePasses {
           st.cap_axes[g] * local;
       const std::size_t slot = st.plan->pair_count + c;
       st.position.x[slot] = p.x(), st.position.y[slot] = p.y(), st.position.z[slot] = p.z();
+      if (!rotate) continue;
+      const typename S::Coordinates& rest = st.plan->rest_normal_local;
+      const typename S::V n =
+          st.cap_normal_axes[g] * typename S::V(rest.x[slot], rest.y[slot], rest.z[slot]);
+      st.rotated_normal.x[slot] = n.x(), st.rotated_normal.y[slot] = n.y();
+      st.rotated_normal.z[slot] = n.z();
     }
   }
 
@@ -216,71 +254,134 @@ struct StagePasses {
     }
   }
 
-  // Triangles [f, f + P::kWidth): (p1 - p0) x (p2 - p0).
+  // Triangles of corners (i0[l], i1[l], i2[l]) (slots), l < P::kWidth: (p1 - p0) x (p2 - p0).
   template <class P>
-  simd::V3<typename P::Value> FaceNormalOf(std::size_t f) const {
+  simd::V3<typename P::Value> FaceNormalOf(const std::uint32_t* i0, const std::uint32_t* i1,
+                                           const std::uint32_t* i2) const {
     const S& st = *s;
-    const auto p0 = GatherV3<P>(st.position, &st.plan->t0[f]);
-    return simd::Cross(GatherV3<P>(st.position, &st.plan->t1[f]) - p0,
-                       GatherV3<P>(st.position, &st.plan->t2[f]) - p0);
+    const auto p0 = GatherV3<P>(st.position, i0);
+    return simd::Cross(GatherV3<P>(st.position, i1) - p0, GatherV3<P>(st.position, i2) - p0);
   }
 
-  template <class P>
-  void FaceNormal(std::size_t f) const {
-    const auto n = FaceNormalOf<P>(f);
-    P::Store(&s->face_normal.x[f], n.x);
-    P::Store(&s->face_normal.y[f], n.y);
-    P::Store(&s->face_normal.z[f], n.z);
+  // Triangles [k kTaskSize, ...) of corner lists c0, c1, c2: their normals into face_normal at
+  // the same indices, packs at a time.
+  void FaceNormalTask(std::size_t k, const std::vector<std::uint32_t>& c0,
+                      const std::vector<std::uint32_t>& c1,
+                      const std::vector<std::uint32_t>& c2) const {
+    auto store = [&](auto pack, std::size_t f) {
+      using P = decltype(pack);
+      const auto n = FaceNormalOf<P>(&c0[f], &c1[f], &c2[f]);
+      P::Store(&s->face_normal.x[f], n.x);
+      P::Store(&s->face_normal.y[f], n.y);
+      P::Store(&s->face_normal.z[f], n.z);
+    };
+    const std::size_t end = std::min(c0.size(), (k + 1) * kTaskSize);
+    std::size_t f = k * kTaskSize;
+    for (; f + Wide::kWidth <= end; f += Wide::kWidth) store(Wide{}, f);
+    for (; f < end; ++f) store(One{}, f);
   }
 
   static void FaceNormals(const void* context, std::size_t k) {
     const auto& self = *static_cast<const StagePasses*>(context);
-    const std::size_t end = std::min(self.s->plan->t0.size(), (k + 1) * kTaskSize);
-    std::size_t f = k * kTaskSize;
-    for (; f + Wide::kWidth <= end; f += Wide::kWidth) self.template FaceNormal<Wide>(f);
-    for (; f < end; ++f) self.template FaceNormal<One>(f);
+    const VertexStagePlan<Real>& plan = *self.s->plan;
+    self.FaceNormalTask(k, plan.t0, plan.t1, plan.t2);
   }
 
-  template <class P>
-  void FaceNormalAndScatter(std::size_t f) const {
-    const auto n = FaceNormalOf<P>(f);
-    S& st = *s;
-    P::ScatterAdd4(st.normal_sum.data(), n.x, n.y, n.z, &st.plan->t0[f], &st.plan->t1[f],
-                   &st.plan->t2[f]);
+  // Triangles [0, c0.size()) of corner lists c0, c1, c2: each normal added into its corners'
+  // sums (normal_sum) in triangle order, packs at a time.
+  void ScatterFaceNormals(const std::vector<std::uint32_t>& c0,
+                          const std::vector<std::uint32_t>& c1,
+                          const std::vector<std::uint32_t>& c2) const {
+    auto scatter = [&](auto pack, std::size_t f) {
+      using P = decltype(pack);
+      const auto n = FaceNormalOf<P>(&c0[f], &c1[f], &c2[f]);
+      P::ScatterAdd4(s->normal_sum.data(), n.x, n.y, n.z, &c0[f], &c1[f], &c2[f]);
+    };
+    std::size_t f = 0;
+    for (; f + Wide::kWidth <= c0.size(); f += Wide::kWidth) scatter(Wide{}, f);
+    for (; f < c0.size(); ++f) scatter(One{}, f);
   }
 
   // One thread: every triangle's normal added into its vertices' sums in triangle order.
   void ScatterNormals() const {
     S& st = *s;
     std::fill(st.normal_sum.begin(), st.normal_sum.end(), Real(0));
-    const std::size_t triangles = st.plan->t0.size();
-    std::size_t f = 0;
-    for (; f + Wide::kWidth <= triangles; f += Wide::kWidth) FaceNormalAndScatter<Wide>(f);
-    for (; f < triangles; ++f) FaceNormalAndScatter<One>(f);
+    ScatterFaceNormals(st.plan->t0, st.plan->t1, st.plan->t2);
   }
 
-  // Threads, after FaceNormals: slots [k kTaskSize, ...) each sum their triangles' normals in
-  // increasing triangle order (the same terms in the same order as ScatterNormals: identical
-  // sums).
-  static void GatherNormals(const void* context, std::size_t k) {
-    const auto& self = *static_cast<const StagePasses*>(context);
-    S& st = *self.s;
-    const std::size_t end = std::min(st.plan->slot_of_vertex.size(), (k + 1) * kTaskSize);
-    for (std::size_t slot = k * kTaskSize; slot < end; ++slot) {
-      Real x = 0, y = 0, z = 0;
-      for (std::uint32_t t = st.plan->slot_triangle_offsets[slot];
-           t < st.plan->slot_triangle_offsets[slot + 1]; ++t) {
-        const std::uint32_t f = st.plan->slot_triangles[t];
-        x += st.face_normal.x[f], y += st.face_normal.y[f], z += st.face_normal.z[f];
-      }
-      Real* sum = &st.normal_sum[4 * slot];
-      sum[0] = x, sum[1] = y, sum[2] = z;
+  // One thread, rotating: the triangles with a bridged vertex scattered into their corners'
+  // sums (those zeroed first), the bridged vertices' sums then taken as their normals: the
+  // same terms in the same order as ScatterNormals.
+  void ScatterBridgedNormals() const {
+    S& st = *s;
+    const VertexStagePlan<Real>& plan = *st.plan;
+    for (const std::uint32_t slot : plan.bridged_corners)
+      std::fill_n(&st.normal_sum[4 * std::size_t(slot)], 4, Real(0));
+    ScatterFaceNormals(plan.bt0, plan.bt1, plan.bt2);
+    for (const std::uint32_t slot : plan.bridged_slot) {
+      const Real* sum = &st.normal_sum[4 * std::size_t(slot)];
+      st.rotated_normal.x[slot] = sum[0], st.rotated_normal.y[slot] = sum[1];
+      st.rotated_normal.z[slot] = sum[2];
     }
   }
 
-  // Slots [k kTaskSize, ...) into the output: positions, and the normal sums normalised (+Y
-  // where a sum vanishes), packs at a time (the sums are padded to whole packs). With an output
-  // order, the unit normals go to the stage (OrderedOutput copies them out).
+  // face_normal[faces[t]] summed for t in [begin, end): over a slot's triangles in increasing
+  // order, the same terms in the same order as ScatterNormals, so identical sums.
+  simd::V3<Real> SumOfFaceNormals(const std::vector<std::uint32_t>& faces, std::uint32_t begin,
+                                  std::uint32_t end) const {
+    const S& st = *s;
+    Real x = 0, y = 0, z = 0;
+    for (std::uint32_t t = begin; t < end; ++t) {
+      const std::uint32_t f = faces[t];
+      x += st.face_normal.x[f], y += st.face_normal.y[f], z += st.face_normal.z[f];
+    }
+    return {x, y, z};
+  }
+
+  // Threads, after FaceNormals: slots [k kTaskSize, ...) each sum their triangles' normals.
+  static void GatherNormals(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    S& st = *self.s;
+    const VertexStagePlan<Real>& plan = *st.plan;
+    const std::size_t end = std::min(plan.slot_of_vertex.size(), (k + 1) * kTaskSize);
+    for (std::size_t slot = k * kTaskSize; slot < end; ++slot) {
+      const simd::V3<Real> n =
+          self.SumOfFaceNormals(plan.slot_triangles, plan.slot_triangle_offsets[slot],
+                                plan.slot_triangle_offsets[slot + 1]);
+      Real* sum = &st.normal_sum[4 * slot];
+      sum[0] = n.x, sum[1] = n.y, sum[2] = n.z;
+    }
+  }
+
+  // Rotating, after the bridges: the triangles with a bridged vertex [k kTaskSize, ...) (plan
+  // corners bt0, bt1, bt2) get their face normals, at their index in that list ...
+  static void BridgedFaceNormals(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    const VertexStagePlan<Real>& plan = *self.s->plan;
+    self.FaceNormalTask(k, plan.bt0, plan.bt1, plan.bt2);
+  }
+
+  // ... and the bridged vertices [k kTaskSize, ...) their triangles' sums as normals (the
+  // triangle mode's sums, bit for bit).
+  static void BridgedNormals(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    S& st = *self.s;
+    const VertexStagePlan<Real>& plan = *st.plan;
+    const std::size_t end = std::min(plan.bridged_slot.size(), (k + 1) * kTaskSize);
+    for (std::size_t b = k * kTaskSize; b < end; ++b) {
+      const std::uint32_t slot = plan.bridged_slot[b];
+      const simd::V3<Real> n =
+          self.SumOfFaceNormals(plan.bridged_triangles, plan.bridged_triangle_offsets[b],
+                                plan.bridged_triangle_offsets[b + 1]);
+      st.rotated_normal.x[slot] = n.x, st.rotated_normal.y[slot] = n.y;
+      st.rotated_normal.z[slot] = n.z;
+    }
+  }
+
+  // Slots [k kTaskSize, ...) into the output: positions, and the normal sums (rotating: the
+  // rotated normals) normalised (+Y where a sum vanishes), packs at a time (both padded to whole
+  // packs). With an output order, the unit normals go to the stage (OrderedOutput copies them
+  // out).
   static void Output(const void* context, std::size_t k) {
     const auto& self = *static_cast<const StagePasses*>(context);
     S& st = *self.s;
@@ -296,10 +397,15 @@ struct StagePasses {
     using P = Wide;
     using Value = typename P::Value;
     const Value zero = P::Broadcast(Real(0)), one = P::Broadcast(Real(1));
+    const bool rotated = self.Rotating();
     alignas(16) Real unit[3][P::kWidth];
     for (std::size_t i = begin; i < end; i += P::kWidth) {
       simd::V3<Value> n;
-      P::Load4(&st.normal_sum[4 * i], &n.x, &n.y, &n.z);
+      if (rotated)
+        n = {P::Load(&st.rotated_normal.x[i]), P::Load(&st.rotated_normal.y[i]),
+             P::Load(&st.rotated_normal.z[i])};
+      else
+        P::Load4(&st.normal_sum[4 * i], &n.x, &n.y, &n.z);
       const Value length = P::Sqrt(simd::Dot(n, n));
       const auto regular = P::Greater(length, zero);
       const Value inverse = one / P::Select(regular, length, one);
@@ -356,6 +462,7 @@ template <class Real, class Wide>
 void RunStage(const RigModel& model, RigWorkspace& w, VertexStage<Real>& s,
               const StageOutput<Real>& output, const ParallelFor* parallel) {
   const RigEvaluationLayout& layout = w.plan->layout;
+  const bool rotate = output.normals && output.normal_mode == NormalMode::kRotated;
   // The frame's wires, pair centres and cap frames, in Real.
   for (std::size_t i = 0; i < model.parts.size(); ++i) {
     const std::size_t profiles = model.parts[i].profiles.size();
@@ -376,6 +483,7 @@ void RunStage(const RigModel& model, RigWorkspace& w, VertexStage<Real>& s,
       s.cap_origin.x[g] = Real(origin.x()), s.cap_origin.y[g] = Real(origin.y());
       s.cap_origin.z[g] = Real(origin.z());
       s.cap_axes[g] = w.cap_axes[g].template cast<Real>();
+      if (rotate) s.cap_normal_axes[g] = Cofactors(w.cap_axes[g]).template cast<Real>();
     }
   }
   for (std::size_t u = 0; u < layout.undo_samples.size(); ++u) {
@@ -393,8 +501,15 @@ void RunStage(const RigModel& model, RigWorkspace& w, VertexStage<Real>& s,
     RunTasks(parallel, s.plan->bucket_task_starts.size() - 1, &Passes::Buckets, &passes);
     RunTasks(parallel, Tasks(s.plan->bridged_slot.size()), &Passes::Sums, &passes);
   }
-  if (output.normals) {
-    if (parallel == nullptr || parallel->concurrency() <= 1) {
+  const bool one_thread = parallel == nullptr || parallel->concurrency() <= 1;
+  if (rotate && one_thread) {
+    // The rest normals turned with the vertices; the bridged vertices' from their triangles.
+    passes.ScatterBridgedNormals();
+  } else if (rotate) {
+    RunTasks(parallel, Tasks(s.plan->bt0.size()), &Passes::BridgedFaceNormals, &passes);
+    RunTasks(parallel, Tasks(s.plan->bridged_slot.size()), &Passes::BridgedNormals, &passes);
+  } else if (output.normals) {
+    if (one_thread) {
       passes.ScatterNormals();
     } else {
       RunTasks(parallel, Tasks(s.plan->t0.size()), &Passes::FaceNormals, &passes);

@@ -3,7 +3,7 @@
  * (argv[3], the octopus's), evaluates frames into interleaved float buffers and checks the API's
  * contract: errors with statuses and messages, outputs untouched on failure, determinism, a bent
  * joint moving only its side, the source and welded orders agreeing, a clip playing and looping,
- * a clip of another rig refused.
+ * a clip of another rig refused, rotated normals.
  * Prints a line per failed check; exits 0 only when every check holds. */
 #include <math.h>
 #include <stdio.h>
@@ -105,6 +105,18 @@ int main(int argc, char** argv) {
   }
   printf("elbow at 90 degrees: %u vertices moved, the farthest by %.3f m\n", moved, largest);
   CHECK(moved > 100 && largest > 0.1f && largest < 1.0f && right_side_moved == 0);
+
+  /* Rotated normals: the same positions, unit normals; a mode outside the enum refused. */
+  CHECK(wr_context_set_normal_mode(context, (wr_normal_mode)7) == WR_INVALID_ARGUMENT);
+  CHECK(wr_context_set_normal_mode(context, WR_NORMALS_ROTATED) == WR_OK);
+  float* rotated = Evaluate(context, WR_ORDER_WELDED, welded);
+  for (uint32_t v = 0; v < welded; ++v) {
+    const float* n = rotated + 6 * v + 3;
+    CHECK(memcmp(rotated + 6 * v, bent + 6 * v, sizeof(float) * 3) == 0);
+    CHECK(fabsf(sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1.0f) < 1e-5f);
+  }
+  CHECK(wr_context_set_normal_mode(context, WR_NORMALS_FROM_TRIANGLES) == WR_OK);
+  free(rotated);
 
   /* The source order holds copies of the welded vertices. */
   float* bent_source = Evaluate(context, WR_ORDER_SOURCE, source);

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <thread>
 
+#include "support/busy_pose.h"
 #include "support/two_segment_limb.h"
 #include "wirerig/procedural/shapes.h"
 #include "wirerig/rig/mesh_import.h"
@@ -564,44 +565,9 @@ namespace wirerig {
 namespace {
 namespace WIRERIG_TEST_FILE {
 
-// The human with every part turned, bent and (with volume preservation) stretched, and the
-// chest's profiles loaded: a pose that exercises every stage of the evaluation.
-struct BusyPose {
-  std::vector<PartPose> poses;
-  std::vector<std::array<PointLoad, 1>> bends;
-  std::vector<std::array<AxialPointLoad, 1>> pulls;
-  std::vector<std::array<LineLoad, 1>> pushes;
-  std::vector<ProfileLoads> profile_loads;
-};
+using testing::BusyPose;
 
-BusyPose MakeBusyPose(const Scene& scene) {
-  BusyPose b;
-  const std::size_t parts = scene.model.parts.size();
-  b.poses.resize(parts);
-  b.bends.resize(parts);
-  b.pulls.resize(parts);
-  for (std::size_t i = 0; i < parts; ++i) {
-    const PartModel& part = scene.model.parts[i];
-    const double x = double(i);
-    b.poses[i].rotation = Quat(Eigen::AngleAxisd(
-        0.1 + 0.03 * x, Vec3(std::sin(1.7 * x + 0.3), std::cos(1.1 * x), 0.5).normalized()));
-    const double force = 0.05 * part.spine_stiffness.bending / std::pow(part.spine_length, 3);
-    b.bends[i] = {{{0.7, Vec3(force, -0.5 * force, 0.0)}}};
-    b.pulls[i] = {{{1.0, 0.05 * part.spine_stiffness.axial}}};
-    b.poses[i].loads.bending_point_loads = b.bends[i];
-    b.poses[i].loads.axial_point_loads = b.pulls[i];
-  }
-  b.poses[0].translation = Vec3(0.1, -0.2, 0.3);
-  const PartModel& first = scene.model.parts[0];
-  b.pushes.reserve(first.profiles.size());
-  for (std::uint32_t p = 1; p + 1 < first.profiles.size(); p += 2) {
-    const double q = 1e-3 * first.profiles[p].stiffness.bending;
-    b.pushes.push_back({{{0.0, 1.0, Vec3(q, 0, 0)}}});
-    b.profile_loads.push_back(
-        {0, p, 0.1, 0.6, BoundaryCondition::kClamped, {}, b.pushes.back(), {}});
-  }
-  return b;
-}
+BusyPose MakeBusyPose(const Scene& scene) { return testing::MakeBusyPose(scene.model); }
 
 struct Evaluated {
   std::vector<Vec3> positions, normals;

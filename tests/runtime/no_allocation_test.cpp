@@ -184,14 +184,18 @@ TEST(NoAllocation, RigEvaluationOnAThreadPool) {
   job.parallel = &pool;
   ASSERT_TRUE(job.Run().ok());  // the workers have started and run once
   const long before = g_allocations;
-  for (int frame = 0; frame < 10; ++frame) ASSERT_TRUE(job.Run().ok());
+  for (int frame = 0; frame < 10; ++frame) {  // normals from the triangles, then rotated
+    job.normal_mode = frame % 2 == 0 ? NormalMode::kFromTriangles : NormalMode::kRotated;
+    ASSERT_TRUE(job.Run().ok());
+  }
   const long after = g_allocations;
   EXPECT_EQ(after, before);
 }
 
 TEST(NoAllocation, JointedRigIntoFloatBuffers) {
   // Two rigid segments of a capsule with a skin bridge at their joint, bent, evaluated into an
-  // interleaved float buffer: the float stage, the bridge pass and the normals.
+  // interleaved float buffer: the float stage, the bridge pass and the normals (from the
+  // triangles, then rotated).
   const Mesh mesh = MakeCapsule(0.08, 1.0, 48, 80, 8);
   const Result<BuiltRig> rig = BuildRig(mesh, testing::TwoSegmentLimb(), "capsule");
   ASSERT_TRUE(rig.ok()) << rig.error();
@@ -212,11 +216,14 @@ TEST(NoAllocation, JointedRigIntoFloatBuffers) {
   job.float_position_stride = 6;
   job.float_normals = std::span<float>(buffer).subspan(3);
   job.float_normal_stride = 6;
-  const long before = g_allocations;
-  const Status status = job.Run();
-  const long after = g_allocations;
-  ASSERT_TRUE(status.ok()) << ToString(status);
-  EXPECT_EQ(after, before);
+  for (const NormalMode mode : {NormalMode::kFromTriangles, NormalMode::kRotated}) {
+    job.normal_mode = mode;
+    const long before = g_allocations;
+    const Status status = job.Run();
+    const long after = g_allocations;
+    ASSERT_TRUE(status.ok()) << ToString(status);
+    EXPECT_EQ(after, before);
+  }
 }
 
 // An engine's frame through the C API: a context from a loaded .wrig, a joint bent and a spine

@@ -95,6 +95,16 @@ wr_status wr_context_set_point_loads(wr_context* context, uint32_t part, const f
  * another rig. Allocates when the clip differs from the context's previous one, never when
  * only the time changes. */
 wr_status wr_context_set_clip(wr_context* context, const wr_clip* clip, double time);
+/* How wr_context_evaluate makes normals: from the deformed triangles (the default), or each
+ * vertex's rest normal turned with the frame it rides on (the vertices on joints' skin bridges
+ * still from their triangles): the same positions, exact under rigid motion, within a degree
+ * for most vertices but tens of degrees off on fingers and toes when the flesh stretches; no
+ * faster where most vertices lie on bridges (the human's). Kept by wr_context_reset. */
+typedef enum wr_normal_mode {
+  WR_NORMALS_FROM_TRIANGLES = 0,
+  WR_NORMALS_ROTATED = 1
+} wr_normal_mode;
+wr_status wr_context_set_normal_mode(wr_context* context, wr_normal_mode mode);
 /* Evaluates the pose into float buffers: vertex i's position at positions[i * position_stride
  * .. + 2] and its unit normal likewise (normals may be null). Strides in floats, at least 3.
  * `capacity` counts floats in each buffer. Writes nothing on failure. */

@@ -181,6 +181,20 @@ RigWorkspace MakeRigWorkspace(const RigModel& model);
 // without redoing the plan's work.
 RigWorkspace MakeRigWorkspace(const RigModel& model, std::shared_ptr<const RigEvaluationPlan> plan);
 
+// How EvaluateRigJob makes vertex normals.
+enum class NormalMode {
+  // Area-weighted normals of the deformed triangles (exact for the deformed mesh).
+  kFromTriangles,
+  // Each vertex's rest normal turned with its own frame (the pair frame of its two profile
+  // wires; a cap vertex's cap frame, by its inverse transpose), then normalised; vertices on
+  // joint bridges still from their triangles (the same bits as kFromTriangles there). Exact
+  // under rigid motion. On the human (docs/benchmarks.md): within 0.3 degrees of the triangles'
+  // for 99% of the vertices off the bridges in single-joint bends, but up to tens of degrees on
+  // fingers and toes bound far from their wires when the flesh stretches. Pays only where few
+  // vertices lie on bridges: two thirds of the human's do, and there it is no faster.
+  kRotated,
+};
+
 struct EvaluateRigJob {
   const RigModel* model = nullptr;
   std::span<const PartPose> poses;              // one per part
@@ -214,6 +228,8 @@ struct EvaluateRigJob {
   // run time), else four (SSE2, x86-64's baseline); the results are bit-identical. False keeps
   // it on the baseline (for comparisons).
   bool allow_avx2 = true;
+  // How the normals are made (when asked for); the positions are the same bits either way.
+  NormalMode normal_mode = NormalMode::kFromTriangles;
 
   Status Validate() const;
   Status Run() const;  // validates, then evaluates; never allocates

@@ -85,4 +85,12 @@ Status BindToWirePair(const Vec3& p, const WirePolyline& wire_i, const WirePolyl
 Vec3 ApplyPairBinding(const PairBinding& binding, const WirePolyline& wire_i,
                       const WirePolyline& wire_j, const Vec3& spine_i, const Vec3& spine_j);
 
+// The frame ApplyPairBinding builds for the same arguments, as the columns of a rotation:
+// e_hat, m_hat = n_f x e_hat, n_f (the degenerate-frame fallback above included). False, with
+// *axes unchanged, where e' = 0 (no frame). The rest frame is (rest_edge, rest_normal x
+// rest_edge, rest_normal).
+bool ApplyPairFrame(const PairBinding& binding, const WirePolyline& wire_i,
+                    const WirePolyline& wire_j, const Vec3& spine_i, const Vec3& spine_j,
+                    Mat3* axes);
+
 }  // namespace wirerig

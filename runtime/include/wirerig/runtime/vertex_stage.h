@@ -59,6 +59,16 @@ struct VertexStagePlan {
   // slot_triangles[slot_triangle_offsets[i] .. slot_triangle_offsets[i + 1]).
   std::vector<std::uint32_t> t0, t1, t2;
   std::vector<std::uint32_t> slot_triangle_offsets, slot_triangles;
+  // Rotated normals (NormalMode::kRotated): by slot, the rest normal in the slot's rest frame
+  // (RestNormalsInSlotFrames: pair slots along e_hat, m_hat, n_hat; caps in their cap axes).
+  // Bridged slots take theirs from their triangles instead: the triangles with a bridged
+  // vertex in increasing order, as their corners' slots (bt0, bt1, bt2; "bridged triangle" j),
+  // and each bridged vertex's triangles as increasing j, bridged_triangles[
+  // bridged_triangle_offsets[b] .. bridged_triangle_offsets[b + 1]).
+  Coordinates rest_normal_local;
+  std::vector<std::uint32_t> bt0, bt1, bt2;
+  std::vector<std::uint32_t> bridged_triangle_offsets, bridged_triangles;
+  std::vector<std::uint32_t> bridged_corners;  // every corner of those, once, increasing
 };
 
 // The stage's per-frame buffers, one set per workspace.
@@ -81,7 +91,12 @@ struct VertexStage {
   // By slot (padded to whole packs): (x, y, z, 0), the sum of its triangles' normals.
   std::vector<Real> normal_sum;
   Coordinates unit_normal;  // by slot (padded): unit normals, for an output order
-  std::vector<M> undo;      // by undo sample: rest axes times transposed deformed axes
+  // Rotated normals: by slot (padded; padding stays zero), each slot's normal before
+  // normalisation, and by global profile the cofactors of cap_axes (det(A) A^-T: what turns a
+  // cap's normals).
+  Coordinates rotated_normal;
+  std::vector<M> cap_normal_axes;
+  std::vector<M> undo;  // by undo sample: rest axes times transposed deformed axes
   std::vector<V> undo_rest_point, undo_point;
   std::vector<BasicBridgeSamples<Real>> bridges;  // by part (float stage only)
 };
