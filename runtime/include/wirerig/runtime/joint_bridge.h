@@ -107,9 +107,9 @@ using BridgeSamples = BasicBridgeSamples<double>;
 // the cross-sections are scaled in their plane by the ends' scales blended by smoothstep(u) and
 // grow in area by 1 + c 4u(1 - u), c such that the bridge keeps the volume (area x length) of
 // its flesh (the rest bridge's, with the ends' scales and the child's stretch blended alike)
-// times the bend's growth scale (BendGrowthScale), evenly or, where that would reach within joint.radius of the bend's
-// centre of curvature, across the bend. At rest (posed == rest, rotations identity, scales and
-// stretch 1) every map is the identity. Allocation-free.
+// times the bend's growth scale (BendGrowthScale), evenly or, where that would reach within
+// joint.radius of the bend's centre of curvature, across the bend. At rest (posed == rest,
+// rotations identity, scales and stretch 1) every map is the identity. Allocation-free.
 void SampleJointBridge(const JointModel& joint, const RestBridge& rest, const BridgeEnds& posed,
                        const Mat3& parent_rotation, const Mat3& child_rotation, BridgeSamples* out);
 
