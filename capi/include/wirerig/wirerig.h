@@ -35,7 +35,14 @@ typedef enum wr_status {
 
 /* The vertex order of evaluated buffers: the source asset's (as the engine imported the mesh,
  * with vertices split at seams), or the rig's welded one (one vertex per position). */
-typedef enum wr_vertex_order { WR_ORDER_SOURCE = 0, WR_ORDER_WELDED = 1 } wr_vertex_order;
+/* Enumerations taken as arguments end in a 32-bit sentinel (as Vulkan's do), so that any int a
+ * caller passes is a value of the type and is refused with WR_INVALID_ARGUMENT when it names
+ * no enumerator. */
+typedef enum wr_vertex_order {
+  WR_ORDER_SOURCE = 0,
+  WR_ORDER_WELDED = 1,
+  WR_ORDER_MAX_ENUM = 0x7FFFFFFF
+} wr_vertex_order;
 
 typedef struct wr_rig wr_rig;
 typedef struct wr_clip wr_clip;
@@ -102,7 +109,8 @@ wr_status wr_context_set_clip(wr_context* context, const wr_clip* clip, double t
  * faster where most vertices lie on bridges (the human's). Kept by wr_context_reset. */
 typedef enum wr_normal_mode {
   WR_NORMALS_FROM_TRIANGLES = 0,
-  WR_NORMALS_ROTATED = 1
+  WR_NORMALS_ROTATED = 1,
+  WR_NORMALS_MAX_ENUM = 0x7FFFFFFF
 } wr_normal_mode;
 wr_status wr_context_set_normal_mode(wr_context* context, wr_normal_mode mode);
 /* Evaluates the pose into float buffers: vertex i's position at positions[i * position_stride
