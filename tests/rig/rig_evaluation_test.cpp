@@ -693,23 +693,7 @@ TEST(RigEvaluation, ParallelEvaluationIsBitIdenticalToSequential) {
 // normal of a vertex side by side, stride 6), bit-identical on any number of threads.
 std::vector<float> EvaluateBusyFloat(const Scene& scene, const BusyPose& pose,
                                      const ParallelFor* parallel, bool allow_avx2 = true) {
-  RigWorkspace workspace = MakeRigWorkspace(scene.model);
-  std::vector<float> buffer(6 * scene.model.vertices.size(), -7.0f);
-  EvaluateRigJob job;
-  job.model = &scene.model;
-  job.poses = pose.poses;
-  job.profile_loads = pose.profile_loads;
-  job.workspace = &workspace;
-  job.float_positions = buffer;
-  job.float_position_stride = 6;
-  job.float_normals = std::span<float>(buffer).subspan(3);
-  job.float_normal_stride = 6;
-  job.preserve_volume = true;
-  job.parallel = parallel;
-  job.allow_avx2 = allow_avx2;
-  const Status status = job.Run();
-  EXPECT_TRUE(status.ok()) << ToString(status);
-  return buffer;
+  return testing::EvaluateBusyInterleaved(scene.model, pose, parallel, allow_avx2);
 }
 
 // Eight lanes (AVX2, where this CPU has it) and four (SSE2) do the same IEEE operations per

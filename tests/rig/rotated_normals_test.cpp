@@ -79,24 +79,7 @@ Evaluated Evaluate(const RigModel& model, RigWorkspace& workspace, std::span<con
 // The busy pose into an interleaved float buffer (position, normal; stride 6).
 std::vector<float> EvaluateFloat(const RigModel& model, const testing::BusyPose& pose,
                                  NormalMode mode, const ParallelFor* parallel, bool allow_avx2) {
-  RigWorkspace workspace = MakeRigWorkspace(model);
-  std::vector<float> buffer(6 * model.vertices.size(), -7.0f);
-  EvaluateRigJob job;
-  job.model = &model;
-  job.poses = pose.poses;
-  job.profile_loads = pose.profile_loads;
-  job.workspace = &workspace;
-  job.float_positions = buffer;
-  job.float_position_stride = 6;
-  job.float_normals = std::span<float>(buffer).subspan(3);
-  job.float_normal_stride = 6;
-  job.preserve_volume = true;
-  job.parallel = parallel;
-  job.allow_avx2 = allow_avx2;
-  job.normal_mode = mode;
-  const Status status = job.Run();
-  EXPECT_TRUE(status.ok()) << ToString(status);
-  return buffer;
+  return testing::EvaluateBusyInterleaved(model, pose, parallel, allow_avx2, mode);
 }
 
 double Angle(const Vec3& a, const Vec3& b) {

@@ -3,9 +3,12 @@
 // part's profiles loaded. Evaluate with preserve_volume = true.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "wirerig/runtime/rig_evaluation.h"
@@ -47,6 +50,32 @@ inline BusyPose MakeBusyPose(const RigModel& model) {
         {0, p, 0.1, 0.6, BoundaryCondition::kClamped, {}, b.pushes.back(), {}});
   }
   return b;
+}
+
+// The busy pose evaluated in float into an interleaved buffer (position and normal of a vertex
+// side by side, stride 6; -7 where nothing was written), volume kept, on `parallel` (may be
+// null), eight lanes where allowed and the CPU has AVX2.
+inline std::vector<float> EvaluateBusyInterleaved(const RigModel& model, const BusyPose& pose,
+                                                  const ParallelFor* parallel, bool allow_avx2,
+                                                  NormalMode mode = NormalMode::kFromTriangles) {
+  RigWorkspace workspace = MakeRigWorkspace(model);
+  std::vector<float> buffer(6 * model.vertices.size(), -7.0f);
+  EvaluateRigJob job;
+  job.model = &model;
+  job.poses = pose.poses;
+  job.profile_loads = pose.profile_loads;
+  job.workspace = &workspace;
+  job.float_positions = buffer;
+  job.float_position_stride = 6;
+  job.float_normals = std::span<float>(buffer).subspan(3);
+  job.float_normal_stride = 6;
+  job.preserve_volume = true;
+  job.parallel = parallel;
+  job.allow_avx2 = allow_avx2;
+  job.normal_mode = mode;
+  const Status status = job.Run();
+  EXPECT_TRUE(status.ok()) << ToString(status);
+  return buffer;
 }
 
 }  // namespace wirerig::testing
