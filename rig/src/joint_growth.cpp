@@ -76,13 +76,13 @@ void FitJointGrowth(std::span<const Vec3> rest, RigModel* model) {
         sensitivity = std::max(sensitivity, std::abs(one.volume_ratio - v0));
         tube.Worst(one);
       }
-      double fitted = 1.0;
+      joint.growth_scales[direction] = 1.0;
+      if (sensitivity < kLeastSensitivity) continue;
+      fitted_here[std::size_t(direction)] = true;
       // More growth than the tube's where the tube already folds the skin would crowd it more
       // in poses the sweep does not hold (a bend with a twist: a shoulder in the mocap).
       const double most = tube.folded_edges > 0 ? 1.0 : kMaxGrowthScale;
-      if (sensitivity < kLeastSensitivity) continue;
-      fitted_here[std::size_t(direction)] = true;
-      fitted = std::clamp(1.0 + numerator / denominator, kMinGrowthScale, most);
+      double fitted = std::clamp(1.0 + numerator / denominator, kMinGrowthScale, most);
       auto acceptable = [&](double scale) {
         for (const Vec3& degrees : bends) {
           const SkinMeasures m = measure(degrees, direction, scale);
