@@ -58,6 +58,7 @@ void PrintRigSummary(std::ostream& out, const BuiltRig& built, const std::string
     out << "warnings:\n";
     for (const std::string& w : built.report.warnings) out << "  " << w << "\n";
   }
+  for (const std::string& note : built.report.notes) out << "note: " << note << "\n";
   const RigQuality q = AssessRig(built);
   std::string without;
   for (const std::string& name : q.parts_without_profiles) without += " " + name;

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <limits>
 #include <map>
-#include <numeric>
 
+#include "disjoint_sets.h"
 #include "wirerig/runtime/spine_interpolation.h"
 
 namespace wirerig {
@@ -13,17 +13,13 @@ namespace {
 // Connected pieces of the welded triangles (sharing a vertex joins): a label per vertex.
 std::vector<std::uint32_t> Pieces(std::size_t vertex_count,
                                   const std::vector<Triangle>& triangles) {
-  std::vector<std::uint32_t> root(vertex_count);
-  std::iota(root.begin(), root.end(), 0u);
-  auto find = [&](std::uint32_t v) {
-    while (root[v] != v) v = root[v] = root[root[v]];
-    return v;
-  };
+  DisjointSets sets(vertex_count);
   for (const Triangle& t : triangles) {
-    root[find(t[1])] = find(t[0]);
-    root[find(t[2])] = find(t[0]);
+    sets.Union(t[0], t[1]);
+    sets.Union(t[0], t[2]);
   }
-  for (std::uint32_t v = 0; v < vertex_count; ++v) root[v] = find(v);
+  std::vector<std::uint32_t> root(vertex_count);
+  for (std::uint32_t v = 0; v < vertex_count; ++v) root[v] = sets.Find(v);
   return root;
 }
 

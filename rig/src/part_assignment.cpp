@@ -88,6 +88,9 @@ Result<PartAssignment> AssignParts(const Mesh& mesh, const RigDescription& descr
                    " entries for " + std::to_string(vertex_count) + " welded vertices"};
     result.vertex_part = description.vertex_part;
   }
+  // Vertices the user assigned (by index or by mesh part) keep their part.
+  std::vector<bool> fixed(vertex_count);
+  for (std::size_t v = 0; v < vertex_count; ++v) fixed[v] = result.vertex_part[v] >= 0;
 
   // Parts that claim mesh parts by name take their vertices outright.
   std::map<std::string, int> claimed_by;
@@ -100,8 +103,10 @@ Result<PartAssignment> AssignParts(const Mesh& mesh, const RigDescription& descr
     const auto it = claimed_by.find(mesh_part.name);
     if (it == claimed_by.end()) continue;
     for (std::uint32_t f = 0; f < mesh_part.triangle_count; ++f)
-      for (std::uint32_t w : mesh.welded_triangles[mesh_part.first_triangle + f])
+      for (std::uint32_t w : mesh.welded_triangles[mesh_part.first_triangle + f]) {
         result.vertex_part[w] = it->second;
+        fixed[w] = true;
+      }
   }
   for (const auto& [name, part] : claimed_by) {
     // A reference of its own: lambdas capture no structured bindings before clang 16.
@@ -151,6 +156,16 @@ Result<PartAssignment> AssignParts(const Mesh& mesh, const RigDescription& descr
   }
   for (int& part : result.vertex_part)
     if (part < 0) part = 0;  // no unrestricted part could take it: the root keeps it
+  std::vector<bool> open_part(part_count);
+  std::vector<int> parent(part_count, -1);
+  for (std::size_t p = 0; p < part_count; ++p) {
+    open_part[p] = !restricted[p];
+    for (std::size_t q = 0; q < p; ++q)
+      if (description.parts[q].name == description.parts[p].parent) parent[p] = int(q);
+  }
+  if (description.merge_islands)
+    result.island_vertices =
+        MergePartIslands(mesh.welded_triangles, parent, fixed, open_part, &result.vertex_part);
 
   // Triangles of passive mesh parts belong to a part but are not among its ray targets.
   result.triangle_part.resize(mesh.welded_triangles.size());

@@ -248,6 +248,11 @@ Result<BuiltRig> BuildRigOnce(const Mesh& mesh, const RigDescription& descriptio
         std::to_string(parts.occluded_fallbacks) +
         " vertices are hidden from every central curve by the surface itself (concave "
         "detail) and went to the nearest curve");
+  if (parts.island_vertices)
+    built.report.notes.push_back(
+        std::to_string(parts.island_vertices) +
+        " vertices lay in islands of a part's skin inside another part's and joined the part "
+        "around them");
   return built;
 }
 

@@ -47,6 +47,12 @@ TEST(RigDescription, ParsesFieldsAndDefaults) {
   EXPECT_EQ(d.value().parts[1].profile_count, 4);
   EXPECT_EQ(d.value().parts[1].parent, "body");
   EXPECT_EQ(d.value().parts[1].mesh_parts, std::vector<std::string>{"arm_mesh"});
+  EXPECT_FALSE(d.value().merge_islands);  // a written description keeps its assignment
+  nlohmann::json merging = Good();
+  merging["merge_islands"] = true;
+  const Result<RigDescription> m = ParseRigDescription(merging);
+  ASSERT_TRUE(m.ok()) << m.error();
+  EXPECT_TRUE(m.value().merge_islands);
 }
 
 void ExpectRefused(const nlohmann::json& document, const std::string& expected) {
@@ -105,6 +111,9 @@ TEST(RigDescription, EachBrokenRuleIsNamed) {
   d = Good();
   d["material"] = {{"E", 1e6}, {"nu", 0.7}};
   ExpectRefused(d, "/material/nu: must lie in (-1, 0.5)");
+  d = Good();
+  d["merge_islands"] = "yes";
+  ExpectRefused(d, "/merge_islands");
 }
 
 TEST(RigDescription, CheckedInDescriptionsLoad) {

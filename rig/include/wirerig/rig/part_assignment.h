@@ -24,6 +24,7 @@ struct PartAssignment {
   // part -> its ray-target triangles (all of its triangles but those of passive mesh parts)
   std::vector<std::vector<std::uint32_t>> part_triangles;
   std::size_t occluded_fallbacks = 0;  // vertices no curve could see: went to the nearest
+  std::size_t island_vertices = 0;     // vertices of islands that joined the part around them
 };
 
 // passive[f]: triangle f belongs to one of the description's passive mesh parts. Errors name
@@ -37,5 +38,24 @@ std::vector<std::uint32_t> ActiveTriangles(const std::vector<bool>& passive);
 // active triangles; `passive` comes from FindPassiveTriangles.
 Result<PartAssignment> AssignParts(const Mesh& mesh, const RigDescription& description,
                                    const TriangleBvh& active_bvh, const std::vector<bool>& passive);
+
+// Islands of a part's skin (with RigDescription::merge_islands). The nearest-curve assignment
+// can leave a few of a part's vertices inside another part's skin (a patch of a camel's neck
+// taken by a front leg whose curve passes just under it); such an island moves with its part
+// while the skin around it follows another, and tears when the joint bends (the camel's
+// shoulders stretched an edge 93x under every skinning method).
+//
+// Per (part, connected piece of the surface), the part's largest connected region there keeps
+// its vertices; its other regions of at most kIslandFraction of that one are islands. Each joins
+// the part that most edges leaving it reach, among the parts `open_part` allows that are not its
+// own part's descendants (`parent`: per part, -1 for the root): a parent's patches inside a
+// child's skin say the child reaches too far, and giving them to the child would make it reach
+// further (the man's head would take the torso's patches in its neck). Repeated until nothing
+// moves. Islands with a `fixed` vertex (assigned by the user) stay. Returns how many vertices
+// moved.
+inline constexpr double kIslandFraction = 0.05;
+std::size_t MergePartIslands(const std::vector<Triangle>& triangles, const std::vector<int>& parent,
+                             const std::vector<bool>& fixed, const std::vector<bool>& open_part,
+                             std::vector<int>* vertex_part);
 
 }  // namespace wirerig

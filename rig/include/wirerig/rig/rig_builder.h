@@ -39,6 +39,7 @@ struct RigBuildReport {
   std::vector<PartReport> parts;
   std::size_t occluded_fallbacks = 0;  // vertices no central curve could see
   std::vector<std::string> warnings;   // human-readable, one per problem found
+  std::vector<std::string> notes;      // what the builder repaired, for the modeller; no problem
 };
 
 struct BuiltRig {
