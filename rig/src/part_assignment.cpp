@@ -44,6 +44,62 @@ int MajorityPart(const std::vector<int>& vertex_part, const Triangle& t) {
   return a;
 }
 
+// With clean_assignment: a child part's skin lies within a few of its typical distances from its
+// curve (the median over its vertices). A vertex of a child part more than kFarFromCurve times
+// that from its curve goes to the nearest part that sees it, other than the child and the parts
+// below it: a rump nearest a tail that lies along it, a chest nearest a leg's curve passing
+// under it. Returns how many moved.
+constexpr double kFarFromCurve = 3.0;
+std::size_t ReturnFarVertices(const Mesh& mesh, const RigDescription& description,
+                              const TriangleBvh& bvh, const std::vector<bool>& fixed,
+                              const std::vector<bool>& restricted, const std::vector<int>& parent,
+                              std::vector<int>* vertex_part) {
+  const std::size_t part_count = description.parts.size();
+  std::vector<int>& part = *vertex_part;
+  std::vector<std::vector<double>> own(part_count);
+  std::vector<double> distance(part.size(), 0.0);
+  for (std::size_t v = 0; v < part.size(); ++v) {
+    if (fixed[v]) continue;
+    const std::size_t q = std::size_t(part[v]);
+    distance[v] = Project(description.parts[q].central_curve, mesh.welded_positions[v]).distance;
+    own[q].push_back(distance[v]);
+  }
+  std::vector<double> typical(part_count, 0.0);
+  for (std::size_t q = 0; q < part_count; ++q) {
+    if (own[q].empty()) continue;
+    const auto middle = own[q].begin() + long(own[q].size() / 2);
+    std::nth_element(own[q].begin(), middle, own[q].end());
+    typical[q] = *middle;
+  }
+  auto at_or_below = [&](int i, int q) {
+    for (int x = i; x >= 0; x = parent[std::size_t(x)])
+      if (x == q) return true;
+    return false;
+  };
+  std::size_t moved = 0;
+  std::vector<std::pair<double, int>> others;
+  for (std::size_t v = 0; v < part.size(); ++v) {
+    const int q = part[v];
+    if (fixed[v] || parent[std::size_t(q)] < 0 ||
+        !(distance[v] > kFarFromCurve * typical[std::size_t(q)]))
+      continue;
+    const Vec3& p = mesh.welded_positions[v];
+    others.clear();
+    for (std::size_t i = 0; i < part_count; ++i)
+      if (!restricted[i] && !at_or_below(int(i), q))
+        others.emplace_back(Project(description.parts[i].central_curve, p).distance, int(i));
+    std::sort(others.begin(), others.end());
+    for (const auto& [d, i] : others) {
+      if (Occluded(bvh, Project(description.parts[std::size_t(i)].central_curve, p).point, p))
+        continue;
+      part[v] = i;
+      ++moved;
+      break;
+    }
+  }
+  return moved;
+}
+
 }  // namespace
 
 Result<std::vector<bool>> FindPassiveTriangles(const Mesh& mesh,
@@ -163,9 +219,12 @@ Result<PartAssignment> AssignParts(const Mesh& mesh, const RigDescription& descr
     for (std::size_t q = 0; q < p; ++q)
       if (description.parts[q].name == description.parts[p].parent) parent[p] = int(q);
   }
-  if (description.merge_islands)
+  if (description.clean_assignment) {
+    result.far_vertices = ReturnFarVertices(mesh, description, active_bvh, fixed, restricted,
+                                            parent, &result.vertex_part);
     result.island_vertices =
         MergePartIslands(mesh.welded_triangles, parent, fixed, open_part, &result.vertex_part);
+  }
 
   // Triangles of passive mesh parts belong to a part but are not among its ray targets.
   result.triangle_part.resize(mesh.welded_triangles.size());

@@ -248,6 +248,11 @@ Result<BuiltRig> BuildRigOnce(const Mesh& mesh, const RigDescription& descriptio
         std::to_string(parts.occluded_fallbacks) +
         " vertices are hidden from every central curve by the surface itself (concave "
         "detail) and went to the nearest curve");
+  if (parts.far_vertices)
+    built.report.notes.push_back(
+        std::to_string(parts.far_vertices) +
+        " vertices lay over 3 times a part's typical distance from its curve and went to the "
+        "nearest part above or beside it");
   if (parts.island_vertices)
     built.report.notes.push_back(
         std::to_string(parts.island_vertices) +

@@ -109,7 +109,7 @@ Result<RigDescription> ParseRigDescription(const nlohmann::json& document) {
   try {
     const JsonObject root(document, "");
     root.RejectUnknownKeys({"format", "version", "mesh", "up_axis", "unit_scale", "material",
-                            "defaults", "parts", "passive_mesh_parts", "merge_islands"});
+                            "defaults", "parts", "passive_mesh_parts", "clean_assignment"});
     if (root.Has("format") && root.String("format") != "wirerig.rig_description")
       throw FieldError("/format", "must be \"wirerig.rig_description\"");
     if (root.Integer("version", 1) != 1) throw FieldError("/version", "unsupported version");
@@ -136,7 +136,7 @@ Result<RigDescription> ParseRigDescription(const nlohmann::json& document) {
       defaults.points_per_profile = d.Integer("points_per_profile", defaults.points_per_profile);
     }
     description.passive_mesh_parts = ReadNames(root, "passive_mesh_parts");
-    description.merge_islands = root.Bool("merge_islands", false);
+    description.clean_assignment = root.Bool("clean_assignment", false);
     if (RequireArray(root.Required("parts"), "/parts").size() > kMaxRigParts)
       throw FieldError("/parts", "at most " + std::to_string(kMaxRigParts) + " parts");
     ForEachElement(root, "parts", [&](const JsonObject& p) {

@@ -47,12 +47,12 @@ TEST(RigDescription, ParsesFieldsAndDefaults) {
   EXPECT_EQ(d.value().parts[1].profile_count, 4);
   EXPECT_EQ(d.value().parts[1].parent, "body");
   EXPECT_EQ(d.value().parts[1].mesh_parts, std::vector<std::string>{"arm_mesh"});
-  EXPECT_FALSE(d.value().merge_islands);  // a written description keeps its assignment
+  EXPECT_FALSE(d.value().clean_assignment);  // a written description keeps its assignment
   nlohmann::json merging = Good();
-  merging["merge_islands"] = true;
+  merging["clean_assignment"] = true;
   const Result<RigDescription> m = ParseRigDescription(merging);
   ASSERT_TRUE(m.ok()) << m.error();
-  EXPECT_TRUE(m.value().merge_islands);
+  EXPECT_TRUE(m.value().clean_assignment);
 }
 
 void ExpectRefused(const nlohmann::json& document, const std::string& expected) {
@@ -112,8 +112,8 @@ TEST(RigDescription, EachBrokenRuleIsNamed) {
   d["material"] = {{"E", 1e6}, {"nu", 0.7}};
   ExpectRefused(d, "/material/nu: must lie in (-1, 0.5)");
   d = Good();
-  d["merge_islands"] = "yes";
-  ExpectRefused(d, "/merge_islands");
+  d["clean_assignment"] = "yes";
+  ExpectRefused(d, "/clean_assignment");
 }
 
 TEST(RigDescription, CheckedInDescriptionsLoad) {

@@ -24,7 +24,11 @@ struct PartAssignment {
   // part -> its ray-target triangles (all of its triangles but those of passive mesh parts)
   std::vector<std::vector<std::uint32_t>> part_triangles;
   std::size_t occluded_fallbacks = 0;  // vertices no curve could see: went to the nearest
-  std::size_t island_vertices = 0;     // vertices of islands that joined the part around them
+  // With RigDescription::clean_assignment: vertices of a child part far from its curve that went
+  // to the nearest part seeing them (part_assignment.cpp), and vertices of islands that joined
+  // the part around them (MergePartIslands).
+  std::size_t far_vertices = 0;
+  std::size_t island_vertices = 0;
 };
 
 // passive[f]: triangle f belongs to one of the description's passive mesh parts. Errors name
@@ -39,7 +43,7 @@ std::vector<std::uint32_t> ActiveTriangles(const std::vector<bool>& passive);
 Result<PartAssignment> AssignParts(const Mesh& mesh, const RigDescription& description,
                                    const TriangleBvh& active_bvh, const std::vector<bool>& passive);
 
-// Islands of a part's skin (with RigDescription::merge_islands). The nearest-curve assignment
+// Islands of a part's skin (with RigDescription::clean_assignment). The nearest-curve assignment
 // can leave a few of a part's vertices inside another part's skin (a patch of a camel's neck
 // taken by a front leg whose curve passes just under it); such an island moves with its part
 // while the skin around it follows another, and tears when the joint bends (the camel's

@@ -56,10 +56,11 @@ struct RigDescription {
   std::vector<std::string> passive_mesh_parts;
   // Optional, from skin weights: vertex_part[w] is the part index of welded vertex w.
   std::vector<int> vertex_part;
-  // Small islands of a part's skin inside another part's join the part around them
-  // (part_islands.h). Automatic descriptions set it; a written description keeps the
-  // nearest-curve assignment unless it asks ("merge_islands": true).
-  bool merge_islands = false;
+  // Clean the nearest-curve assignment (part_assignment.h): a child part's vertices far from
+  // its curve go to the nearest part above or beside it, and small islands of a part's skin
+  // inside another's join the part around them. Automatic descriptions set it; a written
+  // description keeps the nearest-curve assignment unless it asks ("clean_assignment": true).
+  bool clean_assignment = false;
 };
 
 // Errors read "<json pointer>: <reason>".
