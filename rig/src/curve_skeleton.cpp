@@ -1056,7 +1056,7 @@ Result<RigDescription> Describer::Run() {
   }
 
   RigDescription description;
-  description.clean_assignment = true;          // curves found, not placed: their strays are cleaned
+  description.clean_assignment = true;       // curves found, not placed: their strays are cleaned
   std::vector<int> kept(parts_.size(), -1);  // index into description.parts
   int branch_number = 0;
   for (int i : order) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "part_tree.h"
 #include "wirerig/io/name_hint.h"
 
 namespace wirerig {
@@ -71,12 +72,8 @@ std::size_t ReturnFarVertices(const Mesh& mesh, const RigDescription& descriptio
     std::nth_element(own[q].begin(), middle, own[q].end());
     typical[q] = *middle;
   }
-  auto at_or_below = [&](int i, int q) {
-    for (int x = i; x >= 0; x = parent[std::size_t(x)])
-      if (x == q) return true;
-    return false;
-  };
   std::size_t moved = 0;
+  std::vector<CurveProjection> projections(part_count);
   std::vector<std::pair<double, int>> others;
   for (std::size_t v = 0; v < part.size(); ++v) {
     const int q = part[v];
@@ -85,13 +82,14 @@ std::size_t ReturnFarVertices(const Mesh& mesh, const RigDescription& descriptio
       continue;
     const Vec3& p = mesh.welded_positions[v];
     others.clear();
-    for (std::size_t i = 0; i < part_count; ++i)
-      if (!restricted[i] && !at_or_below(int(i), q))
-        others.emplace_back(Project(description.parts[i].central_curve, p).distance, int(i));
+    for (std::size_t i = 0; i < part_count; ++i) {
+      if (restricted[i] || AtOrBelow(parent, int(i), q)) continue;
+      projections[i] = Project(description.parts[i].central_curve, p);
+      others.emplace_back(projections[i].distance, int(i));
+    }
     std::sort(others.begin(), others.end());
     for (const auto& [d, i] : others) {
-      if (Occluded(bvh, Project(description.parts[std::size_t(i)].central_curve, p).point, p))
-        continue;
+      if (Occluded(bvh, projections[std::size_t(i)].point, p)) continue;
       part[v] = i;
       ++moved;
       break;
@@ -212,18 +210,15 @@ Result<PartAssignment> AssignParts(const Mesh& mesh, const RigDescription& descr
   }
   for (int& part : result.vertex_part)
     if (part < 0) part = 0;  // no unrestricted part could take it: the root keeps it
-  std::vector<bool> open_part(part_count);
-  std::vector<int> parent(part_count, -1);
-  for (std::size_t p = 0; p < part_count; ++p) {
-    open_part[p] = !restricted[p];
-    for (std::size_t q = 0; q < p; ++q)
-      if (description.parts[q].name == description.parts[p].parent) parent[p] = int(q);
-  }
   if (description.clean_assignment) {
+    std::vector<int> parent(part_count, -1);
+    for (std::size_t p = 0; p < part_count; ++p)
+      for (std::size_t q = 0; q < p; ++q)
+        if (description.parts[q].name == description.parts[p].parent) parent[p] = int(q);
     result.far_vertices = ReturnFarVertices(mesh, description, active_bvh, fixed, restricted,
                                             parent, &result.vertex_part);
     result.island_vertices =
-        MergePartIslands(mesh.welded_triangles, parent, fixed, open_part, &result.vertex_part);
+        MergePartIslands(mesh.welded_triangles, parent, fixed, restricted, &result.vertex_part);
   }
 
   // Triangles of passive mesh parts belong to a part but are not among its ray targets.

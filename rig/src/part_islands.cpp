@@ -5,21 +5,12 @@
 #include <utility>
 
 #include "disjoint_sets.h"
+#include "part_tree.h"
 
 namespace wirerig {
 
-namespace {
-
-bool IsAncestor(const std::vector<int>& parent, int ancestor, int part) {
-  for (int p = parent[std::size_t(part)]; p >= 0; p = parent[std::size_t(p)])
-    if (p == ancestor) return true;
-  return false;
-}
-
-}  // namespace
-
 std::size_t MergePartIslands(const std::vector<Triangle>& triangles, const std::vector<int>& parent,
-                             const std::vector<bool>& fixed, const std::vector<bool>& open_part,
+                             const std::vector<bool>& fixed, const std::vector<bool>& restricted,
                              std::vector<int>* vertex_part) {
   std::vector<int>& part = *vertex_part;
   const std::size_t n = part.size();
@@ -56,8 +47,8 @@ std::size_t MergePartIslands(const std::vector<Triangle>& triangles, const std::
       if (part[a] == part[b]) continue;
       for (const auto& [from, to] : {std::pair{a, b}, std::pair{b, a}}) {
         const std::uint32_t r = regions.Find(from);
-        if (island[r] && open_part[std::size_t(part[to])] &&
-            !IsAncestor(parent, part[from], part[to]))
+        if (island[r] && !restricted[std::size_t(part[to])] &&
+            !AtOrBelow(parent, part[to], part[from]))
           ++reach[{r, part[to]}];
       }
     }

@@ -52,7 +52,7 @@ std::vector<std::uint32_t> Paint(Scene& scene, const Vec3& centre, double radius
 }
 
 std::size_t Merge(Scene& scene, const std::vector<bool>& fixed) {
-  return MergePartIslands(scene.mesh.welded_triangles, {-1, kTop}, fixed, {true, true},
+  return MergePartIslands(scene.mesh.welded_triangles, {-1, kTop}, fixed, {false, false},
                           &scene.part);
 }
 
@@ -131,7 +131,7 @@ TEST(PartIslands, APatchJoinsTheNeighbourReachedByMostEdges) {
   const std::vector<std::uint32_t> patch = Paint(scene, Vec3(-0.1, 0.65, 0.0), 0.06, kBottom);
   ASSERT_GE(patch.size(), 3u);
   MergePartIslands(scene.mesh.welded_triangles, {-1, kTop, kTop},
-                   std::vector<bool>(scene.part.size(), false), {true, true, true}, &scene.part);
+                   std::vector<bool>(scene.part.size(), false), {false, false, false}, &scene.part);
   EXPECT_TRUE(AllOn(scene, patch, kSide));
 }
 

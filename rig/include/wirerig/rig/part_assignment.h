@@ -51,7 +51,8 @@ Result<PartAssignment> AssignParts(const Mesh& mesh, const RigDescription& descr
 //
 // Per (part, connected piece of the surface), the part's largest connected region there keeps
 // its vertices; its other regions of at most kIslandFraction of that one are islands. Each joins
-// the part that most edges leaving it reach, among the parts `open_part` allows that are not its
+// the part that most edges leaving it reach, among the parts not `restricted` (they take no
+// nearest-curve vertices: skinless, or claiming mesh parts by name) that are not its
 // own part's descendants (`parent`: per part, -1 for the root): a parent's patches inside a
 // child's skin say the child reaches too far, and giving them to the child would make it reach
 // further (the man's head would take the torso's patches in its neck). Repeated until nothing
@@ -59,7 +60,7 @@ Result<PartAssignment> AssignParts(const Mesh& mesh, const RigDescription& descr
 // moved.
 inline constexpr double kIslandFraction = 0.05;
 std::size_t MergePartIslands(const std::vector<Triangle>& triangles, const std::vector<int>& parent,
-                             const std::vector<bool>& fixed, const std::vector<bool>& open_part,
+                             const std::vector<bool>& fixed, const std::vector<bool>& restricted,
                              std::vector<int>* vertex_part);
 
 }  // namespace wirerig
