@@ -65,6 +65,29 @@ void SortKeys(std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& buff
   }
 }
 
+// Whether the closed loop through the n points turns strictly one way around (0, 0), each step
+// by less than a half-turn, and goes round exactly once: then every edge lies in its own wedge
+// from (0, 0), wedges of non-adjacent edges meet at (0, 0) only, which no edge reaches, so no
+// two edges cross (exactly, not only as rounded; the polygon is star-shaped around (0, 0)). A
+// path's edges are some of its loop's, so the same holds for an open polygon. A turn counts
+// only when its cross product clears its rounding error, so a true answer is exact.
+bool TurnsOnceAroundTheOrigin(const double* x, const double* y, std::size_t n) {
+  constexpr double kRounding = 1e-12;  // relative; the cross product's rounding is ~1e-16
+  double sign = 0.0;
+  std::size_t windings = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = i + 1 == n ? 0 : i + 1;
+    const double cross = x[i] * y[j] - y[i] * x[j];
+    const double scale = std::abs(x[i] * y[j]) + std::abs(y[i] * x[j]);
+    if (sign == 0.0) sign = cross > 0.0 ? 1.0 : -1.0;
+    if (!(sign * cross > kRounding * scale)) return false;
+    // Turning counter-clockwise by less than a half-turn, the loop enters y >= 0 from y < 0
+    // only through the positive x-axis: once per turn (mirrored for clockwise).
+    windings += sign * y[i] < 0.0 && sign * y[j] >= 0.0;
+  }
+  return windings == 1;
+}
+
 }  // namespace
 
 bool PolygonCrossesItself(std::span<const double> xs, std::span<const double> ys, bool closed,
@@ -84,6 +107,8 @@ bool PolygonCrossesItself(std::span<const double> xs, std::span<const double> ys
   }
   x[n] = x[0];  // edge n - 1 of a closed polygon ends at vertex 0
   y[n] = y[0];
+  // The common case for a profile (points on rays around the origin, in order): no sweep.
+  if (TurnsOnceAroundTheOrigin(x, y, n)) return false;
   const std::size_t edges = closed ? n : n - 1;
   const double pad = 1e-9 * size;
   // box[4 i ..]: edge i's x0, x1, y0, y1.

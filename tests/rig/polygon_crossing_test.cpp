@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <span>
 #include <vector>
 
 namespace wirerig {
@@ -106,6 +107,36 @@ TEST(PolygonCrossing, KnownShapes) {
   EXPECT_FALSE(PolygonCrossesItself(std::vector<double>{0, 1, 2}, std::vector<double>{0, 1, 0},
                                     true, scratch));
   EXPECT_FALSE(PolygonCrossesItself({}, {}, true, scratch));
+}
+
+// Rays around the centre of a square hit its sides in collinear runs: the orientations of
+// non-adjacent edges on one side are rounding noise, yet the loop is star-shaped and simple.
+// Wound twice it crosses; a loop whose centre lies outside it is left to the sweep.
+TEST(PolygonCrossing, RaysAroundTheOriginGiveASimpleLoop) {
+  PolygonCrossingScratch scratch;
+  for (const double turns : {1.0, 2.0}) {
+    for (const std::size_t n : {std::size_t(7), std::size_t(100), std::size_t(257)}) {
+      std::vector<double> x(n), y(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const double angle = turns * 2.0 * std::numbers::pi * (double(i) + 0.37) / double(n);
+        const double c = std::cos(angle), s = std::sin(angle);
+        const double t = 0.3 / std::max(std::abs(c), std::abs(s));  // on the square |x|,|y| = 0.3
+        x[i] = 1e3 * t * c;  // far from 1: rounding is relative
+        y[i] = 1e3 * t * s;
+      }
+      const bool crosses = turns == 2.0;  // twice round: the turns cross each other
+      EXPECT_EQ(PolygonCrossesItself(x, y, true, scratch), crosses) << n << " " << turns;
+      std::reverse(x.begin(), x.end());  // clockwise
+      std::reverse(y.begin(), y.end());
+      EXPECT_EQ(PolygonCrossesItself(x, y, true, scratch), crosses) << n << " " << turns;
+      EXPECT_FALSE(PolygonCrossesItself(std::span(x).first(n / 2 + 1),
+                                        std::span(y).first(n / 2 + 1), false, scratch));
+      for (double& v : x) v += 2e3;  // the origin outside: the sweep finds the crossing
+      if (crosses) {
+        EXPECT_TRUE(PolygonCrossesItself(x, y, true, scratch)) << n;
+      }
+    }
+  }
 }
 
 TEST(PolygonCrossing, MatchesThePreviousSweepAndAllPairs) {
