@@ -338,21 +338,6 @@ struct StagePasses {
     return {x, y, z};
   }
 
-  // Threads, after FaceNormals: slots [k kTaskSize, ...) each sum their triangles' normals.
-  static void GatherNormals(const void* context, std::size_t k) {
-    const auto& self = *static_cast<const StagePasses*>(context);
-    S& st = *self.s;
-    const VertexStagePlan<Real>& plan = *st.plan;
-    const std::size_t end = std::min(plan.slot_of_vertex.size(), (k + 1) * kTaskSize);
-    for (std::size_t slot = k * kTaskSize; slot < end; ++slot) {
-      const simd::V3<Real> n =
-          self.SumOfFaceNormals(plan.slot_triangles, plan.slot_triangle_offsets[slot],
-                                plan.slot_triangle_offsets[slot + 1]);
-      Real* sum = &st.normal_sum[4 * slot];
-      sum[0] = n.x, sum[1] = n.y, sum[2] = n.z;
-    }
-  }
-
   // Rotating, after the bridges: the triangles with a bridged vertex [k kTaskSize, ...) (plan
   // corners bt0, bt1, bt2) get their face normals, at their index in that list ...
   static void BridgedFaceNormals(const void* context, std::size_t k) {
@@ -378,34 +363,49 @@ struct StagePasses {
     }
   }
 
-  // Slots [k kTaskSize, ...) into the output: positions, and the normal sums (rotating: the
-  // rotated normals) normalised (+Y where a sum vanishes), packs at a time (both padded to whole
-  // packs). With an output order, the unit normals go to the stage (OrderedOutput copies them
-  // out).
-  static void Output(const void* context, std::size_t k) {
-    const auto& self = *static_cast<const StagePasses*>(context);
-    S& st = *self.s;
-    const StageOutput<Real>& out = self.out;
+  // Where Output takes a slot's normal before normalisation: normal_sum (one thread: the
+  // scatter's sums), rotated_normal (rotating), or the sum of its triangles' face_normal
+  // (threads, after FaceNormals: the same terms in the same order as the scatter's, so the
+  // same bits, summed here rather than in a pass of their own).
+  enum class NormalSource { kSums, kRotated, kFaceNormals };
+
+  // Slots [k kTaskSize, ...) into the output: positions, and the normals (NormalSource)
+  // normalised (+Y where a sum vanishes), packs at a time (the stage's per-slot arrays are
+  // padded to whole packs). With an output order, the unit normals go to the stage
+  // (OrderedOutput copies them out).
+  template <NormalSource kSource>
+  void OutputTask(std::size_t k) const {
+    S& st = *s;
     const bool direct = out.order == nullptr;
-    const std::size_t slots = st.plan->vertex_of_slot.size();
+    const VertexStagePlan<Real>& plan = *st.plan;
+    const std::size_t slots = plan.vertex_of_slot.size();
     const std::size_t begin = k * kTaskSize, end = std::min(slots, (k + 1) * kTaskSize);
     for (std::size_t i = begin; i < end && direct; ++i) {
-      Real* p = out.positions + st.plan->vertex_of_slot[i] * out.position_stride;
+      Real* p = out.positions + plan.vertex_of_slot[i] * out.position_stride;
       p[0] = st.position.x[i], p[1] = st.position.y[i], p[2] = st.position.z[i];
     }
     if (!out.normals) return;
     using P = Wide;
     using Value = typename P::Value;
     const Value zero = P::Broadcast(Real(0)), one = P::Broadcast(Real(1));
-    const bool rotated = self.Rotating();
     alignas(16) Real unit[3][P::kWidth];
     for (std::size_t i = begin; i < end; i += P::kWidth) {
       simd::V3<Value> n;
-      if (rotated)
+      if constexpr (kSource == NormalSource::kRotated) {
         n = {P::Load(&st.rotated_normal.x[i]), P::Load(&st.rotated_normal.y[i]),
              P::Load(&st.rotated_normal.z[i])};
-      else
+      } else if constexpr (kSource == NormalSource::kSums) {
         P::Load4(&st.normal_sum[4 * i], &n.x, &n.y, &n.z);
+      } else {
+        for (std::size_t l = 0; l < std::size_t(P::kWidth); ++l) {
+          const simd::V3<Real> sum =
+              i + l < end ? SumOfFaceNormals(plan.slot_triangles, plan.slot_triangle_offsets[i + l],
+                                             plan.slot_triangle_offsets[i + l + 1])
+                          : simd::V3<Real>{0, 0, 0};
+          unit[0][l] = sum.x, unit[1][l] = sum.y, unit[2][l] = sum.z;
+        }
+        n = {P::Load(unit[0]), P::Load(unit[1]), P::Load(unit[2])};
+      }
       const Value length = P::Sqrt(simd::Dot(n, n));
       const auto regular = P::Greater(length, zero);
       const Value inverse = one / P::Select(regular, length, one);
@@ -422,10 +422,23 @@ struct StagePasses {
       P::Store(unit[1], y);
       P::Store(unit[2], z);
       for (std::size_t l = 0; l < std::size_t(P::kWidth) && i + l < end; ++l) {
-        Real* o = out.normals + st.plan->vertex_of_slot[i + l] * out.normal_stride;
+        Real* o = out.normals + plan.vertex_of_slot[i + l] * out.normal_stride;
         o[0] = unit[0][l], o[1] = unit[1][l], o[2] = unit[2][l];
       }
     }
+  }
+
+  static void Output(const void* context, std::size_t k) {
+    const auto& self = *static_cast<const StagePasses*>(context);
+    if (self.Rotating())
+      self.template OutputTask<NormalSource::kRotated>(k);
+    else
+      self.template OutputTask<NormalSource::kSums>(k);
+  }
+
+  // Threads, after FaceNormals: Output with each slot's normal summed from its triangles.
+  static void GatherOutput(const void* context, std::size_t k) {
+    static_cast<const StagePasses*>(context)->template OutputTask<NormalSource::kFaceNormals>(k);
   }
 
   // Output vertices [k kTaskSize, ...) of an output order: each a copy of its welded vertex.
@@ -502,6 +515,7 @@ void RunStage(const RigModel& model, RigWorkspace& w, VertexStage<Real>& s,
     RunTasks(parallel, Tasks(s.plan->bridged_slot.size()), &Passes::Sums, &passes);
   }
   const bool one_thread = parallel == nullptr || parallel->concurrency() <= 1;
+  void (*output_pass)(const void*, std::size_t) = &Passes::Output;
   if (rotate && one_thread) {
     // The rest normals turned with the vertices; the bridged vertices' from their triangles.
     passes.ScatterBridgedNormals();
@@ -513,10 +527,10 @@ void RunStage(const RigModel& model, RigWorkspace& w, VertexStage<Real>& s,
       passes.ScatterNormals();
     } else {
       RunTasks(parallel, Tasks(s.plan->t0.size()), &Passes::FaceNormals, &passes);
-      RunTasks(parallel, Tasks(s.plan->slot_of_vertex.size()), &Passes::GatherNormals, &passes);
+      output_pass = &Passes::GatherOutput;
     }
   }
-  RunTasks(parallel, Tasks(s.plan->vertex_of_slot.size()), &Passes::Output, &passes);
+  RunTasks(parallel, Tasks(s.plan->vertex_of_slot.size()), output_pass, &passes);
   if (output.order) RunTasks(parallel, Tasks(output.order_size), &Passes::OrderedOutput, &passes);
 }
 
