@@ -62,9 +62,10 @@ int AddReservedView(tinygltf::Model& model, std::size_t offset, std::size_t size
 }
 
 int AddAccessor(tinygltf::Model& model, int view, int component_type, int type, std::size_t count,
-                bool normalized) {
+                bool normalized, std::size_t byte_offset) {
   tinygltf::Accessor accessor;
   accessor.bufferView = view;
+  accessor.byteOffset = byte_offset;
   accessor.componentType = component_type;
   accessor.type = type;
   accessor.count = count;

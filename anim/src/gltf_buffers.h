@@ -58,8 +58,9 @@ std::size_t AlignedBufferEnd(tinygltf::Model& model);
 int AddReservedView(tinygltf::Model& model, std::size_t offset, std::size_t size,
                     std::size_t stride, int target);
 
-// An accessor of `count` elements on `view` (at byte 0 of it).
+// An accessor of `count` elements on `view`, from its byte `byte_offset` (a multiple of the
+// component size; several accessors may share a view that is not a vertex attribute's).
 int AddAccessor(tinygltf::Model& model, int view, int component_type, int type, std::size_t count,
-                bool normalized = false);
+                bool normalized = false, std::size_t byte_offset = 0);
 
 }  // namespace wirerig::gltf

@@ -85,7 +85,10 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::An
   fit_options.key_tolerance = options.key_tolerance;
   fit_options.bridge_joints = options.bridge_joints;
   fit_options.influences = options.influences;
-  if (options.compress) fit_options.translation_bits = gltf::kTranslationBits;
+  if (options.compress) {
+    fit_options.translation_bits = gltf::kTranslationBits;
+    fit_options.rotation_bits = gltf::kRotationBits;
+  }
   if (!options.fit_skin) fit_options.iterations = fit_options.weight_rounds = 0;
   Result<gltf::FittedSkin> fitted = gltf::FitSkeleton(bake, base, fit_options);
   if (!fitted) return Error{fitted.error()};
@@ -229,7 +232,8 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
   if (!bake.normals.empty() && mesh.normals.empty()) {
     report.warnings.emplace_back("bake.normals left out: the mesh has no normals");
   }
-  const int mesh_index = gltf::AddBaseMesh(model, mesh, base, materials.material, name);
+  const int mesh_index = gltf::AddBaseMesh(model, mesh, base, materials.material, name,
+                                           /*reorder_triangles=*/options.compress);
   tinygltf::Node node;
   node.name = name;
   node.mesh = mesh_index;

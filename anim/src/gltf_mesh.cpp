@@ -2,6 +2,8 @@
 
 #include "gltf_buffers.h"
 
+#include <meshoptimizer.h>
+
 namespace wirerig::gltf {
 
 BaseVertices MakeBaseVertices(const Mesh& mesh) {
@@ -26,7 +28,8 @@ BaseVertices MakeBaseVertices(const Mesh& mesh) {
 }
 
 int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& base,
-                const std::vector<int>& materials, const std::string& name) {
+                const std::vector<int>& materials, const std::string& name,
+                bool reorder_triangles) {
   const int target = TINYGLTF_TARGET_ARRAY_BUFFER;
   std::map<std::string, int> attributes;
   attributes["POSITION"] =
@@ -52,6 +55,11 @@ int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& ba
     for (std::uint32_t f = 0; f < part.triangle_count; ++f) {
       const Triangle& t = mesh.triangles[part.first_triangle + f];
       indices.insert(indices.end(), t.begin(), t.end());
+    }
+    if (reorder_triangles) {
+      std::vector<std::uint32_t> reordered(indices.size());
+      meshopt_optimizeVertexCache(reordered.data(), indices.data(), indices.size(), vertex_count);
+      indices.swap(reordered);
     }
     tinygltf::Primitive primitive;
     primitive.attributes = attributes;

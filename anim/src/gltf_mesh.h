@@ -25,8 +25,12 @@ BaseVertices MakeBaseVertices(const Mesh& mesh);
 // Adds the mesh named `name`: POSITION (with min/max), NORMAL and TEXCOORD_0 when present,
 // shared by one primitive per part with triangles (one primitive for all triangles when the
 // mesh has no parts), each with its part's material (`materials`: glTF index per
-// Mesh::materials entry). Returns the mesh index.
+// Mesh::materials entry). With `reorder_triangles`, each primitive's triangles are reordered for
+// the GPU's vertex cache (meshoptimizer's optimizeVertexCache: the same triangles, corners in
+// the same order), which also lets the index codec of EXT_meshopt_compression store them in
+// fewer bytes. Returns the mesh index.
 int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& base,
-                const std::vector<int>& materials, const std::string& name);
+                const std::vector<int>& materials, const std::string& name,
+                bool reorder_triangles = false);
 
 }  // namespace wirerig::gltf

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -17,16 +18,21 @@ namespace {
 
 constexpr const char* kExtension = "EXT_meshopt_compression";
 
-// How a view is read: its first accessor's layout, and the filter bits its role allows (0: none).
+// A filter a view's role allows, with its bits.
+enum class Filter { kNone, kExponential, kQuaternion };
+
+// How a view is read: its first accessor's layout, and the filter its role allows.
 struct ViewUse {
   int component_type = -1;
   std::size_t element = 0;  // bytes per element
   std::size_t components = 0;
+  Filter filter = Filter::kNone;
   int filter_bits = 0;
 };
 
 std::map<int, ViewUse> ViewUses(const tinygltf::Model& model) {
-  std::map<int, int> bits_of_accessor;
+  std::map<int, int> bits_of_accessor;  // float data for the EXPONENTIAL filter
+  std::set<int> quaternion_accessors;   // rotation keys, for the QUATERNION filter
   for (const tinygltf::Mesh& mesh : model.meshes) {
     for (const tinygltf::Primitive& primitive : mesh.primitives) {
       for (const auto& [name, accessor] : primitive.attributes) {
@@ -42,10 +48,9 @@ std::map<int, ViewUse> ViewUses(const tinygltf::Model& model) {
   }
   for (const tinygltf::Animation& animation : model.animations) {
     for (const tinygltf::AnimationChannel& channel : animation.channels) {
-      if (channel.target_path == "translation") {
-        bits_of_accessor[animation.samplers[static_cast<std::size_t>(channel.sampler)].output] =
-            kTranslationBits;
-      }
+      const int output = animation.samplers[static_cast<std::size_t>(channel.sampler)].output;
+      if (channel.target_path == "translation") bits_of_accessor[output] = kTranslationBits;
+      if (channel.target_path == "rotation") quaternion_accessors.insert(output);
     }
   }
   std::map<int, ViewUse> uses;
@@ -64,32 +69,60 @@ std::map<int, ViewUse> ViewUses(const tinygltf::Model& model) {
                                              static_cast<std::uint32_t>(accessor.componentType)));
     const auto bits = bits_of_accessor.find(static_cast<int>(a));
     if (bits != bits_of_accessor.end() && accessor.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT &&
-        view.byteStride == 0)
+        view.byteStride == 0) {
+      use.filter = Filter::kExponential;
       use.filter_bits = bits->second;
+    }
+    if (quaternion_accessors.count(static_cast<int>(a)) > 0 &&
+        accessor.componentType == TINYGLTF_COMPONENT_TYPE_SHORT && accessor.normalized &&
+        use.element == 8) {
+      use.filter = Filter::kQuaternion;
+      use.filter_bits = kRotationBits;
+    }
     uses[accessor.bufferView] = use;
   }
   return uses;
 }
 
-// The view's elements encoded by the EXPONENTIAL filter, when decoding them gives `raw` back bit
-// for bit (the data was rounded for it); else empty.
-std::vector<unsigned char> ExpFiltered(std::span<const unsigned char> raw, const ViewUse& use) {
+// The view's elements encoded by its filter, when decoding them gives `raw` back bit for bit
+// (the data was rounded for it); else empty.
+std::vector<unsigned char> Filtered(std::span<const unsigned char> raw, const ViewUse& use) {
   const std::size_t count = raw.size() / use.element;
-  std::vector<float> values(raw.size() / sizeof(float));
-  std::memcpy(values.data(), raw.data(), raw.size());
   std::vector<unsigned char> encoded(raw.size());
-  meshopt_encodeFilterExp(encoded.data(), count, use.element, use.filter_bits, values.data());
-  std::vector<unsigned char> decoded = encoded;
-  meshopt_decodeFilterExp(decoded.data(), count, use.element);
+  std::vector<unsigned char> decoded;
+  if (use.filter == Filter::kExponential) {
+    std::vector<float> values(raw.size() / sizeof(float));
+    std::memcpy(values.data(), raw.data(), raw.size());
+    meshopt_encodeFilterExp(encoded.data(), count, use.element, use.filter_bits, values.data());
+    decoded = encoded;
+    meshopt_decodeFilterExp(decoded.data(), count, use.element);
+  } else if (use.filter == Filter::kQuaternion) {
+    std::vector<std::int16_t> shorts(raw.size() / sizeof(std::int16_t));
+    std::memcpy(shorts.data(), raw.data(), raw.size());
+    std::vector<float> values(shorts.size());
+    for (std::size_t i = 0; i < shorts.size(); ++i) values[i] = float(shorts[i]) / 32767.0f;
+    meshopt_encodeFilterQuat(encoded.data(), count, use.element, use.filter_bits, values.data());
+    decoded = encoded;
+    meshopt_decodeFilterQuat(decoded.data(), count, use.element);
+  } else {
+    return {};
+  }
   if (std::memcmp(decoded.data(), raw.data(), raw.size()) != 0) return {};
   return encoded;
 }
 
+const char* FilterName(Filter filter) {
+  return filter == Filter::kExponential  ? "EXPONENTIAL"
+         : filter == Filter::kQuaternion ? "QUATERNION"
+                                         : nullptr;
+}
+
+// `filter`: the filter's name, or null for none.
 std::string Extension(std::size_t offset, std::size_t length, std::size_t stride, std::size_t count,
-                      const char* mode, bool filtered) {
+                      const char* mode, const char* filter) {
   nlohmann::json o = {{"buffer", 0},          {"byteOffset", offset}, {"byteLength", length},
                       {"byteStride", stride}, {"count", count},       {"mode", mode}};
-  if (filtered) o["filter"] = "EXPONENTIAL";
+  if (filter) o["filter"] = filter;
   return o.dump();
 }
 
@@ -108,6 +141,23 @@ void RoundLikeExpFilter(std::span<float> values, std::size_t components, int bit
     if (std::memcmp(values.data(), encoded.data(), values.size_bytes()) == 0) return;
     std::memcpy(values.data(), encoded.data(), values.size_bytes());
   }
+}
+
+Eigen::Quaternionf RoundLikeQuatFilter(const Eigen::Quaternionf& q, int bits) {
+  float values[4] = {q.x(), q.y(), q.z(), q.w()};
+  std::int16_t stored[4], previous[4] = {0, 0, 0, 0};
+  // Until encoding the decoded shorts (as a reader and CompressBuffers read them) gives them
+  // back: the decoded quaternion is unit only to rounding, so one round trip is not always a
+  // fixed point.
+  for (int pass = 0; pass < 8; ++pass) {
+    meshopt_encodeFilterQuat(stored, 1, sizeof stored, bits, values);
+    meshopt_decodeFilterQuat(stored, 1, sizeof stored);
+    if (pass > 0 && std::memcmp(stored, previous, sizeof stored) == 0) break;
+    std::memcpy(previous, stored, sizeof stored);
+    for (int c = 0; c < 4; ++c) values[c] = float(stored[c]) / 32767.0f;
+  }
+  const auto value = [&stored](int c) { return std::max(float(stored[c]) / 32767.0f, -1.0f); };
+  return Eigen::Quaternionf(value(3), value(0), value(1), value(2));
 }
 
 MeshoptJson CompressBuffers(tinygltf::Model& model, const StreamedTargets& tail) {
@@ -149,18 +199,18 @@ MeshoptJson CompressBuffers(tinygltf::Model& model, const StreamedTargets& tail)
           meshopt_encodeIndexBuffer(scratch.data(), scratch.size(), widened.data(), count));
       packed.insert(packed.end(), scratch.begin(), scratch.end());
       json.views.emplace_back(
-          v, Extension(offset, scratch.size(), use->second.element, count, "TRIANGLES", false));
+          v, Extension(offset, scratch.size(), use->second.element, count, "TRIANGLES", nullptr));
     } else if (attributes) {
       const std::size_t element = use->second.element, count = raw.size() / element;
-      std::vector<unsigned char> filtered;
-      if (use->second.filter_bits > 0) filtered = ExpFiltered(raw, use->second);
+      const std::vector<unsigned char> filtered = Filtered(raw, use->second);
       const unsigned char* source = filtered.empty() ? raw.data() : filtered.data();
       scratch.resize(meshopt_encodeVertexBufferBound(count, element));
       scratch.resize(
           meshopt_encodeVertexBuffer(scratch.data(), scratch.size(), source, count, element));
       packed.insert(packed.end(), scratch.begin(), scratch.end());
       json.views.emplace_back(
-          v, Extension(offset, scratch.size(), element, count, "ATTRIBUTES", !filtered.empty()));
+          v, Extension(offset, scratch.size(), element, count, "ATTRIBUTES",
+                       filtered.empty() ? nullptr : FilterName(use->second.filter)));
     } else {
       // Read by no accessor (an embedded image), or not encodable: stored as it is.
       packed.insert(packed.end(), raw.begin(), raw.end());

@@ -4,13 +4,15 @@
 // no data, as the extension asks. Float data that tolerates rounding (positions, normals, UVs,
 // corrective deltas, translation keys) is first rounded the way the EXPONENTIAL filter stores it
 // (RoundLikeExpFilter), before anything is fitted to or measured on it, so every error the export
-// reports is the decoded file's; the filter then stores it with no further loss.
+// reports is the decoded file's; the filter then stores it with no further loss. Rotation keys
+// (normalized shorts) are rounded likewise for the QUATERNION filter (RoundLikeQuatFilter).
 #pragma once
 
 #include <cstddef>
 #include <span>
 
 #include <tiny_gltf.h>
+#include <Eigen/Geometry>
 
 #include "gltf_morph.h"
 #include "gltf_write.h"
@@ -24,11 +26,20 @@ inline constexpr int kNormalBits = 10;       // unit vectors: within 2e-3
 inline constexpr int kUvBits = 16;           // within 3e-5 of the texture
 inline constexpr int kDeltaBits = 10;        // a 2 cm corrective delta: within 2e-5 m
 inline constexpr int kTranslationBits = 18;  // 10 m from the parent joint: within 4e-5 m
+// Bits per component the QUATERNION filter keeps (the largest component is rebuilt from the
+// other three, each within 2^-(bits-1) / sqrt(2)): 16, about the precision of the normalized
+// shorts an uncompressed file stores.
+inline constexpr int kRotationBits = 16;
 
 // Rounds `values` (vectors of `components` floats, 1 to 4) to what the EXPONENTIAL filter with
 // `bits` mantissa bits stores and a reader decodes (meshoptimizer's own encoder and decoder),
 // repeated until the filter gives the values back unchanged.
 void RoundLikeExpFilter(std::span<float> values, std::size_t components, int bits);
+
+// The unit quaternion `q` (x, y, z, w) as the QUATERNION filter with `bits` per component stores
+// it and a reader decodes it (normalized signed shorts, meshoptimizer's own encoder and
+// decoder; the sign may flip, the rotation does not).
+Eigen::Quaternionf RoundLikeQuatFilter(const Eigen::Quaternionf& q, int bits);
 
 // Compresses every view of `model`, whose buffer 0 is its in-memory data followed by `tail`'s
 // bytes, into a new buffer 0; views keep their byte ranges in the fallback buffer 1 and carry

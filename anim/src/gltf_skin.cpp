@@ -51,7 +51,7 @@ struct Track {
 // The track of a joint whose wanted locals are `exact` (#K): every key stored (translation
 // float, rotation shorts), then thinned within `tolerance` (KeyThinning).
 Track ThinTrack(std::span<const Rigid> exact, std::span<const float> times, double tolerance,
-                double reach, int translation_bits) {
+                double reach, int translation_bits, int rotation_bits) {
   const std::size_t count = exact.size();
   std::vector<Vec3f> stored_t(count);
   std::vector<Quatf> stored_q(count);
@@ -62,7 +62,8 @@ Track ThinTrack(std::span<const Rigid> exact, std::span<const float> times, doub
     previous = q;
     stored_t[k] = exact[k].translation.cast<float>();
     if (translation_bits > 0) RoundLikeExpFilter({stored_t[k].data(), 3}, 3, translation_bits);
-    stored_q[k] = StoreRotation(q);
+    stored_q[k] =
+        rotation_bits > 0 ? RoundLikeQuatFilter(q.cast<float>(), rotation_bits) : StoreRotation(q);
   }
   // What a reader has at key i between stored keys a and b.
   const auto interpolate = [&](std::size_t a, std::size_t b, std::size_t i) {
@@ -135,8 +136,8 @@ Skeleton MakeSkeleton(std::vector<int> parent, std::vector<std::string> names,
       exact[k] = parent_world.LocalOf(keyed[k * joints + j]);
     }
     const double reach = j < thinning.reach.size() ? thinning.reach[j] : 0.0;
-    Track track =
-        ThinTrack(exact, thinning.times, thinning.tolerance, reach, thinning.translation_bits);
+    Track track = ThinTrack(exact, thinning.times, thinning.tolerance, reach,
+                            thinning.translation_bits, thinning.rotation_bits);
     for (std::size_t k = 0; k < keys; ++k) {
       skeleton.translations[k * joints + j] = track.translations[k];
       skeleton.rotations[k * joints + j] = track.rotations[k];
@@ -215,10 +216,14 @@ int AddSkeleton(tinygltf::Model& model, tinygltf::Animation& animation, const Sk
     skin.skeleton = first_node;
   model.skins.push_back(std::move(skin));
 
+  // Every joint's translation keys in one view and its rotation keys in another, an accessor
+  // per joint at its offset: two views for the whole skeleton rather than two per joint.
   std::map<std::vector<std::uint32_t>, int> inputs;  // stored keys -> their times' accessor
+  std::vector<int> input(joints, time_accessor);
+  std::vector<float> translation;
+  std::vector<std::int16_t> rotation;
   for (std::size_t j = 0; j < joints; ++j) {
     const std::vector<std::uint32_t>& stored = skeleton.keys[j];
-    int input = time_accessor;
     if (stored.size() != keys) {
       auto [it, added] = inputs.try_emplace(stored, -1);
       if (added) {
@@ -226,10 +231,8 @@ int AddSkeleton(tinygltf::Model& model, tinygltf::Animation& animation, const Sk
         for (std::uint32_t k : stored) kept_times.push_back(times[k]);
         it->second = AddFloatAccessor(model, kept_times, TINYGLTF_TYPE_SCALAR, 0, true);
       }
-      input = it->second;
+      input[j] = it->second;
     }
-    std::vector<float> translation;
-    std::vector<std::int16_t> rotation;
     for (std::uint32_t k : stored) {
       const Vec3f& t = skeleton.translations[k * joints + j];
       const Quatf& q = skeleton.rotations[k * joints + j];
@@ -237,12 +240,26 @@ int AddSkeleton(tinygltf::Model& model, tinygltf::Animation& animation, const Sk
       for (float c : {q.x(), q.y(), q.z(), q.w()})
         rotation.push_back(static_cast<std::int16_t>(std::lround(c * kShortScale)));
     }
-    const int outputs[] = {AddFloatAccessor(model, translation, TINYGLTF_TYPE_VEC3, 0, false),
-                           AddNormalizedShortAccessor(model, rotation, TINYGLTF_TYPE_VEC4, 0)};
+  }
+  const auto bytes = [](const auto& values) {
+    return std::span(reinterpret_cast<const unsigned char*>(values.data()),
+                     values.size() * sizeof(values[0]));
+  };
+  const int translation_view = AddBytesView(model, bytes(translation));
+  const int rotation_view = AddBytesView(model, bytes(rotation));
+  std::size_t first_key = 0;
+  for (std::size_t j = 0; j < joints; ++j) {
+    const std::size_t count = skeleton.keys[j].size();
+    const int outputs[] = {
+        AddAccessor(model, translation_view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                    count, false, first_key * 3 * sizeof(float)),
+        AddAccessor(model, rotation_view, TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC4, count,
+                    true, first_key * 4 * sizeof(std::int16_t))};
+    first_key += count;
     const char* paths[] = {"translation", "rotation"};
     for (int c = 0; c < 2; ++c) {
       tinygltf::AnimationSampler sampler;
-      sampler.input = input;
+      sampler.input = input[j];
       sampler.output = outputs[c];
       sampler.interpolation = "LINEAR";
       animation.samplers.push_back(sampler);

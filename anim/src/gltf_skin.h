@@ -59,6 +59,7 @@ struct KeyThinning {
   double tolerance = 0.0;         // m
   std::span<const double> reach;  // #J, m
   int translation_bits = 0;       // > 0: translations stored through the EXPONENTIAL filter
+  int rotation_bits = 0;          // > 0: rotations stored through the QUATERNION filter
 };
 
 // The skeleton of joints with parents `parent` (parents first) and names `names`, at rest at the

@@ -357,6 +357,7 @@ Result<FittedSkin> FitSkeleton(const BakedAnimation& bake, const BaseVertices& b
   thinning.tolerance = options.key_tolerance;
   thinning.reach = reach;
   thinning.translation_bits = options.translation_bits;
+  thinning.rotation_bits = options.rotation_bits;
   fitted.skeleton = MakeSkeleton(std::move(parent), std::move(names), rest, keyed, thinning);
   return fitted;
 }

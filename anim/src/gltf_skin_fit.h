@@ -47,6 +47,7 @@ struct SkinFitOptions {
   double key_tolerance = 0.0;  // m: joint keys thinned within it (KeyThinning); 0 keeps all
   bool bridge_joints = true;   // a joint at each part's attachment, within max_joints
   int translation_bits = 0;    // > 0: translation keys rounded for the EXPONENTIAL filter
+  int rotation_bits = 0;       // > 0: rotation keys rounded for the QUATERNION filter
 };
 
 struct FittedSkin {

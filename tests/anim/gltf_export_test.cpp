@@ -23,6 +23,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -229,8 +230,9 @@ tinygltf::Model LoadWithTinygltf(const fs::path& file) {
 
 // A .glb written with EXT_meshopt_compression, decompressed by meshoptimizer's own decoders
 // into a plain .glb in memory and loaded by tinygltf (which has no meshopt decoder): every view
-// carrying the extension is decoded (its EXPONENTIAL filter undone) into its byte range of the
-// fallback buffer, which becomes the one buffer; views stored plainly (embedded images) follow.
+// carrying the extension is decoded (its EXPONENTIAL or QUATERNION filter undone) into its byte
+// range of the fallback buffer, which becomes the one buffer; views stored plainly (embedded
+// images) follow.
 tinygltf::Model LoadCompressedGlb(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   const std::vector<unsigned char> glb{std::istreambuf_iterator<char>(in), {}};
@@ -266,8 +268,10 @@ tinygltf::Model LoadCompressedGlb(const fs::path& file) {
     } else {
       EXPECT_EQ(extension["mode"], "ATTRIBUTES");
       EXPECT_EQ(meshopt_decodeVertexBuffer(target, count, stride, source, length), 0);
-      if (extension.value("filter", "NONE") == "EXPONENTIAL")
-        meshopt_decodeFilterExp(target, count, stride);
+      const std::string filter = extension.value("filter", "NONE");
+      if (filter == "EXPONENTIAL") meshopt_decodeFilterExp(target, count, stride);
+      if (filter == "QUATERNION") meshopt_decodeFilterQuat(target, count, stride);
+      EXPECT_TRUE(filter == "NONE" || filter == "EXPONENTIAL" || filter == "QUATERNION") << filter;
     }
     view.erase("extensions");
     view["buffer"] = 0;
@@ -898,6 +902,23 @@ TEST(GltfExport, CompressedSkinDecodesToWhatTheReportMeasures) {
   // Both required: the codec, and the corrective shapes stored as normalized bytes.
   EXPECT_EQ(document["extensionsRequired"],
             nlohmann::json::array({"KHR_mesh_quantization", "EXT_meshopt_compression"}));
+  // The joints' keys: translations in one view through the EXPONENTIAL filter, rotations in
+  // one view through the QUATERNION filter (each decoded above into what the report measured).
+  std::map<std::string, std::set<int>> views_of_path;
+  for (const nlohmann::json& channel : document["animations"][0]["channels"]) {
+    const nlohmann::json& sampler =
+        document["animations"][0]["samplers"][channel["sampler"].get<std::size_t>()];
+    const int view = document["accessors"][sampler["output"].get<std::size_t>()]["bufferView"];
+    views_of_path[channel["target"]["path"]].insert(view);
+  }
+  ASSERT_EQ(views_of_path["translation"].size(), 1u);
+  ASSERT_EQ(views_of_path["rotation"].size(), 1u);
+  const auto filter_of = [&](int view) {
+    return document["bufferViews"][std::size_t(view)]["extensions"]["EXT_meshopt_compression"]
+        .value("filter", "NONE");
+  };
+  EXPECT_EQ(filter_of(*views_of_path["translation"].begin()), "EXPONENTIAL");
+  EXPECT_EQ(filter_of(*views_of_path["rotation"].begin()), "QUATERNION");
 
   options.mode = GltfAnimationMode::kMorph;
   const Result<GltfExportReport> refused =
