@@ -1,6 +1,7 @@
 #include "gltf_buffers.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <vector>
@@ -91,6 +92,25 @@ int AddFloatAccessor(tinygltf::Model& model, std::span<const float> values, int 
     model.accessors[static_cast<std::size_t>(index)].maxValues = std::move(high);
   }
   return index;
+}
+
+void RequireExtension(tinygltf::Model& model, const std::string& name) {
+  for (auto* list : {&model.extensionsUsed, &model.extensionsRequired})
+    if (std::find(list->begin(), list->end(), name) == list->end()) list->push_back(name);
+}
+
+int AddNormalizedByteVec3Accessor(tinygltf::Model& model, std::span<const float> values,
+                                  int target) {
+  const std::size_t count = values.size() / 3;
+  std::vector<std::int8_t> padded(4 * count, 0);
+  for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t c = 0; c < 3; ++c)
+      padded[4 * i + c] = static_cast<std::int8_t>(
+          std::lround(std::clamp(values[3 * i + c], -1.0f, 1.0f) * float(kByteScale)));
+  const int view = AddBufferView(model, padded.data(), padded.size(), target);
+  model.bufferViews[static_cast<std::size_t>(view)].byteStride = 4;
+  RequireExtension(model, kMeshQuantization);
+  return AddAccessor(model, view, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC3, count, true);
 }
 
 int AddBytesView(tinygltf::Model& model, std::span<const unsigned char> bytes) {

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 
 #include <tiny_gltf.h>
 
@@ -45,6 +46,18 @@ int AddNormalizedShortAccessor(tinygltf::Model& model, std::span<const std::uint
 
 // A view of `bytes` in buffer 0 (an embedded image: no target). Returns the view's index.
 int AddBytesView(tinygltf::Model& model, std::span<const unsigned char> bytes);
+
+// KHR_mesh_quantization: attributes and morph targets stored as normalized integers.
+inline constexpr const char* kMeshQuantization = "KHR_mesh_quantization";
+
+// Adds `name` to the model's extensionsUsed and extensionsRequired, once.
+void RequireExtension(tinygltf::Model& model, const std::string& name);
+
+// Unit vectors (#values / 3 of them) as normalized signed bytes, each padded to 4 bytes (a view
+// with byteStride 4, as vertex attributes need): value = max(q / 127, -1). Needs
+// KHR_mesh_quantization (required by this call).
+int AddNormalizedByteVec3Accessor(tinygltf::Model& model, std::span<const float> values,
+                                  int target);
 
 // `size` rounded up to a multiple of 4 (glTF's alignment of views and GLB chunks).
 inline std::size_t Padded4(std::size_t size) { return (size + 3) / 4 * 4; }

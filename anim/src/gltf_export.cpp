@@ -222,7 +222,7 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
   gltf::BaseVertices base = gltf::MakeBaseVertices(mesh);
   if (options.compress) {
     gltf::RoundLikeExpFilter(base.positions, 3, gltf::kPositionBits);
-    gltf::RoundLikeExpFilter(base.normals, 3, gltf::kNormalBits);
+    gltf::RoundLikeOctFilter(base.normals, gltf::kOctahedralBits);
     gltf::RoundLikeExpFilter(base.uvs, 2, gltf::kUvBits);
   }
   if (base.zero_normals > 0) {
@@ -233,7 +233,8 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
     report.warnings.emplace_back("bake.normals left out: the mesh has no normals");
   }
   const int mesh_index = gltf::AddBaseMesh(model, mesh, base, materials.material, name,
-                                           /*reorder_triangles=*/options.compress);
+                                           /*reorder_triangles=*/options.compress,
+                                           /*byte_normals=*/options.compress);
   tinygltf::Node node;
   node.name = name;
   node.mesh = mesh_index;

@@ -28,14 +28,16 @@ BaseVertices MakeBaseVertices(const Mesh& mesh) {
 }
 
 int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& base,
-                const std::vector<int>& materials, const std::string& name,
-                bool reorder_triangles) {
+                const std::vector<int>& materials, const std::string& name, bool reorder_triangles,
+                bool byte_normals) {
   const int target = TINYGLTF_TARGET_ARRAY_BUFFER;
   std::map<std::string, int> attributes;
   attributes["POSITION"] =
       AddFloatAccessor(model, base.positions, TINYGLTF_TYPE_VEC3, target, /*min_max=*/true);
   if (!base.normals.empty()) {
-    attributes["NORMAL"] = AddFloatAccessor(model, base.normals, TINYGLTF_TYPE_VEC3, target, false);
+    attributes["NORMAL"] =
+        byte_normals ? AddNormalizedByteVec3Accessor(model, base.normals, target)
+                     : AddFloatAccessor(model, base.normals, TINYGLTF_TYPE_VEC3, target, false);
   }
   if (!base.uvs.empty()) {
     attributes["TEXCOORD_0"] = AddFloatAccessor(model, base.uvs, TINYGLTF_TYPE_VEC2, target, false);

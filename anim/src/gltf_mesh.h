@@ -28,9 +28,10 @@ BaseVertices MakeBaseVertices(const Mesh& mesh);
 // Mesh::materials entry). With `reorder_triangles`, each primitive's triangles are reordered for
 // the GPU's vertex cache (meshoptimizer's optimizeVertexCache: the same triangles, corners in
 // the same order), which also lets the index codec of EXT_meshopt_compression store them in
-// fewer bytes. Returns the mesh index.
+// fewer bytes. With `byte_normals`, NORMAL is stored as normalized signed bytes
+// (KHR_mesh_quantization, required). Returns the mesh index.
 int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& base,
                 const std::vector<int>& materials, const std::string& name,
-                bool reorder_triangles = false);
+                bool reorder_triangles = false, bool byte_normals = false);
 
 }  // namespace wirerig::gltf

@@ -19,7 +19,7 @@ namespace {
 constexpr const char* kExtension = "EXT_meshopt_compression";
 
 // A filter a view's role allows, with its bits.
-enum class Filter { kNone, kExponential, kQuaternion };
+enum class Filter { kNone, kExponential, kQuaternion, kOctahedral };
 
 // How a view is read: its first accessor's layout, and the filter its role allows.
 struct ViewUse {
@@ -33,11 +33,12 @@ struct ViewUse {
 std::map<int, ViewUse> ViewUses(const tinygltf::Model& model) {
   std::map<int, int> bits_of_accessor;  // float data for the EXPONENTIAL filter
   std::set<int> quaternion_accessors;   // rotation keys, for the QUATERNION filter
+  std::set<int> octahedral_accessors;   // normals in bytes, for the OCTAHEDRAL filter
   for (const tinygltf::Mesh& mesh : model.meshes) {
     for (const tinygltf::Primitive& primitive : mesh.primitives) {
       for (const auto& [name, accessor] : primitive.attributes) {
         if (name == "POSITION") bits_of_accessor[accessor] = kPositionBits;
-        if (name == "NORMAL") bits_of_accessor[accessor] = kNormalBits;
+        if (name == "NORMAL") octahedral_accessors.insert(accessor);
         if (name == "TEXCOORD_0") bits_of_accessor[accessor] = kUvBits;
       }
       for (const auto& target : primitive.targets) {
@@ -73,6 +74,12 @@ std::map<int, ViewUse> ViewUses(const tinygltf::Model& model) {
       use.filter = Filter::kExponential;
       use.filter_bits = bits->second;
     }
+    if (octahedral_accessors.count(static_cast<int>(a)) > 0 &&
+        accessor.componentType == TINYGLTF_COMPONENT_TYPE_BYTE && accessor.normalized &&
+        use.element == 4) {
+      use.filter = Filter::kOctahedral;
+      use.filter_bits = kOctahedralBits;
+    }
     if (quaternion_accessors.count(static_cast<int>(a)) > 0 &&
         accessor.componentType == TINYGLTF_COMPONENT_TYPE_SHORT && accessor.normalized &&
         use.element == 8) {
@@ -82,6 +89,21 @@ std::map<int, ViewUse> ViewUses(const tinygltf::Model& model) {
     uses[accessor.bufferView] = use;
   }
   return uses;
+}
+
+// meshoptimizer's filter decoder `decode` on `count` elements of `stride` bytes at `data`, run on
+// a copy padded to a whole number of its 4-wide SIMD groups with copies of the first element:
+// it pads a partial group with zeros itself, and a zero octahedral element divides by zero
+// (harmless, but a trap where floating-point exceptions are enabled).
+void DecodeFilter(void (*decode)(void*, std::size_t, std::size_t), unsigned char* data,
+                  std::size_t count, std::size_t stride) {
+  if (count == 0) return;
+  const std::size_t padded = (count + 3) / 4 * 4;
+  std::vector<unsigned char> copy(padded * stride);
+  std::memcpy(copy.data(), data, count * stride);
+  for (std::size_t i = count; i < padded; ++i) std::memcpy(copy.data() + i * stride, data, stride);
+  decode(copy.data(), padded, stride);
+  std::memcpy(data, copy.data(), count * stride);
 }
 
 // The view's elements encoded by its filter, when decoding them gives `raw` back bit for bit
@@ -95,7 +117,7 @@ std::vector<unsigned char> Filtered(std::span<const unsigned char> raw, const Vi
     std::memcpy(values.data(), raw.data(), raw.size());
     meshopt_encodeFilterExp(encoded.data(), count, use.element, use.filter_bits, values.data());
     decoded = encoded;
-    meshopt_decodeFilterExp(decoded.data(), count, use.element);
+    DecodeFilter(meshopt_decodeFilterExp, decoded.data(), count, use.element);
   } else if (use.filter == Filter::kQuaternion) {
     std::vector<std::int16_t> shorts(raw.size() / sizeof(std::int16_t));
     std::memcpy(shorts.data(), raw.data(), raw.size());
@@ -103,7 +125,14 @@ std::vector<unsigned char> Filtered(std::span<const unsigned char> raw, const Vi
     for (std::size_t i = 0; i < shorts.size(); ++i) values[i] = float(shorts[i]) / 32767.0f;
     meshopt_encodeFilterQuat(encoded.data(), count, use.element, use.filter_bits, values.data());
     decoded = encoded;
-    meshopt_decodeFilterQuat(decoded.data(), count, use.element);
+    DecodeFilter(meshopt_decodeFilterQuat, decoded.data(), count, use.element);
+  } else if (use.filter == Filter::kOctahedral) {
+    std::vector<float> values(4 * count);
+    for (std::size_t i = 0; i < values.size(); ++i)
+      values[i] = std::max(float(static_cast<std::int8_t>(raw[i])) / 127.0f, -1.0f);
+    meshopt_encodeFilterOct(encoded.data(), count, use.element, use.filter_bits, values.data());
+    decoded = encoded;
+    DecodeFilter(meshopt_decodeFilterOct, decoded.data(), count, use.element);
   } else {
     return {};
   }
@@ -112,9 +141,17 @@ std::vector<unsigned char> Filtered(std::span<const unsigned char> raw, const Vi
 }
 
 const char* FilterName(Filter filter) {
-  return filter == Filter::kExponential  ? "EXPONENTIAL"
-         : filter == Filter::kQuaternion ? "QUATERNION"
-                                         : nullptr;
+  switch (filter) {
+    case Filter::kExponential:
+      return "EXPONENTIAL";
+    case Filter::kQuaternion:
+      return "QUATERNION";
+    case Filter::kOctahedral:
+      return "OCTAHEDRAL";
+    case Filter::kNone:
+      break;
+  }
+  return nullptr;
 }
 
 // `filter`: the filter's name, or null for none.
@@ -137,9 +174,25 @@ void RoundLikeExpFilter(std::span<float> values, std::size_t components, int bit
   // vector's exponent the next time, so one round trip is not always a fixed point.
   for (int pass = 0; pass < 8; ++pass) {
     meshopt_encodeFilterExp(encoded.data(), count, stride, bits, values.data());
-    meshopt_decodeFilterExp(encoded.data(), count, stride);
+    DecodeFilter(meshopt_decodeFilterExp, encoded.data(), count, stride);
     if (std::memcmp(values.data(), encoded.data(), values.size_bytes()) == 0) return;
     std::memcpy(values.data(), encoded.data(), values.size_bytes());
+  }
+}
+
+void RoundLikeOctFilter(std::span<float> values, int bits) {
+  for (std::size_t i = 0; i + 3 <= values.size(); i += 3) {
+    float vector[4] = {values[i], values[i + 1], values[i + 2], 0.0f};
+    std::int8_t stored[4], previous[4] = {0, 0, 0, 0};
+    for (int pass = 0; pass < 8; ++pass) {
+      meshopt_encodeFilterOct(stored, 1, sizeof stored, bits, vector);
+      DecodeFilter(meshopt_decodeFilterOct, reinterpret_cast<unsigned char*>(stored), 1,
+                   sizeof stored);
+      if (pass > 0 && std::memcmp(stored, previous, sizeof stored) == 0) break;
+      std::memcpy(previous, stored, sizeof stored);
+      for (int c = 0; c < 3; ++c) vector[c] = std::max(float(stored[c]) / 127.0f, -1.0f);
+    }
+    for (std::size_t c = 0; c < 3; ++c) values[i + c] = std::max(float(stored[c]) / 127.0f, -1.0f);
   }
 }
 
@@ -151,7 +204,8 @@ Eigen::Quaternionf RoundLikeQuatFilter(const Eigen::Quaternionf& q, int bits) {
   // fixed point.
   for (int pass = 0; pass < 8; ++pass) {
     meshopt_encodeFilterQuat(stored, 1, sizeof stored, bits, values);
-    meshopt_decodeFilterQuat(stored, 1, sizeof stored);
+    DecodeFilter(meshopt_decodeFilterQuat, reinterpret_cast<unsigned char*>(stored), 1,
+                 sizeof stored);
     if (pass > 0 && std::memcmp(stored, previous, sizeof stored) == 0) break;
     std::memcpy(previous, stored, sizeof stored);
     for (int c = 0; c < 4; ++c) values[c] = float(stored[c]) / 32767.0f;
@@ -222,10 +276,7 @@ MeshoptJson CompressBuffers(tinygltf::Model& model, const StreamedTargets& tail)
   packed.resize(Padded4(packed.size()), 0);
   model.buffers.resize(1);
   model.buffers[0].data = std::move(packed);
-  for (auto* list : {&model.extensionsUsed, &model.extensionsRequired}) {
-    if (std::find(list->begin(), list->end(), kExtension) == list->end())
-      list->push_back(kExtension);
-  }
+  RequireExtension(model, kExtension);
   json.fallback_bytes = data.size();
   return json;
 }

@@ -22,10 +22,12 @@ namespace wirerig::gltf {
 // Mantissa bits the EXPONENTIAL filter keeps (a vector's components share the exponent of its
 // largest): relative precision 2^(1 - bits) of that component.
 inline constexpr int kPositionBits = 16;     // 2 m from the origin: within 3.1e-5 m
-inline constexpr int kNormalBits = 10;       // unit vectors: within 2e-3
 inline constexpr int kUvBits = 16;           // within 3e-5 of the texture
 inline constexpr int kDeltaBits = 10;        // a 2 cm corrective delta: within 2e-5 m
 inline constexpr int kTranslationBits = 18;  // 10 m from the parent joint: within 4e-5 m
+// Bits of the OCTAHEDRAL filter for the rest normals, stored as normalized signed bytes: within
+// about a degree (lighting only; no error the export reports depends on them).
+inline constexpr int kOctahedralBits = 8;
 // Bits per component the QUATERNION filter keeps (the largest component is rebuilt from the
 // other three, each within 2^-(bits-1) / sqrt(2)): 16, about the precision of the normalized
 // shorts an uncompressed file stores.
@@ -40,6 +42,16 @@ void RoundLikeExpFilter(std::span<float> values, std::size_t components, int bit
 // it and a reader decodes it (normalized signed shorts, meshoptimizer's own encoder and
 // decoder; the sign may flip, the rotation does not).
 Eigen::Quaternionf RoundLikeQuatFilter(const Eigen::Quaternionf& q, int bits);
+
+// Unit vectors (x, y, z, #values / 3 of them) rounded to what the OCTAHEDRAL filter with
+// `bits` stores in normalized signed bytes and a reader decodes (meshoptimizer's own encoder
+// and decoder), repeated until the filter gives them back unchanged.
+void RoundLikeOctFilter(std::span<float> values, int bits);
+
+// Unit vectors (x, y, z, #values / 3 of them) rounded to what the OCTAHEDRAL filter with
+// `bits` stores in normalized signed bytes and a reader decodes (meshoptimizer's own encoder
+// and decoder), repeated until the filter gives them back unchanged.
+void RoundLikeOctFilter(std::span<float> values, int bits);
 
 // Compresses every view of `model`, whose buffer 0 is its in-memory data followed by `tail`'s
 // bytes, into a new buffer 0; views keep their byte ranges in the fallback buffer 1 and carry

@@ -17,7 +17,6 @@
 namespace wirerig::gltf {
 namespace {
 
-constexpr const char* kQuantization = "KHR_mesh_quantization";
 constexpr std::size_t kFloatStride = 3 * sizeof(float);         // 12 bytes
 constexpr std::size_t kShortStride = 4 * sizeof(std::int16_t);  // 8: 4-byte aligned
 constexpr std::size_t kByteStride = 4;                          // 3 bytes padded to 4
@@ -109,10 +108,6 @@ void ParallelRanges(std::size_t count, std::size_t threads, const Job& job) {
 
 std::span<const unsigned char> AsBytes(const std::vector<float>& block) {
   return {reinterpret_cast<const unsigned char*>(block.data()), block.size() * sizeof(float)};
-}
-
-void AddExtension(std::vector<std::string>& list, const std::string& name) {
-  if (std::find(list.begin(), list.end(), name) == list.end()) list.push_back(name);
 }
 
 }  // namespace
@@ -275,8 +270,7 @@ MorphTargetsAdded AddMorphTargets(tinygltf::Model& model, int mesh_index, MorphT
     if (quantized_normals[k]) ++added.quantized_normal_targets;
   }
   if (added.quantized_position_targets + added.quantized_normal_targets > 0) {
-    AddExtension(model.extensionsUsed, kQuantization);
-    AddExtension(model.extensionsRequired, kQuantization);
+    RequireExtension(model, kMeshQuantization);
   }
 
   // Views and accessors, key after key (POSITION then NORMAL), after the in-memory data.
