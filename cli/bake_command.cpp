@@ -69,6 +69,11 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
   bake->add_flag("--compress", options.compress,
                  "skin mode: EXT_meshopt_compression (smaller; needs a reader with a meshopt "
                  "decoder: three.js, Babylon.js; not Assimp 5.2 or Blender 3.4)");
+  bake->add_option("--max-texture-size", options.max_texture_size,
+                   "Embedded textures larger than this many pixels on their longer side are "
+                   "downscaled to it and re-encoded (PNG, or JPEG at quality 90; 0: unchanged)")
+      ->check(InRange(0, 65536))
+      ->capture_default_str();
   bake->add_option("--influences", options.influences,
                    "skin mode: joints per vertex, 4 or 8 (8 adds JOINTS_1/WEIGHTS_1, which "
                    "three.js does not read)")
@@ -134,6 +139,7 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   export_options.corrective_error = options.corrective_error;
   export_options.key_tolerance = options.key_tolerance;
   export_options.compress = options.compress;
+  export_options.max_texture_size = options.max_texture_size;
   export_options.influences = options.influences;
   export_options.node_name = scene.description.name;
   // An export too large to write is refused with its numbers before anything is baked.

@@ -217,8 +217,8 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "wirerig";
-  const gltf::MaterialsAdded materials =
-      gltf::AddMaterials(model, mesh, options.texture_dir, out_dir, &report.warnings);
+  const gltf::MaterialsAdded materials = gltf::AddMaterials(
+      model, mesh, options.texture_dir, out_dir, options.max_texture_size, &report.warnings);
   gltf::BaseVertices base = gltf::MakeBaseVertices(mesh);
   if (options.compress) {
     gltf::RoundLikeExpFilter(base.positions, 3, gltf::kPositionBits);

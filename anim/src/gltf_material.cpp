@@ -7,6 +7,7 @@
 
 #include "gltf_buffers.h"
 #include "gltf_paths.h"
+#include "gltf_texture_size.h"
 
 namespace wirerig::gltf {
 namespace {
@@ -67,7 +68,8 @@ ImageRef ResolveTexture(const Mesh& mesh, const MeshMaterial& material, const fs
 }  // namespace
 
 MaterialsAdded AddMaterials(tinygltf::Model& model, const Mesh& mesh, const fs::path& texture_dir,
-                            const fs::path& out_dir, std::vector<std::string>* warnings) {
+                            const fs::path& out_dir, int max_texture_size,
+                            std::vector<std::string>* warnings) {
   MaterialsAdded added;
   std::map<std::string, int> texture_of_uri;  // one image and texture per distinct file
   for (std::size_t m = 0; m < mesh.materials.size(); ++m) {
@@ -108,7 +110,25 @@ MaterialsAdded AddMaterials(tinygltf::Model& model, const Mesh& mesh, const fs::
           image.mimeType = ref.mime_type;
           if (held) {
             image.name = fs::path(source.base_color_texture).stem().string();
-            image.bufferView = AddBytesView(model, source.base_color_image);
+            Result<FittedImage> fitted =
+                FitImage(source.base_color_image, ref.mime_type, max_texture_size);
+            if (!fitted) {
+              warnings->push_back("material '" + source.name + "': texture '" +
+                                  source.base_color_texture +
+                                  "' embedded at its own size: " + fitted.error());
+            }
+            image.bufferView = AddBytesView(
+                model, fitted ? std::span<const unsigned char>(fitted.value().bytes)
+                              : std::span<const unsigned char>(source.base_color_image));
+          } else if (max_texture_size > 0) {
+            int width = 0, height = 0;
+            if (ImageSize(texture_dir / source.base_color_texture, &width, &height) &&
+                std::max(width, height) > max_texture_size) {
+              warnings->push_back("material '" + source.name + "': texture '" +
+                                  source.base_color_texture + "' (" + std::to_string(width) +
+                                  " x " + std::to_string(height) +
+                                  ") is referenced, not embedded: left at its size");
+            }
           }
           model.images.push_back(image);
           tinygltf::Texture texture;

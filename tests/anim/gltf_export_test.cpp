@@ -30,6 +30,7 @@
 #include <assimp/scene.h>
 #include <gtest/gtest.h>
 #include <meshoptimizer.h>
+#include <stb_image_write.h>
 #include <tiny_gltf.h>
 #include <assimp/Importer.hpp>
 #include <nlohmann/json.hpp>
@@ -993,6 +994,91 @@ TEST(GltfExport, EmbedsATextureTheSourceHeld) {
   ASSERT_EQ(refused.value().warnings.size(), 1u);
   EXPECT_NE(refused.value().warnings[0].find("left out: not PNG or JPEG"), std::string::npos)
       << refused.value().warnings[0];
+}
+
+// A 64 x 32 image, its left half red and its right half blue, opaque, as PNG or JPEG bytes.
+std::vector<unsigned char> TwoColourImage(bool jpeg) {
+  constexpr int kImageWidth = 64, kImageHeight = 32;
+  std::vector<unsigned char> rgba(kImageWidth * kImageHeight * 4);
+  for (int y = 0; y < kImageHeight; ++y)
+    for (int x = 0; x < kImageWidth; ++x) {
+      unsigned char* p = &rgba[std::size_t(4 * (y * kImageWidth + x))];
+      p[0] = x < kImageWidth / 2 ? 255 : 0, p[1] = 0, p[2] = x < kImageWidth / 2 ? 0 : 255,
+      p[3] = 255;
+    }
+  std::vector<unsigned char> bytes;
+  auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(context);
+    out->insert(out->end(), static_cast<unsigned char*>(data),
+                static_cast<unsigned char*>(data) + size);
+  };
+  if (jpeg)
+    stbi_write_jpg_to_func(append, &bytes, kImageWidth, kImageHeight, 4, rgba.data(), 95);
+  else
+    stbi_write_png_to_func(append, &bytes, kImageWidth, kImageHeight, 4, rgba.data(),
+                           kImageWidth * 4);
+  return bytes;
+}
+
+// max_texture_size: a held image larger than it is embedded downscaled to it, aspect kept, in
+// its own format, with its colours (decoded by tinygltf's reader); one that fits is embedded
+// byte for byte; a referenced file is left as it is, with a warning.
+TEST(GltfExport, DownscalesAHeldTextureToMaxTextureSize) {
+  TempDir dir;
+  Scene scene = MakeScene(BendCase{});
+  for (const bool jpeg : {false, true}) {
+    const std::vector<unsigned char> source = TwoColourImage(jpeg);
+    scene.mesh.materials.at(0).base_color_image = source;
+    GltfExportOptions options;
+    options.max_texture_size = 16;
+    const fs::path out = dir.path() / (jpeg ? "small_jpeg.glb" : "small_png.glb");
+    const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
+    ASSERT_TRUE(report.ok()) << report.error();
+    EXPECT_TRUE(report.value().warnings.empty());
+    const tinygltf::Model model = LoadWithTinygltf(out);
+    ASSERT_EQ(model.images.size(), 1u);
+    const tinygltf::Image& image = model.images[0];
+    EXPECT_EQ(image.mimeType, jpeg ? "image/jpeg" : "image/png");
+    ASSERT_EQ(image.width, 16);
+    ASSERT_EQ(image.height, 8);
+    ASSERT_EQ(image.component, 4);
+    const int tolerance = jpeg ? 24 : 2;
+    for (int y = 0; y < 8; ++y) {
+      for (const int x : {0, 5, 10, 15}) {
+        const unsigned char* p = &image.image[std::size_t(4 * (y * 16 + x))];
+        const bool red = x < 8;
+        EXPECT_NEAR(p[0], red ? 255 : 0, tolerance) << x << ", " << y;
+        EXPECT_NEAR(p[1], 0, tolerance) << x << ", " << y;
+        EXPECT_NEAR(p[2], red ? 0 : 255, tolerance) << x << ", " << y;
+        EXPECT_EQ(p[3], 255) << x << ", " << y;
+      }
+    }
+    const Validation validation = Validate(out);
+    EXPECT_NE(validation.output.find(": 0 errors, 0 warnings"), std::string::npos)
+        << validation.output;
+    // Within the limit: the source's bytes.
+    options.max_texture_size = 64;
+    const fs::path kept = dir.path() / "kept.glb";
+    ASSERT_TRUE(ExportGltf(scene.mesh, scene.bake, options, kept).ok());
+    const tinygltf::Model whole = LoadWithTinygltf(kept);
+    const tinygltf::BufferView& view =
+        whole.bufferViews.at(std::size_t(whole.images.at(0).bufferView));
+    const auto begin = whole.buffers.at(0).data.begin() + long(view.byteOffset);
+    EXPECT_TRUE(std::equal(source.begin(), source.end(), begin, begin + long(view.byteLength)));
+  }
+  // A referenced texture file keeps its size, with the reason.
+  scene.mesh.materials.at(0).base_color_image.clear();
+  scene.mesh.materials[0].base_color_texture = "textures/logo.png";
+  GltfExportOptions options;
+  options.texture_dir = InstallTexture(dir.path());
+  options.max_texture_size = 16;
+  const Result<GltfExportReport> referenced =
+      ExportGltf(scene.mesh, scene.bake, options, dir.path() / "src" / "referenced.glb");
+  ASSERT_TRUE(referenced.ok()) << referenced.error();
+  ASSERT_EQ(referenced.value().warnings.size(), 1u);
+  EXPECT_NE(referenced.value().warnings[0].find("is referenced, not embedded: left at its size"),
+            std::string::npos)
+      << referenced.value().warnings[0];
 }
 
 TEST(GltfExport, UsesTheNodeNameAndKeepsAnExistingFileOnError) {

@@ -73,6 +73,10 @@ struct GltfExportOptions {
   // mesh has no UVs is left out with a report warning. Empty: no texture files are exported.
   // Textures the source held itself (MeshMaterial::base_color_image) are embedded in the buffer.
   std::filesystem::path texture_dir;
+  // > 0: an embedded texture whose longer side exceeds this many pixels is downscaled to it
+  // (aspect kept, filtered in sRGB) and re-encoded in its format (PNG, or JPEG at quality 90);
+  // a texture file referenced by URI is left as it is, with a report warning. 0: unchanged.
+  int max_texture_size = 0;
   // Morph targets (kMorph, and kSkin's residual targets) as KHR_mesh_quantization normalized
   // signed shorts (value / 32767, at an 8-byte stride) instead of float: a key's POSITION
   // deltas when every component lies within [-1, 1] m and the rounding bound per vertex,
