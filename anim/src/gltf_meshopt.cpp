@@ -1,6 +1,7 @@
 #include "gltf_meshopt.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -122,14 +123,15 @@ std::vector<unsigned char> Filtered(std::span<const unsigned char> raw, const Vi
     std::vector<std::int16_t> shorts(raw.size() / sizeof(std::int16_t));
     std::memcpy(shorts.data(), raw.data(), raw.size());
     std::vector<float> values(shorts.size());
-    for (std::size_t i = 0; i < shorts.size(); ++i) values[i] = float(shorts[i]) / 32767.0f;
+    for (std::size_t i = 0; i < shorts.size(); ++i)
+      values[i] = float(shorts[i]) / float(kShortScale);
     meshopt_encodeFilterQuat(encoded.data(), count, use.element, use.filter_bits, values.data());
     decoded = encoded;
     DecodeFilter(meshopt_decodeFilterQuat, decoded.data(), count, use.element);
   } else if (use.filter == Filter::kOctahedral) {
     std::vector<float> values(4 * count);
     for (std::size_t i = 0; i < values.size(); ++i)
-      values[i] = std::max(float(static_cast<std::int8_t>(raw[i])) / 127.0f, -1.0f);
+      values[i] = std::max(float(static_cast<std::int8_t>(raw[i])) / float(kByteScale), -1.0f);
     meshopt_encodeFilterOct(encoded.data(), count, use.element, use.filter_bits, values.data());
     decoded = encoded;
     DecodeFilter(meshopt_decodeFilterOct, decoded.data(), count, use.element);
@@ -180,37 +182,46 @@ void RoundLikeExpFilter(std::span<float> values, std::size_t components, int bit
   }
 }
 
+namespace {
+
+// One element of N floats (`values`, updated) through a filter and back, until encoding the
+// decoded integers (each taken as value * scale, as a reader and CompressBuffers read them)
+// gives them back: a decoded unit vector or quaternion is unit only to rounding, so one round
+// trip is not always a fixed point. Returns the decoded integers.
+template <class T, std::size_t N>
+std::array<T, N> RoundElement(float (&values)[N], int bits, float scale,
+                              void (*encode)(void*, std::size_t, std::size_t, int, const float*),
+                              void (*decode)(void*, std::size_t, std::size_t)) {
+  std::array<T, N> stored{}, previous{};
+  for (int pass = 0; pass < 8; ++pass) {
+    encode(stored.data(), 1, sizeof stored, bits, values);
+    DecodeFilter(decode, reinterpret_cast<unsigned char*>(stored.data()), 1, sizeof stored);
+    if (pass > 0 && stored == previous) break;
+    previous = stored;
+    for (std::size_t c = 0; c < N; ++c) values[c] = std::max(float(stored[c]) / scale, -1.0f);
+  }
+  return stored;
+}
+
+}  // namespace
+
 void RoundLikeOctFilter(std::span<float> values, int bits) {
   for (std::size_t i = 0; i + 3 <= values.size(); i += 3) {
-    float vector[4] = {values[i], values[i + 1], values[i + 2], 0.0f};
-    std::int8_t stored[4], previous[4] = {0, 0, 0, 0};
-    for (int pass = 0; pass < 8; ++pass) {
-      meshopt_encodeFilterOct(stored, 1, sizeof stored, bits, vector);
-      DecodeFilter(meshopt_decodeFilterOct, reinterpret_cast<unsigned char*>(stored), 1,
-                   sizeof stored);
-      if (pass > 0 && std::memcmp(stored, previous, sizeof stored) == 0) break;
-      std::memcpy(previous, stored, sizeof stored);
-      for (int c = 0; c < 3; ++c) vector[c] = std::max(float(stored[c]) / 127.0f, -1.0f);
-    }
-    for (std::size_t c = 0; c < 3; ++c) values[i + c] = std::max(float(stored[c]) / 127.0f, -1.0f);
+    float vector[4] = {values[i], values[i + 1], values[i + 2], 0.0f};  // w: kept as it is
+    const std::array<std::int8_t, 4> stored = RoundElement<std::int8_t>(
+        vector, bits, float(kByteScale), meshopt_encodeFilterOct, meshopt_decodeFilterOct);
+    for (std::size_t c = 0; c < 3; ++c)
+      values[i + c] = std::max(float(stored[c]) / float(kByteScale), -1.0f);
   }
 }
 
 Eigen::Quaternionf RoundLikeQuatFilter(const Eigen::Quaternionf& q, int bits) {
   float values[4] = {q.x(), q.y(), q.z(), q.w()};
-  std::int16_t stored[4], previous[4] = {0, 0, 0, 0};
-  // Until encoding the decoded shorts (as a reader and CompressBuffers read them) gives them
-  // back: the decoded quaternion is unit only to rounding, so one round trip is not always a
-  // fixed point.
-  for (int pass = 0; pass < 8; ++pass) {
-    meshopt_encodeFilterQuat(stored, 1, sizeof stored, bits, values);
-    DecodeFilter(meshopt_decodeFilterQuat, reinterpret_cast<unsigned char*>(stored), 1,
-                 sizeof stored);
-    if (pass > 0 && std::memcmp(stored, previous, sizeof stored) == 0) break;
-    std::memcpy(previous, stored, sizeof stored);
-    for (int c = 0; c < 4; ++c) values[c] = float(stored[c]) / 32767.0f;
-  }
-  const auto value = [&stored](int c) { return std::max(float(stored[c]) / 32767.0f, -1.0f); };
+  const std::array<std::int16_t, 4> stored = RoundElement<std::int16_t>(
+      values, bits, float(kShortScale), meshopt_encodeFilterQuat, meshopt_decodeFilterQuat);
+  const auto value = [&stored](int c) {
+    return std::max(float(stored[std::size_t(c)]) / float(kShortScale), -1.0f);
+  };
   return Eigen::Quaternionf(value(3), value(0), value(1), value(2));
 }
 

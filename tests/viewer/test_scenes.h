@@ -2,31 +2,16 @@
 // turns floating-point traps off around OpenGL calls.
 #pragma once
 
-#include <fenv.h>
-
 #include <vector>
 
+#include "support/no_fp_traps.h"
 #include "wirerig/procedural/shapes.h"
 #include "wirerig/viewer/render_frame.h"
 
 namespace wirerig::testing {
 
-// Mesa's shader compiler (LLVM, for llvmpipe) and rasteriser compute with Inf and NaN on
-// purpose; the test main traps those, so every test that calls OpenGL turns the traps off for
-// its duration and restores them afterwards.
-class ScopedNoFpTraps {
- public:
-  ScopedNoFpTraps() : saved_(fegetexcept()) { fedisableexcept(FE_ALL_EXCEPT); }
-  ~ScopedNoFpTraps() {
-    feclearexcept(FE_ALL_EXCEPT);
-    feenableexcept(saved_);
-  }
-  ScopedNoFpTraps(const ScopedNoFpTraps&) = delete;
-  ScopedNoFpTraps& operator=(const ScopedNoFpTraps&) = delete;
-
- private:
-  int saved_;
-};
+// Every test that calls OpenGL turns the floating-point traps off for its duration
+// (ScopedNoFpTraps, support/no_fp_traps.h): Mesa computes with Inf and NaN on purpose.
 
 // A mesh owning its float buffers; View() is the RenderMesh over them.
 struct OwnedMesh {
