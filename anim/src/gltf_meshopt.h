@@ -1,11 +1,12 @@
 // EXT_meshopt_compression (GltfExportOptions::compress): every buffer view of the finished model
 // is encoded with meshoptimizer's codecs (triangle indices with the index codec, everything else
 // with the vertex codec) into buffer 0, while the views point into a fallback buffer 1 that holds
-// no data, as the extension asks. Float data that tolerates rounding (positions, normals, UVs,
-// corrective deltas, translation keys) is first rounded the way the EXPONENTIAL filter stores it
+// no data, as the extension asks. Float data that tolerates rounding (positions, UVs, corrective
+// deltas, translation keys) is first rounded the way the EXPONENTIAL filter stores it
 // (RoundLikeExpFilter), before anything is fitted to or measured on it, so every error the export
 // reports is the decoded file's; the filter then stores it with no further loss. Rotation keys
-// (normalized shorts) are rounded likewise for the QUATERNION filter (RoundLikeQuatFilter).
+// (normalized shorts) are rounded likewise for the QUATERNION filter (RoundLikeQuatFilter), rest
+// normals (normalized bytes) for the OCTAHEDRAL filter (RoundLikeOctFilter).
 #pragma once
 
 #include <cstddef>
