@@ -110,7 +110,7 @@ MaterialsAdded AddMaterials(tinygltf::Model& model, const Mesh& mesh, const fs::
           image.mimeType = ref.mime_type;
           if (held) {
             image.name = fs::path(source.base_color_texture).stem().string();
-            Result<FittedImage> fitted =
+            Result<std::vector<unsigned char>> fitted =
                 FitImage(source.base_color_image, ref.mime_type, max_texture_size);
             if (!fitted) {
               warnings->push_back("material '" + source.name + "': texture '" +
@@ -118,7 +118,7 @@ MaterialsAdded AddMaterials(tinygltf::Model& model, const Mesh& mesh, const fs::
                                   "' embedded at its own size: " + fitted.error());
             }
             image.bufferView = AddBytesView(
-                model, fitted ? std::span<const unsigned char>(fitted.value().bytes)
+                model, fitted ? std::span<const unsigned char>(fitted.value())
                               : std::span<const unsigned char>(source.base_color_image));
           } else if (max_texture_size > 0) {
             int width = 0, height = 0;

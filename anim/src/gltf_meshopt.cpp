@@ -21,75 +21,97 @@ constexpr const char* kExtension = "EXT_meshopt_compression";
 
 // A filter a view's role allows, with its bits.
 enum class Filter { kNone, kExponential, kQuaternion, kOctahedral };
-
-// How a view is read: its first accessor's layout, and the filter its role allows.
-struct ViewUse {
-  int component_type = -1;
-  std::size_t element = 0;  // bytes per element
-  std::size_t components = 0;
+struct FilterUse {
   Filter filter = Filter::kNone;
-  int filter_bits = 0;
+  int bits = 0;
 };
 
+// How a view is read: its first accessor's element size, and the filter its role allows.
+struct ViewUse {
+  std::size_t element = 0;  // bytes per element
+  FilterUse filter;
+};
+
+// Whether a view of elements of `element` bytes read by `accessor` has the layout `filter` takes:
+// floats packed tightly (EXPONENTIAL), normalized shorts x 4 (QUATERNION), normalized bytes
+// padded to 4 (OCTAHEDRAL).
+bool FilterFits(Filter filter, const tinygltf::Accessor& accessor, std::size_t element,
+                bool strided) {
+  switch (filter) {
+    case Filter::kExponential:
+      return accessor.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && !strided;
+    case Filter::kQuaternion:
+      return accessor.componentType == TINYGLTF_COMPONENT_TYPE_SHORT && accessor.normalized &&
+             element == 8;
+    case Filter::kOctahedral:
+      return accessor.componentType == TINYGLTF_COMPONENT_TYPE_BYTE && accessor.normalized &&
+             element == 4;
+    case Filter::kNone:
+      break;
+  }
+  return false;
+}
+
 std::map<int, ViewUse> ViewUses(const tinygltf::Model& model) {
-  std::map<int, int> bits_of_accessor;  // float data for the EXPONENTIAL filter
-  std::set<int> quaternion_accessors;   // rotation keys, for the QUATERNION filter
-  std::set<int> octahedral_accessors;   // normals in bytes, for the OCTAHEDRAL filter
+  std::map<int, FilterUse> wanted;  // by accessor: the filter its role allows
   for (const tinygltf::Mesh& mesh : model.meshes) {
     for (const tinygltf::Primitive& primitive : mesh.primitives) {
       for (const auto& [name, accessor] : primitive.attributes) {
-        if (name == "POSITION") bits_of_accessor[accessor] = kPositionBits;
-        if (name == "NORMAL") octahedral_accessors.insert(accessor);
-        if (name == "TEXCOORD_0") bits_of_accessor[accessor] = kUvBits;
+        if (name == "POSITION") wanted[accessor] = {Filter::kExponential, kPositionBits};
+        if (name == "NORMAL") wanted[accessor] = {Filter::kOctahedral, kOctahedralBits};
+        if (name == "TEXCOORD_0") wanted[accessor] = {Filter::kExponential, kUvBits};
       }
       for (const auto& target : primitive.targets) {
         const auto position = target.find("POSITION");
-        if (position != target.end()) bits_of_accessor[position->second] = kDeltaBits;
+        if (position != target.end()) wanted[position->second] = {Filter::kExponential, kDeltaBits};
       }
     }
   }
   for (const tinygltf::Animation& animation : model.animations) {
     for (const tinygltf::AnimationChannel& channel : animation.channels) {
       const int output = animation.samplers[static_cast<std::size_t>(channel.sampler)].output;
-      if (channel.target_path == "translation") bits_of_accessor[output] = kTranslationBits;
-      if (channel.target_path == "rotation") quaternion_accessors.insert(output);
+      if (channel.target_path == "translation")
+        wanted[output] = {Filter::kExponential, kTranslationBits};
+      if (channel.target_path == "rotation") wanted[output] = {Filter::kQuaternion, kRotationBits};
     }
   }
   std::map<int, ViewUse> uses;
   for (std::size_t a = 0; a < model.accessors.size(); ++a) {
     const tinygltf::Accessor& accessor = model.accessors[a];
     if (accessor.bufferView < 0 || uses.count(accessor.bufferView) > 0) continue;
-    ViewUse use;
-    use.component_type = accessor.componentType;
-    use.components = static_cast<std::size_t>(
-        tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type)));
     const tinygltf::BufferView& view =
         model.bufferViews[static_cast<std::size_t>(accessor.bufferView)];
-    use.element = view.byteStride != 0
-                      ? view.byteStride
-                      : use.components * static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(
-                                             static_cast<std::uint32_t>(accessor.componentType)));
-    const auto bits = bits_of_accessor.find(static_cast<int>(a));
-    if (bits != bits_of_accessor.end() && accessor.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT &&
-        view.byteStride == 0) {
-      use.filter = Filter::kExponential;
-      use.filter_bits = bits->second;
-    }
-    if (octahedral_accessors.count(static_cast<int>(a)) > 0 &&
-        accessor.componentType == TINYGLTF_COMPONENT_TYPE_BYTE && accessor.normalized &&
-        use.element == 4) {
-      use.filter = Filter::kOctahedral;
-      use.filter_bits = kOctahedralBits;
-    }
-    if (quaternion_accessors.count(static_cast<int>(a)) > 0 &&
-        accessor.componentType == TINYGLTF_COMPONENT_TYPE_SHORT && accessor.normalized &&
-        use.element == 8) {
-      use.filter = Filter::kQuaternion;
-      use.filter_bits = kRotationBits;
-    }
+    ViewUse use;
+    use.element =
+        view.byteStride != 0
+            ? view.byteStride
+            : static_cast<std::size_t>(
+                  tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type)) *
+                  tinygltf::GetComponentSizeInBytes(
+                      static_cast<std::uint32_t>(accessor.componentType)));
+    const auto role = wanted.find(static_cast<int>(a));
+    if (role != wanted.end() &&
+        FilterFits(role->second.filter, accessor, use.element, view.byteStride != 0))
+      use.filter = role->second;
     uses[accessor.bufferView] = use;
   }
   return uses;
+}
+
+// A normalized integer's value (signed: at least -1).
+template <class T>
+float Normalized(T q, double scale) {
+  return std::max(static_cast<float>(q) / static_cast<float>(scale), -1.0f);
+}
+
+// The normalized integers of type T in `raw`, as floats.
+template <class T>
+std::vector<float> NormalizedValues(std::span<const unsigned char> raw, double scale) {
+  std::vector<T> integers(raw.size() / sizeof(T));
+  std::memcpy(integers.data(), raw.data(), integers.size() * sizeof(T));
+  std::vector<float> values(integers.size());
+  for (std::size_t i = 0; i < integers.size(); ++i) values[i] = Normalized(integers[i], scale);
+  return values;
 }
 
 // meshoptimizer's filter decoder `decode` on `count` elements of `stride` bytes at `data`, run on
@@ -113,26 +135,21 @@ std::vector<unsigned char> Filtered(std::span<const unsigned char> raw, const Vi
   const std::size_t count = raw.size() / use.element;
   std::vector<unsigned char> encoded(raw.size());
   std::vector<unsigned char> decoded;
-  if (use.filter == Filter::kExponential) {
+  const int bits = use.filter.bits;
+  if (use.filter.filter == Filter::kExponential) {
     std::vector<float> values(raw.size() / sizeof(float));
     std::memcpy(values.data(), raw.data(), raw.size());
-    meshopt_encodeFilterExp(encoded.data(), count, use.element, use.filter_bits, values.data());
+    meshopt_encodeFilterExp(encoded.data(), count, use.element, bits, values.data());
     decoded = encoded;
     DecodeFilter(meshopt_decodeFilterExp, decoded.data(), count, use.element);
-  } else if (use.filter == Filter::kQuaternion) {
-    std::vector<std::int16_t> shorts(raw.size() / sizeof(std::int16_t));
-    std::memcpy(shorts.data(), raw.data(), raw.size());
-    std::vector<float> values(shorts.size());
-    for (std::size_t i = 0; i < shorts.size(); ++i)
-      values[i] = float(shorts[i]) / float(kShortScale);
-    meshopt_encodeFilterQuat(encoded.data(), count, use.element, use.filter_bits, values.data());
+  } else if (use.filter.filter == Filter::kQuaternion) {
+    const std::vector<float> values = NormalizedValues<std::int16_t>(raw, kShortScale);
+    meshopt_encodeFilterQuat(encoded.data(), count, use.element, bits, values.data());
     decoded = encoded;
     DecodeFilter(meshopt_decodeFilterQuat, decoded.data(), count, use.element);
-  } else if (use.filter == Filter::kOctahedral) {
-    std::vector<float> values(4 * count);
-    for (std::size_t i = 0; i < values.size(); ++i)
-      values[i] = std::max(float(static_cast<std::int8_t>(raw[i])) / float(kByteScale), -1.0f);
-    meshopt_encodeFilterOct(encoded.data(), count, use.element, use.filter_bits, values.data());
+  } else if (use.filter.filter == Filter::kOctahedral) {
+    const std::vector<float> values = NormalizedValues<std::int8_t>(raw, kByteScale);
+    meshopt_encodeFilterOct(encoded.data(), count, use.element, bits, values.data());
     decoded = encoded;
     DecodeFilter(meshopt_decodeFilterOct, decoded.data(), count, use.element);
   } else {
@@ -154,6 +171,25 @@ const char* FilterName(Filter filter) {
       break;
   }
   return nullptr;
+}
+
+// One element of N floats (`values`, updated) through a filter and back, until encoding the
+// decoded integers (each taken as value * scale, as a reader and CompressBuffers read them)
+// gives them back: a decoded unit vector or quaternion is unit only to rounding, so one round
+// trip is not always a fixed point. Returns the decoded integers.
+template <class T, std::size_t N>
+std::array<T, N> RoundElement(float (&values)[N], int bits, double scale,
+                              void (*encode)(void*, std::size_t, std::size_t, int, const float*),
+                              void (*decode)(void*, std::size_t, std::size_t)) {
+  std::array<T, N> stored{}, previous{};
+  for (int pass = 0; pass < 8; ++pass) {
+    encode(stored.data(), 1, sizeof stored, bits, values);
+    DecodeFilter(decode, reinterpret_cast<unsigned char*>(stored.data()), 1, sizeof stored);
+    if (pass > 0 && stored == previous) break;
+    previous = stored;
+    for (std::size_t c = 0; c < N; ++c) values[c] = Normalized(stored[c], scale);
+  }
+  return stored;
 }
 
 // `filter`: the filter's name, or null for none.
@@ -182,46 +218,20 @@ void RoundLikeExpFilter(std::span<float> values, std::size_t components, int bit
   }
 }
 
-namespace {
-
-// One element of N floats (`values`, updated) through a filter and back, until encoding the
-// decoded integers (each taken as value * scale, as a reader and CompressBuffers read them)
-// gives them back: a decoded unit vector or quaternion is unit only to rounding, so one round
-// trip is not always a fixed point. Returns the decoded integers.
-template <class T, std::size_t N>
-std::array<T, N> RoundElement(float (&values)[N], int bits, float scale,
-                              void (*encode)(void*, std::size_t, std::size_t, int, const float*),
-                              void (*decode)(void*, std::size_t, std::size_t)) {
-  std::array<T, N> stored{}, previous{};
-  for (int pass = 0; pass < 8; ++pass) {
-    encode(stored.data(), 1, sizeof stored, bits, values);
-    DecodeFilter(decode, reinterpret_cast<unsigned char*>(stored.data()), 1, sizeof stored);
-    if (pass > 0 && stored == previous) break;
-    previous = stored;
-    for (std::size_t c = 0; c < N; ++c) values[c] = std::max(float(stored[c]) / scale, -1.0f);
-  }
-  return stored;
-}
-
-}  // namespace
-
 void RoundLikeOctFilter(std::span<float> values, int bits) {
   for (std::size_t i = 0; i + 3 <= values.size(); i += 3) {
     float vector[4] = {values[i], values[i + 1], values[i + 2], 0.0f};  // w: kept as it is
     const std::array<std::int8_t, 4> stored = RoundElement<std::int8_t>(
-        vector, bits, float(kByteScale), meshopt_encodeFilterOct, meshopt_decodeFilterOct);
-    for (std::size_t c = 0; c < 3; ++c)
-      values[i + c] = std::max(float(stored[c]) / float(kByteScale), -1.0f);
+        vector, bits, kByteScale, meshopt_encodeFilterOct, meshopt_decodeFilterOct);
+    for (std::size_t c = 0; c < 3; ++c) values[i + c] = Normalized(stored[c], kByteScale);
   }
 }
 
 Eigen::Quaternionf RoundLikeQuatFilter(const Eigen::Quaternionf& q, int bits) {
   float values[4] = {q.x(), q.y(), q.z(), q.w()};
   const std::array<std::int16_t, 4> stored = RoundElement<std::int16_t>(
-      values, bits, float(kShortScale), meshopt_encodeFilterQuat, meshopt_decodeFilterQuat);
-  const auto value = [&stored](int c) {
-    return std::max(float(stored[std::size_t(c)]) / float(kShortScale), -1.0f);
-  };
+      values, bits, kShortScale, meshopt_encodeFilterQuat, meshopt_decodeFilterQuat);
+  const auto value = [&stored](std::size_t c) { return Normalized(stored[c], kShortScale); };
   return Eigen::Quaternionf(value(3), value(0), value(1), value(2));
 }
 
@@ -275,7 +285,7 @@ MeshoptJson CompressBuffers(tinygltf::Model& model, const StreamedTargets& tail)
       packed.insert(packed.end(), scratch.begin(), scratch.end());
       json.views.emplace_back(
           v, Extension(offset, scratch.size(), element, count, "ATTRIBUTES",
-                       filtered.empty() ? nullptr : FilterName(use->second.filter)));
+                       filtered.empty() ? nullptr : FilterName(use->second.filter.filter)));
     } else {
       // Read by no accessor (an embedded image), or not encodable: stored as it is.
       packed.insert(packed.end(), raw.begin(), raw.end());

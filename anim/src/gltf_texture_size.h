@@ -12,17 +12,11 @@
 
 namespace wirerig::gltf {
 
-struct FittedImage {
-  std::vector<unsigned char> bytes;  // the image as it is embedded
-  int width = 0, height = 0;         // its size, pixels
-  int source_width = 0, source_height = 0;
-};
-
 // `bytes` (a PNG or JPEG, `mime_type` "image/png" or "image/jpeg") with its longer side at most
-// `max_size` pixels (aspect kept, each side at least 1): unchanged bytes when it fits already or
+// `max_size` pixels (aspect kept, each side at least 1): the same bytes when it fits already or
 // `max_size` is 0. Fails, with the reason, when the image cannot be decoded or encoded.
-Result<FittedImage> FitImage(std::span<const unsigned char> bytes, const std::string& mime_type,
-                             int max_size);
+Result<std::vector<unsigned char>> FitImage(std::span<const unsigned char> bytes,
+                                            const std::string& mime_type, int max_size);
 
 // The size of the image in `file`, pixels; false when stb_image cannot read its header.
 bool ImageSize(const std::filesystem::path& file, int* width, int* height);
