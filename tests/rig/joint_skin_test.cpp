@@ -429,10 +429,12 @@ TEST(JointSkin, BendGrowthScaleFollowsTheSwingsDirection) {
 }
 
 // The shoulders and hips: the skin spread over the torso keeps every edge within twice its rest
-// length through the shoulders' whole sweep and the hips' but for 120 degrees of flexion
-// (2.2x), where the groin folds at most four edges (one up to 90 degrees; fifteen when the
+// length through the shoulders' and the hips' whole sweeps (the hips reached 2.19x at 120
+// degrees of flexion while the skin between the legs took a hip's spread only within one joint
+// radius), where the groin folds at most two edges (one up to 90 degrees; fifteen when the
 // first leg's spread kept the skin between the legs as its own cross-sections); at their
-// adduction limits the hips' sections narrow to 0.897 of their rest perimeters. The two hips,
+// adduction limits the hips' sections narrow to 0.863 of their rest perimeters (0.897 with the
+// narrower spread: the inner thigh's skin moves a little less with its leg). The two hips,
 // mirror images on a mirror-symmetric mesh, fold and stretch alike (the spread does not depend
 // on which leg comes first). The wire rig's shoulders fold fewer edges over their sweep than
 // linear blend, dual-quaternion or centre-of-rotation skinning of the same bones.
@@ -451,13 +453,13 @@ TEST(JointSkin, HumanShouldersAndHipsSpreadTheirStretchOverTheTorso) {
     const bool deepest_hip_flexion = hip && row.pose == "x-120";
     const bool hip_adduction_limit = (row.joint == "thigh_r" && row.pose == "y+25") ||
                                      (row.joint == "thigh_l" && row.pose == "y-25");
-    EXPECT_LT(wire.worst_stretch, deepest_hip_flexion ? 2.25 : 2.0);
+    EXPECT_LT(wire.worst_stretch, 2.0);
     if (hip) {
-      EXPECT_LE(wire.folded_edges, deepest_hip_flexion ? 4u : 1u);
+      EXPECT_LE(wire.folded_edges, deepest_hip_flexion ? 2u : 1u);
     }
     if (row.joint.starts_with("upper_arm"))
       for (int m = 0; m < kSkinMethods; ++m) shoulder_folds[m] += row.methods[m].folded_edges;
-    EXPECT_GT(wire.smallest_perimeter, hip_adduction_limit ? 0.89 : 0.9);
+    EXPECT_GT(wire.smallest_perimeter, hip_adduction_limit ? 0.86 : 0.9);
     if (row.joint == "thigh_l") left_hip[row.pose] = wire;
     if (row.joint == "thigh_r") {
       // Mirroring in x turns the right hip's y and z angles the other way.
