@@ -49,11 +49,6 @@ Eigen::Quaternionf RoundLikeQuatFilter(const Eigen::Quaternionf& q, int bits);
 // and decoder), repeated until the filter gives them back unchanged.
 void RoundLikeOctFilter(std::span<float> values, int bits);
 
-// Unit vectors (x, y, z, #values / 3 of them) rounded to what the OCTAHEDRAL filter with
-// `bits` stores in normalized signed bytes and a reader decodes (meshoptimizer's own encoder
-// and decoder), repeated until the filter gives them back unchanged.
-void RoundLikeOctFilter(std::span<float> values, int bits);
-
 // Compresses every view of `model`, whose buffer 0 is its in-memory data followed by `tail`'s
 // bytes, into a new buffer 0; views keep their byte ranges in the fallback buffer 1 and carry
 // the extension (mode, count, byteStride, and the EXPONENTIAL filter where the data is rounded
