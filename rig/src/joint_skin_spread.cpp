@@ -66,11 +66,11 @@ struct Scratch {
 
 // One joint: see the header. `bound`: the vertices bound to it when the spread began (some may
 // have lost it to a stronger joint since); `reached`: per vertex, as the first pass left it
-// (empty in the first pass). Returns the vertices left out for want of a slot.
-std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_t> own_samples,
-                        std::size_t c, std::span<const std::uint32_t> bound,
-                        std::span<const VertexAttachment> reached, Scratch& scratch,
-                        RigModel* model) {
+// (empty in the first pass). Returns the joint influences lost for want of a slot.
+LostInfluences SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_t> own_samples,
+                           std::size_t c, std::span<const std::uint32_t> bound,
+                           std::span<const VertexAttachment> reached, Scratch& scratch,
+                           RigModel* model) {
   auto fixed_at = [&](std::uint32_t v, const JointInfluence& j) {
     return Fixed(*model, model->vertices[v], j, reached.empty() ? nullptr : &reached[v]);
   };
@@ -104,9 +104,15 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
   const bool parts_below = std::count(child_side.begin(), child_side.end(), true) > 1;
   if (!any_free && !parts_below) {
     reset_seeds();
-    return 0;
+    return {};
   }
-  const double reach = kSpreadRadii * child.joint.radius;
+  // A joint hung from skinless bones (a shoulder from its clavicle) meets its skin parent's
+  // skin across their length: its spread reaches that much further.
+  double skinless_length = 0.0;
+  for (int p = child.parent; p >= 0 && IsSkinless(model->parts[std::size_t(p)]);
+       p = model->parts[std::size_t(p)].parent)
+    skinless_length += model->parts[std::size_t(p)].spine_length;
+  const double reach = kSpreadRadii * child.joint.radius + kSkinlessSpreadShare * skinless_length;
   const double sibling_reach = kSiblingSpreadRadii * child.joint.radius;
   while (!queue.empty()) {
     const auto [d, v] = queue.top();
@@ -137,7 +143,7 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
 
   if (free.empty()) {
     reset_seeds();
-    return 0;
+    return {};
   }
   // The value a vertex outside the free set holds: its bridge coordinate on the joint, else
   // 0 on the parent's side and 1 on the child's.
@@ -178,9 +184,9 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
     index[v] = -1;
   }
   reset_seeds();
-  if (solver.info() != Eigen::Success) return 0;  // keep the per-vertex binding
+  if (solver.info() != Eigen::Success) return {};  // keep the per-vertex binding
 
-  std::size_t left_out = 0;
+  LostInfluences lost;
   for (std::size_t i = 0; i < free.size(); ++i) {
     VertexAttachment& a = model->vertices[free[i]];
     const double value = std::clamp(solved(Eigen::Index(i), 0), 0.0, 1.0);
@@ -194,15 +200,15 @@ std::size_t SpreadJoint(const Adjacency& adjacency, std::span<const std::uint32_
     }
     if (!(value > 0.0)) continue;
     const JointInfluence spread{joint, own_samples[free[i]], value, 1.0, bridge, section};
-    left_out += !AddJointInfluence(*model, spread, &a);
+    lost += AddJointInfluence(*model, spread, &a);
   }
-  return left_out;
+  return lost;
 }
 
 }  // namespace
 
-bool AddJointInfluence(const RigModel& model, const JointInfluence& influence,
-                       VertexAttachment* a) {
+LostInfluences AddJointInfluence(const RigModel& model, const JointInfluence& influence,
+                                 VertexAttachment* a) {
   auto strength = [&](const JointInfluence& j) {
     if (j.joint < 0) return -1.0;
     const bool child_side =
@@ -212,13 +218,16 @@ bool AddJointInfluence(const RigModel& model, const JointInfluence& influence,
   JointInfluence* weakest = &a->joints[0];
   for (JointInfluence& j : a->joints)
     if (strength(j) < strength(*weakest)) weakest = &j;
-  if (weakest->joint >= 0 && strength(*weakest) >= strength(influence)) return false;
+  if (weakest->joint >= 0 && strength(*weakest) >= strength(influence))
+    return {1, strength(influence)};
+  const LostInfluences lost =
+      weakest->joint >= 0 ? LostInfluences{1, strength(*weakest)} : LostInfluences{};
   *weakest = influence;
-  return true;
+  return lost;
 }
 
-std::size_t SpreadJointBindings(std::span<const Vec3> rest,
-                                std::span<const std::uint32_t> own_samples, RigModel* model) {
+LostInfluences SpreadJointBindings(std::span<const Vec3> rest,
+                                   std::span<const std::uint32_t> own_samples, RigModel* model) {
   const Adjacency adjacency = MakeAdjacency(rest, model->triangles);
   std::vector<std::vector<std::uint32_t>> bound(model->parts.size());
   for (std::uint32_t v = 0; v < model->vertices.size(); ++v)
@@ -233,18 +242,19 @@ std::size_t SpreadJointBindings(std::span<const Vec3> rest,
   // second spreads every joint again from the per-vertex binding, knowing it.
   const std::vector<VertexAttachment> binding = model->vertices;
   auto spread_all = [&](std::span<const VertexAttachment> reached) {
-    std::size_t left_out = 0;
+    LostInfluences lost;
     for (std::size_t c = 1; c < model->parts.size(); ++c)
       if (model->parts[c].parent >= 0 && model->parts[c].joint.blend_length > 0.0 &&
           !IsSkinless(model->parts[c]))
-        left_out += SpreadJoint(adjacency, own_samples, c, bound[c], reached, scratch, model);
-    return left_out;
+        lost += SpreadJoint(adjacency, own_samples, c, bound[c], reached, scratch, model);
+    return lost;
   };
   spread_all({});
   const std::vector<VertexAttachment> reached = std::move(model->vertices);
   model->vertices = binding;
-  const std::size_t left_out = spread_all(reached);
-  return left_out + SpreadSkinlessJoints(adjacency, own_samples, model);
+  LostInfluences lost = spread_all(reached);
+  lost += SpreadSkinlessJoints(adjacency, own_samples, model);
+  return lost;
 }
 
 }  // namespace wirerig

@@ -442,7 +442,9 @@ Result<BuiltRigModel> BuildRigModel(const Mesh& mesh, const Rig& rig,
   built.report.loose_pieces = loose.pieces;
   built.report.loose_vertices = loose.vertices;
   // The spread walks the mesh's edges from joint-bound skin: it never reaches a loose piece.
-  built.report.unspread_vertices = SpreadJointBindings(mesh.welded_positions, own_samples, &model);
+  const LostInfluences lost = SpreadJointBindings(mesh.welded_positions, own_samples, &model);
+  built.report.lost_joint_influences = lost.count;
+  built.report.strongest_lost_influence = lost.strongest;
   for (const VertexAttachment& a : model.vertices)
     built.report.bridged_vertices += a.joints[0].joint >= 0;
   FitJointGrowth(mesh.welded_positions, &model);

@@ -12,9 +12,9 @@ namespace wirerig {
 namespace {
 
 // One skinless part c; see the header.
-std::size_t SpreadSkinlessJoint(const Adjacency& adjacency,
-                                std::span<const std::uint32_t> own_samples, std::size_t c,
-                                RigModel* model) {
+LostInfluences SpreadSkinlessJoint(const Adjacency& adjacency,
+                                   std::span<const std::uint32_t> own_samples, std::size_t c,
+                                   RigModel* model) {
   const std::size_t n = model->vertices.size();
   std::vector<bool> below(model->parts.size(), false);  // c and its descendants
   below[c] = true;
@@ -71,26 +71,26 @@ std::size_t SpreadSkinlessJoint(const Adjacency& adjacency,
     const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(matrix);
     if (solver.info() == Eigen::Success) u = solver.solve(rhs);
   }
-  std::size_t left_out = 0;
+  LostInfluences lost;
   for (std::size_t i = 0; i < free.size() && u.size() == Eigen::Index(free.size()); ++i) {
     const double value = std::min(u[Eigen::Index(i)], 1.0);
     // Below kSkinlessLeastBlend of the bone's motion the vertex keeps its own side's: no slot.
     if (!(value * value * (3.0 - 2.0 * value) >= kSkinlessLeastBlend)) continue;
     const JointInfluence influence{int(c), own_samples[free[i]], value, 1.0, 0.0, 1.0};
-    left_out += !AddJointInfluence(*model, influence, &model->vertices[free[i]]);
+    lost += AddJointInfluence(*model, influence, &model->vertices[free[i]]);
   }
-  return left_out;
+  return lost;
 }
 
 }  // namespace
 
-std::size_t SpreadSkinlessJoints(const Adjacency& adjacency,
-                                 std::span<const std::uint32_t> own_samples, RigModel* model) {
-  std::size_t left_out = 0;
+LostInfluences SpreadSkinlessJoints(const Adjacency& adjacency,
+                                    std::span<const std::uint32_t> own_samples, RigModel* model) {
+  LostInfluences lost;
   for (std::size_t c = 1; c < model->parts.size(); ++c)
     if (IsSkinless(model->parts[c]) && model->parts[c].joint.blend_length > 0.0)
-      left_out += SpreadSkinlessJoint(adjacency, own_samples, c, model);
-  return left_out;
+      lost += SpreadSkinlessJoint(adjacency, own_samples, c, model);
+  return lost;
 }
 
 }  // namespace wirerig

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <span>
 
+#include "joint_skin_spread.h"
 #include "mesh_adjacency.h"
 #include "wirerig/runtime/rig_model.h"
 
@@ -24,9 +25,9 @@ namespace wirerig {
 inline constexpr double kSkinlessSpreadLengths = 1.5;
 inline constexpr double kSkinlessLeastBlend = 1e-3;
 
-// `own_samples`: per vertex, its own part's spine sample nearest it. Returns the vertices left
-// out for want of a free influence slot.
-std::size_t SpreadSkinlessJoints(const Adjacency& adjacency,
-                                 std::span<const std::uint32_t> own_samples, RigModel* model);
+// `own_samples`: per vertex, its own part's spine sample nearest it. Returns the joint
+// influences lost for want of a free slot (AddJointInfluence).
+LostInfluences SpreadSkinlessJoints(const Adjacency& adjacency,
+                                    std::span<const std::uint32_t> own_samples, RigModel* model);
 
 }  // namespace wirerig

@@ -36,13 +36,14 @@ struct RigModelOptions {
 };
 
 struct RigModelReport {
-  std::size_t cap_vertices = 0;       // beyond the first or last profile
-  std::size_t fallback_vertices = 0;  // the pair binding refused: bound rigidly instead
-  std::size_t flagged_vertices = 0;   // the pair binding used a documented fallback
-  std::size_t bridged_vertices = 0;   // follow a joint's skin bridge
-  std::size_t reowned_vertices = 0;   // beyond their part's end, around a neighbour's bone
-  std::size_t unspread_vertices = 0;  // a joint's skin would spread over them: no free slot
-  std::size_t loose_pieces = 0;       // small separate pieces riding rigidly on a part
+  std::size_t cap_vertices = 0;           // beyond the first or last profile
+  std::size_t fallback_vertices = 0;      // the pair binding refused: bound rigidly instead
+  std::size_t flagged_vertices = 0;       // the pair binding used a documented fallback
+  std::size_t bridged_vertices = 0;       // follow a joint's skin bridge
+  std::size_t reowned_vertices = 0;       // beyond their part's end, around a neighbour's bone
+  double strongest_lost_influence = 0.0;  // the largest share of a joint's motion one carried
+  std::size_t lost_joint_influences = 0;  // a joint's spread left out or displaced: no free slot
+  std::size_t loose_pieces = 0;           // small separate pieces riding rigidly on a part
   std::size_t loose_vertices = 0;
 };
 
