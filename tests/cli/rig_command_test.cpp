@@ -148,7 +148,7 @@ TEST(RigCommandErrors, StrictRefusesARigWithWarningsAndWritesNothing) {
   options.strict = true;
   const CommandRun run = RunRig(options);
   EXPECT_EQ(run.exit_code, 1);
-  EXPECT_NE(run.out.find("verdict: poor: "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("verdict: usable: "), std::string::npos) << run.out;
   EXPECT_NE(run.err.find("cow.off: --strict: "), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("warnings (listed above); nothing written"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(options.output));

@@ -408,13 +408,17 @@ TEST(CurveSkeleton, CowIsAQuadrupedWithHeadAndTail) {
   // The torso carries on past its junctions into the rump and the chest: the tail starts a
   // tenth of the body behind the hind legs' tops, the head ahead of the front legs' (the
   // skeleton's torso edge ends at the legs' junctions, and the tail and head started there,
-  // taking the rump and the chest).
+  // taking the rump and the chest). The legs start where they leave the belly, below the
+  // torso's line, not at their junctions in the middle of the body (TrimRoot).
   const double body = (head->central_curve.back() - tail->central_curve.back()).dot(axis);
+  double torso_bottom = 1e9;
+  for (const Vec3& p : torso->central_curve) torso_bottom = std::min(torso_bottom, p.y());
   for (const PartDescription& part : description.parts) {
     if (!part.name.ends_with("_upper")) continue;
     const Vec3& top = part.central_curve.front();
+    EXPECT_LT(top.y(), torso_bottom - 0.05 * body) << part.name;
     if (part.name.starts_with("leg_front")) {
-      EXPECT_GT((head->central_curve.front() - top).dot(axis), 0.05 * body) << part.name;
+      EXPECT_GT((head->central_curve.front() - top).dot(axis), 0.0) << part.name;
     } else {
       EXPECT_GT((top - tail->central_curve.front()).dot(axis), 0.1 * body) << part.name;
     }
@@ -430,7 +434,7 @@ TEST(CurveSkeleton, CowIsAQuadrupedWithHeadAndTail) {
       const PartDescription* lower = Find(description, "leg_" + end + "_" + side + "_lower");
       ASSERT_TRUE(leg && lower);
       const Vec3 top = leg->central_curve.front(), foot = lower->central_curve.back();
-      EXPECT_LT(foot.y(), top.y() - 0.2) << leg->name;
+      EXPECT_LT(foot.y(), top.y() - 0.15) << leg->name;
       EXPECT_LT(foot.y(), ground + 0.1) << leg->name;
       EXPECT_EQ((foot - middle).dot(axis) > 0.0, end == "front") << leg->name;
       EXPECT_EQ(foot.z() < 0.0, side == "left") << leg->name;
