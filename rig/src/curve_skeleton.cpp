@@ -214,7 +214,7 @@ class Describer {
   void Name();
   void CarryTorsoOn();
   void TrimRoot(SkeletonPart& part) const;
-  std::size_t LimbSplit(const std::vector<Vec3>& curve) const;
+  std::size_t LimbSplit(const std::vector<Vec3>& curve, double limb_radius) const;
 
   const std::vector<Vec3>& mesh_positions_;
   const std::vector<Triangle>& mesh_triangles_;
@@ -835,16 +835,35 @@ void Describer::Name() {
 }
 
 // Where a limb's curve splits into its upper and lower segments (the elbow or knee): the
-// sharpest bend between 30% and 70% of its length if it turns by more than kJointBend there,
-// else the narrowest point there (distance to the surface), else the middle. An index strictly
-// inside the curve, or 0 when the curve is too short to split.
-std::size_t Describer::LimbSplit(const std::vector<Vec3>& curve) const {
+// sharpest bend between 30% and 70% of the limb's own length if it turns by more than
+// kJointBend there, else its deepest waist there (see `waist`), else the middle. The limb's
+// own length starts where the curve is first within kRootRadius of its thickness of the
+// surface (the median distance over 20-50% of the curve; `limb_radius` if no point lies
+// there): a man's arm branch starts in his chest, and its turn down at the shoulder is no
+// elbow (it was taken for one, and his "forearm" ran from the shoulder to the hand). An index
+// strictly inside the curve, or 0 when the curve is too short to split.
+std::size_t Describer::LimbSplit(const std::vector<Vec3>& curve, double limb_radius) const {
   constexpr double kJointBend = 0.25;  // rad, about 15 degrees
+  constexpr double kWaist = 0.05;      // of the radius there
   if (curve.size() < 5) return 0;
   std::vector<double> at(curve.size(), 0.0);
   for (std::size_t k = 1; k < curve.size(); ++k)
     at[k] = at[k - 1] + (curve[k] - curve[k - 1]).norm();
-  const double length = at.back();
+  std::vector<double> radius(curve.size());
+  for (std::size_t k = 0; k < curve.size(); ++k) radius[k] = surface_.Distance(curve[k]);
+  // The limb's own thickness: the median radius over 20-50% of the curve (an upper arm,
+  // a thigh).
+  std::vector<double> upper;
+  for (std::size_t k = 0; k < curve.size(); ++k)
+    if (at[k] >= 0.2 * at.back() && at[k] <= 0.5 * at.back()) upper.push_back(radius[k]);
+  if (!upper.empty()) {
+    std::nth_element(upper.begin(), upper.begin() + long(upper.size() / 2), upper.end());
+    limb_radius = upper[upper.size() / 2];
+  }
+  std::size_t own = 0;
+  while (own + 1 < curve.size() && radius[own] > kRootRadius * limb_radius) ++own;
+  if (own + 1 == curve.size()) own = 0;
+  const double length = at.back() - at[own];
   if (!(length > 0.0)) return 0;
   // The turn at k over a stretch of about a tenth of the limb on each side.
   auto turn = [&](std::size_t k) {
@@ -855,18 +874,28 @@ std::size_t Describer::LimbSplit(const std::vector<Vec3>& curve) const {
     if (u.norm() <= 0.0 || v.norm() <= 0.0) return 0.0;
     return std::atan2(u.cross(v).norm(), u.dot(v));
   };
-  std::size_t sharpest = 0, narrowest = 0, middle = 0;
-  double sharpest_turn = 0.0, narrowest_radius = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 1; k + 1 < curve.size(); ++k) {
-    const double f = at[k] / length;
+  // How far the limb narrows at k below the thicker of its two sides, each side's thickest
+  // within a fifth of the limb: an elbow or a knee between two muscle bellies. A limb that only
+  // tapers towards its end has no waist (the thinner side is the end's).
+  auto waist = [&](std::size_t k) {
+    double before = radius[k], after = radius[k];
+    for (std::size_t a = k; a-- > 0 && at[k] - at[a] <= 0.2 * length;)
+      before = std::max(before, radius[a]);
+    for (std::size_t b = k + 1; b < curve.size() && at[b] - at[k] <= 0.2 * length; ++b)
+      after = std::max(after, radius[b]);
+    return std::min(before, after) - radius[k];
+  };
+  std::size_t sharpest = 0, deepest = 0, middle = 0;
+  double sharpest_turn = 0.0, deepest_waist = 0.0;
+  for (std::size_t k = std::max<std::size_t>(own, 1); k + 1 < curve.size(); ++k) {
+    const double f = (at[k] - at[own]) / length;
     if (middle == 0 && f >= 0.5) middle = k;
     if (f < 0.3 || f > 0.7) continue;
     if (const double t = turn(k); t > sharpest_turn) sharpest_turn = t, sharpest = k;
-    if (const double r = surface_.Distance(curve[k]); r < narrowest_radius)
-      narrowest_radius = r, narrowest = k;
+    if (const double w = waist(k); w > deepest_waist) deepest_waist = w, deepest = k;
   }
   if (sharpest > 0 && sharpest_turn > kJointBend) return sharpest;
-  if (narrowest > 0) return narrowest;
+  if (deepest > 0 && deepest_waist > kWaist * radius[deepest]) return deepest;
   return middle;
 }
 
@@ -1119,7 +1148,8 @@ Result<RigDescription> Describer::Run() {
     }
     // Limbs are chains: upper and lower segments with a joint between (elbow, knee); what
     // hangs from the limb hangs from its lower segment.
-    if (const std::size_t split = IsLimb(part.name) ? LimbSplit(curve) : 0; split > 0) {
+    if (const std::size_t split = IsLimb(part.name) ? LimbSplit(curve, part.radius) : 0;
+        split > 0) {
       const auto [upper, lower] = SegmentNames(part.name);
       PartDescription second;
       second.name = lower;

@@ -569,6 +569,21 @@ TEST(CurveSkeleton, StandingManIsABiped) {
   for (const char* leg : {"shin_l", "shin_r"}) {
     EXPECT_LT(Find(description, leg)->central_curve.back().y(), -0.4) << leg;
   }
+  // Elbows and knees where a body has them: 30-65% of the way down from the limb's top to its
+  // end (a man's elbow about 40% down from the shoulder to the fingertips, the knee about half
+  // way from the hip to the sole). His arms hang from a turn at the shoulder, which is no
+  // elbow: the arm's branch starts in his chest and only its part beyond is the limb's length.
+  for (const auto& [upper, lower] : {std::pair{"upper_arm_l", "forearm_l"},
+                                     {"upper_arm_r", "forearm_r"},
+                                     {"thigh_l", "shin_l"},
+                                     {"thigh_r", "shin_r"}}) {
+    double top = -1e9;
+    for (const Vec3& p : Find(description, upper)->central_curve) top = std::max(top, p.y());
+    const std::vector<Vec3>& below = Find(description, lower)->central_curve;
+    const double down = (top - below.front().y()) / (top - below.back().y());
+    EXPECT_GT(down, 0.3) << upper;
+    EXPECT_LT(down, 0.65) << upper;
+  }
 }
 
 }  // namespace WIRERIG_TEST_FILE
