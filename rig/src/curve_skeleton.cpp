@@ -33,7 +33,10 @@ constexpr double kCarryRadius = 2.0;  // the torso goes on into a branch while i
                                       // times the branch's own (outer) thickness ...
 constexpr double kCarryKeep = 0.5;    // ... leaving the branch at least this much of its length
 constexpr double kCarryDegrees = 55.0;
-constexpr double kRootDepth = 5.0;   // a child whose root lies deeper than this many of its radii
+constexpr double kRootDepth = 5.0;
+// How far a collar bone turns each way about its joint's axes, degrees.
+const Vec3 kClavicleDegrees(20.0, 20.0,
+                            10.0);   // a child whose root lies deeper than this many of its radii
 constexpr double kRootRadius = 2.0;  // ... starts where it is this many of its radii deep  // a
                                      // branch within this of the torso's line carries it on
 
@@ -214,6 +217,8 @@ class Describer {
   void Name();
   void CarryTorsoOn();
   void TrimRoot(SkeletonPart& part) const;
+  std::size_t OwnStart(const std::vector<Vec3>& curve, double limb_radius) const;
+  std::size_t ShoulderOf(const std::vector<Vec3>& curve, double limb_radius) const;
   std::size_t LimbSplit(const std::vector<Vec3>& curve, double limb_radius) const;
 
   const std::vector<Vec3>& mesh_positions_;
@@ -842,17 +847,27 @@ void Describer::Name() {
 // there): a man's arm branch starts in his chest, and its turn down at the shoulder is no
 // elbow (it was taken for one, and his "forearm" ran from the shoulder to the hand). An index
 // strictly inside the curve, or 0 when the curve is too short to split.
-std::size_t Describer::LimbSplit(const std::vector<Vec3>& curve, double limb_radius) const {
-  constexpr double kJointBend = 0.25;  // rad, about 15 degrees
-  constexpr double kWaist = 0.05;      // of the radius there
-  if (curve.size() < 5) return 0;
-  std::vector<double> at(curve.size(), 0.0);
+// The angle a curve turns by at point k (rad), between its chords over `stretch` (arc length
+// `at`) before and after k.
+double TurnAt(const std::vector<Vec3>& curve, const std::vector<double>& at, std::size_t k,
+              double stretch) {
+  std::size_t a = k, b = k;
+  while (a > 0 && at[k] - at[a] < stretch) --a;
+  while (b + 1 < curve.size() && at[b] - at[k] < stretch) ++b;
+  const Vec3 u = curve[k] - curve[a], v = curve[b] - curve[k];
+  if (u.norm() <= 0.0 || v.norm() <= 0.0) return 0.0;
+  return std::atan2(u.cross(v).norm(), u.dot(v));
+}
+
+// Where a limb's own length starts on its curve: the first point within kRootRadius of its
+// thickness of the surface, the thickness being the median distance over 20-50% of the curve
+// (an upper arm, a thigh; `limb_radius` if no point lies there). 0 when the root is no deeper.
+std::size_t Describer::OwnStart(const std::vector<Vec3>& curve, double limb_radius) const {
+  if (curve.size() < 2) return 0;
+  std::vector<double> at(curve.size(), 0.0), radius(curve.size());
   for (std::size_t k = 1; k < curve.size(); ++k)
     at[k] = at[k - 1] + (curve[k] - curve[k - 1]).norm();
-  std::vector<double> radius(curve.size());
   for (std::size_t k = 0; k < curve.size(); ++k) radius[k] = surface_.Distance(curve[k]);
-  // The limb's own thickness: the median radius over 20-50% of the curve (an upper arm,
-  // a thigh).
   std::vector<double> upper;
   for (std::size_t k = 0; k < curve.size(); ++k)
     if (at[k] >= 0.2 * at.back() && at[k] <= 0.5 * at.back()) upper.push_back(radius[k]);
@@ -862,18 +877,43 @@ std::size_t Describer::LimbSplit(const std::vector<Vec3>& curve, double limb_rad
   }
   std::size_t own = 0;
   while (own + 1 < curve.size() && radius[own] > kRootRadius * limb_radius) ++own;
-  if (own + 1 == curve.size()) own = 0;
+  return own + 1 == curve.size() ? 0 : own;
+}
+
+// Where a biped's arm branch reaches its shoulder: its sharpest turn (over a tenth of the
+// branch each side) between its own start (OwnStart) and 45% of its length if it turns by
+// more than kJointBend there (the branch rises over the chest and turns down into the arm),
+// else its own start.
+std::size_t Describer::ShoulderOf(const std::vector<Vec3>& curve, double limb_radius) const {
+  constexpr double kJointBend = 0.25;  // rad, about 15 degrees
+  const std::size_t own = OwnStart(curve, limb_radius);
+  std::vector<double> at(curve.size(), 0.0);
+  for (std::size_t k = 1; k < curve.size(); ++k)
+    at[k] = at[k - 1] + (curve[k] - curve[k - 1]).norm();
+  std::size_t sharpest = own;
+  double sharpest_turn = kJointBend;
+  for (std::size_t k = std::max<std::size_t>(own, 1); k + 1 < curve.size(); ++k) {
+    if (at[k] > 0.45 * at.back()) break;
+    if (const double t = TurnAt(curve, at, k, 0.1 * at.back()); t > sharpest_turn)
+      sharpest_turn = t, sharpest = k;
+  }
+  return sharpest;
+}
+
+std::size_t Describer::LimbSplit(const std::vector<Vec3>& curve, double limb_radius) const {
+  constexpr double kJointBend = 0.25;  // rad, about 15 degrees
+  constexpr double kWaist = 0.05;      // of the radius there
+  if (curve.size() < 5) return 0;
+  std::vector<double> at(curve.size(), 0.0);
+  for (std::size_t k = 1; k < curve.size(); ++k)
+    at[k] = at[k - 1] + (curve[k] - curve[k - 1]).norm();
+  std::vector<double> radius(curve.size());
+  for (std::size_t k = 0; k < curve.size(); ++k) radius[k] = surface_.Distance(curve[k]);
+  const std::size_t own = OwnStart(curve, limb_radius);
   const double length = at.back() - at[own];
   if (!(length > 0.0)) return 0;
   // The turn at k over a stretch of about a tenth of the limb on each side.
-  auto turn = [&](std::size_t k) {
-    std::size_t a = k, b = k;
-    while (a > 0 && at[k] - at[a] < 0.1 * length) --a;
-    while (b + 1 < curve.size() && at[b] - at[k] < 0.1 * length) ++b;
-    const Vec3 u = curve[k] - curve[a], v = curve[b] - curve[k];
-    if (u.norm() <= 0.0 || v.norm() <= 0.0) return 0.0;
-    return std::atan2(u.cross(v).norm(), u.dot(v));
-  };
+  auto turn = [&](std::size_t k) { return TurnAt(curve, at, k, 0.1 * length); };
   // How far the limb narrows at k below the thicker of its two sides, each side's thickest
   // within a fifth of the limb: an elbow or a knee between two muscle bellies. A limb that only
   // tapers towards its end has no waist (the thinner side is the end's).
@@ -1148,6 +1188,27 @@ Result<RigDescription> Describer::Run() {
     }
     // Limbs are chains: upper and lower segments with a joint between (elbow, knee); what
     // hangs from the limb hangs from its lower segment.
+    // A biped's arm whose branch starts inside the chest hangs from a skinless collar bone
+    // up to its shoulder (ShoulderOf; a game skeleton's clavicle), so the arm turns there,
+    // not in the middle of the chest; the collar bone turns a little, as anatomy allows
+    // (kClavicleDegrees).
+    if (part.name == "arm_left" || part.name == "arm_right") {
+      if (const std::size_t own = ShoulderOf(curve, part.radius);
+          own > 0 && own + 4 < curve.size()) {
+        PartDescription clavicle;
+        clavicle.name = part.name == "arm_left" ? "clavicle_l" : "clavicle_r";
+        clavicle.parent = out.parent;
+        clavicle.skin = false;
+        clavicle.profile_count = 0;
+        clavicle.points_per_profile = 0;
+        clavicle.central_curve = {curve.front(), curve[own]};
+        clavicle.joint.min_degrees = -kClavicleDegrees;
+        clavicle.joint.max_degrees = kClavicleDegrees;
+        description.parts.push_back(std::move(clavicle));
+        out.parent = description.parts.back().name;
+        curve.erase(curve.begin(), curve.begin() + long(own));
+      }
+    }
     if (const std::size_t split = IsLimb(part.name) ? LimbSplit(curve, part.radius) : 0;
         split > 0) {
       const auto [upper, lower] = SegmentNames(part.name);

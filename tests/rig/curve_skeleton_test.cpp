@@ -545,10 +545,22 @@ TEST(CurveSkeleton, StandingManIsABiped) {
   const RigDescription& description = result.value();
   EXPECT_EQ(ValidateRigDescription(description), "");
   // Arms and legs as chains named as a game skeleton names them.
-  const std::multiset<std::string> expected{"torso",       "head",      "upper_arm_l", "forearm_l",
-                                            "upper_arm_r", "forearm_r", "thigh_l",     "shin_l",
-                                            "thigh_r",     "shin_r"};
+  const std::multiset<std::string> expected{"torso",     "head",       "clavicle_l",  "upper_arm_l",
+                                            "forearm_l", "clavicle_r", "upper_arm_r", "forearm_r",
+                                            "thigh_l",   "shin_l",     "thigh_r",     "shin_r"};
   EXPECT_EQ(Names(description), expected);
+  // His arms' branches start in his chest: each hangs from a skinless collar bone that ends
+  // where the arm's own length starts, 2 arm thicknesses from the surface.
+  for (const char* side : {"l", "r"}) {
+    const PartDescription* clavicle = Find(description, std::string("clavicle_") + side);
+    const PartDescription* arm = Find(description, std::string("upper_arm_") + side);
+    ASSERT_TRUE(clavicle && arm);
+    EXPECT_FALSE(clavicle->skin);
+    EXPECT_EQ(clavicle->parent, "torso");
+    EXPECT_EQ(arm->parent, clavicle->name);
+    EXPECT_LT((clavicle->central_curve.back() - arm->central_curve.front()).norm(), 1e-12);
+    EXPECT_GT(std::abs(clavicle->central_curve.back().x()), 0.05) << "the shoulder, not the chest";
+  }
   const PartDescription* torso = Find(description, "torso");
   const PartDescription* head = Find(description, "head");
   ASSERT_TRUE(torso && head);
