@@ -13,6 +13,9 @@
 #         WIRERIG_ASSET_DIR  the assets       (default: <repo>/.cache/assets, as scripts/setup.sh)
 #         SURVEY_OUT         rigs, logs, TSV  (default: /tmp/survey)
 #         SURVEY_TIMEOUT     seconds per mesh (default: 120)
+#         SURVEY_JOINTS      1: also the joint test of issue 13 (`--joint-report --joint-poses`):
+#                            each rig's 60-degree poses (every joint bent alone, x and y, each
+#                            way) that fold an edge or stretch one beyond 2x, and their folds
 set -uo pipefail
 
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -21,6 +24,9 @@ bin=${WIRERIG:-build/cli/wirerig}
 assets=${WIRERIG_ASSET_DIR:-.cache/assets}
 out=${SURVEY_OUT:-/tmp/survey}
 limit=${SURVEY_TIMEOUT:-120}
+joints=${SURVEY_JOINTS:-0}
+joint_args=()
+[ "$joints" = 1 ] && joint_args=(--joint-report --joint-poses)
 
 # group|path under $assets
 default_list=(
@@ -148,8 +154,8 @@ now() { date +%s.%N; }
 bin_stamp() { stat -c '%s bytes, modified %y' "$bin" 2>/dev/null; }
 stamp0=$(bin_stamp)
 tsv=$out/survey.tsv
-printf 'group\tasset\texit\trig\tquality\tverdict\tseconds\terror\n' >"$tsv"
-n_ok=0; n_fail=0; n_good=0; n_usable=0; n_poor=0; n_other=0
+printf 'group\tasset\texit\trig\tquality\tverdict\tseconds\terror\tjoint60\n' >"$tsv"
+n_ok=0; n_fail=0; n_good=0; n_usable=0; n_poor=0; n_other=0; n_pass60=0
 echo "survey: $bin rig MESH -o $out/NAME.rig.json (timeout ${limit}s each), assets in $assets"
 echo "survey: binary $stamp0"
 for entry in "${list[@]}"; do
@@ -169,7 +175,7 @@ for entry in "${list[@]}"; do
   for attempt in 1 2; do
     wait_for_binary
     t0=$(now)
-    timeout "$limit" "$bin" rig "$mesh" -o "$rig" >"$log" 2>&1
+    timeout "$limit" "$bin" rig "$mesh" -o "$rig" "${joint_args[@]}" >"$log" 2>&1
     rc=$?
     t1=$(now)
     # 126/127: the binary vanished between the check and the exec (relink); run once more.
@@ -189,6 +195,18 @@ for entry in "${list[@]}"; do
     error=$(grep -m1 '^wirerig' "$log" || tail -n 1 "$log")
     error=${error#"wirerig rig: $mesh: "}
   fi
+  joint60=""
+  if [ "$joints" = 1 ] && [ $rc -eq 0 ]; then
+    # "poses where the wire rig misses a target": joint, pose, folds, stretch, volume, perimeter.
+    if ! grep -q '^joint skin' "$log"; then
+      joint60="no joints to test"
+    else
+      joint60=$(sed -n '/^poses where/,$p' "$log" |
+        awk '$2 ~ /^[xy][+-]60$/ && ($3 > 0 || $4 > 2.0) { c++; f += $3 }
+             END { printf "%d poses fail at 60 degrees (%d folded edges)", c, f }')
+    fi
+    case "$joint60" in "0 poses"*) n_pass60=$((n_pass60 + 1)) ;; esac
+  fi
   if [ $rc -eq 0 ]; then
     n_ok=$((n_ok + 1))
     case "$verdict" in
@@ -197,16 +215,21 @@ for entry in "${list[@]}"; do
       "verdict: poor"*) n_poor=$((n_poor + 1)) ;;
       *) n_other=$((n_other + 1)) ;;
     esac
-    printf '%s | exit 0 | %s | %s | %s | %s s\n' "$rel" "$rigline" "$quality" "$verdict" "$secs"
+    printf '%s | exit 0 | %s | %s | %s | %s s%s\n' "$rel" "$rigline" "$quality" "$verdict" "$secs" \
+      "${joint60:+ | $joint60}"
   else
     n_fail=$((n_fail + 1))
     printf '%s | exit %d | %s s | error: %s\n' "$rel" "$rc" "$secs" "$error"
   fi
-  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$group" "$rel" "$rc" "$rigline" "$quality" \
-    "$verdict" "$secs" "$error" >>"$tsv"
+  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$group" "$rel" "$rc" "$rigline" "$quality" \
+    "$verdict" "$secs" "$error" "$joint60" >>"$tsv"
 done
 echo "survey: ${#list[@]} meshes: $n_ok rigged ($n_good good, $n_usable usable, $n_poor poor," \
   "$n_other other), $n_fail refused; logs, rigs and $tsv in $out"
+if [ "$joints" = 1 ]; then
+  echo "survey: $n_pass60 of $n_ok rigs pass the 60-degree joint test (no folded edge, no edge" \
+    "stretched beyond 2x)"
+fi
 # Another build may relink the binary mid-run: then the lines above mix two builds.
 if [ "$(bin_stamp)" != "$stamp0" ]; then
   echo "survey: warning: $bin changed during the survey (now $(bin_stamp)); run it again" >&2
