@@ -155,7 +155,7 @@ bin_stamp() { stat -c '%s bytes, modified %y' "$bin" 2>/dev/null; }
 stamp0=$(bin_stamp)
 tsv=$out/survey.tsv
 printf 'group\tasset\texit\trig\tquality\tverdict\tseconds\terror\tjoint60\n' >"$tsv"
-n_ok=0; n_fail=0; n_good=0; n_usable=0; n_poor=0; n_other=0; n_pass60=0
+n_ok=0; n_fail=0; n_good=0; n_usable=0; n_poor=0; n_other=0; n_pass60=0; n_jointed=0
 echo "survey: $bin rig MESH -o $out/NAME.rig.json (timeout ${limit}s each), assets in $assets"
 echo "survey: binary $stamp0"
 for entry in "${list[@]}"; do
@@ -198,14 +198,20 @@ for entry in "${list[@]}"; do
   joint60=""
   if [ "$joints" = 1 ] && [ $rc -eq 0 ]; then
     # "poses where the wire rig misses a target": joint, pose, folds, stretch, volume, perimeter.
-    if ! grep -q '^joint skin' "$log"; then
+    # Rows of the joint table between its header and "all joints": the joints swept.
+    swept=$(sed -n '/^joint skin/,/^  all joints/p' "$log" | grep -vc -e '^joint skin' \
+      -e '^  joint  ' -e '^  all joints')
+    if [ "$swept" -eq 0 ]; then
       joint60="no joints to test"
     else
       joint60=$(sed -n '/^poses where/,$p' "$log" |
         awk '$2 ~ /^[xy][+-]60$/ && ($3 > 0 || $4 > 2.0) { c++; f += $3 }
              END { printf "%d poses fail at 60 degrees (%d folded edges)", c, f }')
     fi
-    case "$joint60" in "0 poses"*) n_pass60=$((n_pass60 + 1)) ;; esac
+    case "$joint60" in
+      "0 poses"*) n_pass60=$((n_pass60 + 1)); n_jointed=$((n_jointed + 1)) ;;
+      *poses*) n_jointed=$((n_jointed + 1)) ;;
+    esac
   fi
   if [ $rc -eq 0 ]; then
     n_ok=$((n_ok + 1))
@@ -227,8 +233,8 @@ done
 echo "survey: ${#list[@]} meshes: $n_ok rigged ($n_good good, $n_usable usable, $n_poor poor," \
   "$n_other other), $n_fail refused; logs, rigs and $tsv in $out"
 if [ "$joints" = 1 ]; then
-  echo "survey: $n_pass60 of $n_ok rigs pass the 60-degree joint test (no folded edge, no edge" \
-    "stretched beyond 2x)"
+  echo "survey: $n_pass60 of the $n_jointed rigs with joints pass the 60-degree joint test (no" \
+    "folded edge, no edge stretched beyond 2x); $((n_ok - n_jointed)) rigs have no joint"
 fi
 # Another build may relink the binary mid-run: then the lines above mix two builds.
 if [ "$(bin_stamp)" != "$stamp0" ]; then
