@@ -38,6 +38,7 @@ constexpr double kRootDepth = 5.0;
 const Vec3 kClavicleDegrees(20.0, 20.0,
                             10.0);   // a child whose root lies deeper than this many of its radii
 constexpr double kRootRadius = 2.0;  // ... starts where it is this many of its radii deep  // a
+constexpr double kJointBend = 0.25;  // rad (about 15 degrees): a turn this sharp is a joint
                                      // branch within this of the torso's line carries it on
 
 // Brute-force distance and ray queries against the mesh surface (few hundred queries per
@@ -847,6 +848,14 @@ void Describer::Name() {
 // there): a man's arm branch starts in his chest, and its turn down at the shoulder is no
 // elbow (it was taken for one, and his "forearm" ran from the shoulder to the hand). An index
 // strictly inside the curve, or 0 when the curve is too short to split.
+// Arc length from the curve's first point to each of its points.
+std::vector<double> ArcLengths(const std::vector<Vec3>& curve) {
+  std::vector<double> at(curve.size(), 0.0);
+  for (std::size_t k = 1; k < curve.size(); ++k)
+    at[k] = at[k - 1] + (curve[k] - curve[k - 1]).norm();
+  return at;
+}
+
 // The angle a curve turns by at point k (rad), between its chords over `stretch` (arc length
 // `at`) before and after k.
 double TurnAt(const std::vector<Vec3>& curve, const std::vector<double>& at, std::size_t k,
@@ -864,9 +873,8 @@ double TurnAt(const std::vector<Vec3>& curve, const std::vector<double>& at, std
 // (an upper arm, a thigh; `limb_radius` if no point lies there). 0 when the root is no deeper.
 std::size_t Describer::OwnStart(const std::vector<Vec3>& curve, double limb_radius) const {
   if (curve.size() < 2) return 0;
-  std::vector<double> at(curve.size(), 0.0), radius(curve.size());
-  for (std::size_t k = 1; k < curve.size(); ++k)
-    at[k] = at[k - 1] + (curve[k] - curve[k - 1]).norm();
+  const std::vector<double> at = ArcLengths(curve);
+  std::vector<double> radius(curve.size());
   for (std::size_t k = 0; k < curve.size(); ++k) radius[k] = surface_.Distance(curve[k]);
   std::vector<double> upper;
   for (std::size_t k = 0; k < curve.size(); ++k)
@@ -885,11 +893,8 @@ std::size_t Describer::OwnStart(const std::vector<Vec3>& curve, double limb_radi
 // more than kJointBend there (the branch rises over the chest and turns down into the arm),
 // else its own start.
 std::size_t Describer::ShoulderOf(const std::vector<Vec3>& curve, double limb_radius) const {
-  constexpr double kJointBend = 0.25;  // rad, about 15 degrees
   const std::size_t own = OwnStart(curve, limb_radius);
-  std::vector<double> at(curve.size(), 0.0);
-  for (std::size_t k = 1; k < curve.size(); ++k)
-    at[k] = at[k - 1] + (curve[k] - curve[k - 1]).norm();
+  const std::vector<double> at = ArcLengths(curve);
   std::size_t sharpest = own;
   double sharpest_turn = kJointBend;
   for (std::size_t k = std::max<std::size_t>(own, 1); k + 1 < curve.size(); ++k) {
@@ -901,12 +906,9 @@ std::size_t Describer::ShoulderOf(const std::vector<Vec3>& curve, double limb_ra
 }
 
 std::size_t Describer::LimbSplit(const std::vector<Vec3>& curve, double limb_radius) const {
-  constexpr double kJointBend = 0.25;  // rad, about 15 degrees
-  constexpr double kWaist = 0.05;      // of the radius there
+  constexpr double kWaist = 0.05;  // of the radius there
   if (curve.size() < 5) return 0;
-  std::vector<double> at(curve.size(), 0.0);
-  for (std::size_t k = 1; k < curve.size(); ++k)
-    at[k] = at[k - 1] + (curve[k] - curve[k - 1]).norm();
+  const std::vector<double> at = ArcLengths(curve);
   std::vector<double> radius(curve.size());
   for (std::size_t k = 0; k < curve.size(); ++k) radius[k] = surface_.Distance(curve[k]);
   const std::size_t own = OwnStart(curve, limb_radius);
