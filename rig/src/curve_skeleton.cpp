@@ -29,17 +29,16 @@ constexpr double kComponentFraction = 0.05;  // smaller separate skeleton pieces
 constexpr double kLowFraction = 0.25;        // leg ends lie in this lowest fraction of height
 constexpr double kExtendFraction = 0.8;      // free ends move this far towards the surface
 constexpr int kRadiusSamples = 12;           // radius samples per branch
-constexpr double kCarryRadius = 2.0;  // the torso goes on into a branch while it is this many
-                                      // times the branch's own (outer) thickness ...
-constexpr double kCarryKeep = 0.5;    // ... leaving the branch at least this much of its length
-constexpr double kCarryDegrees = 55.0;
-constexpr double kRootDepth = 5.0;
+constexpr double kCarryRadius = 2.0;    // the torso goes on into a branch while it is this many
+                                        // times the branch's own (outer) thickness ...
+constexpr double kCarryKeep = 0.5;      // ... leaving the branch at least this much of its length
+constexpr double kCarryDegrees = 55.0;  // a branch within this of the torso's line carries it on
+constexpr double kRootDepth = 5.0;      // a child whose root lies deeper than this many of its
+                                        // radii ...
+constexpr double kRootRadius = 2.0;     // ... starts where it is this many of its radii deep
+constexpr double kJointBend = 0.25;     // rad (about 15 degrees): a turn this sharp is a joint
 // How far a collar bone turns each way about its joint's axes, degrees.
-const Vec3 kClavicleDegrees(20.0, 20.0,
-                            10.0);   // a child whose root lies deeper than this many of its radii
-constexpr double kRootRadius = 2.0;  // ... starts where it is this many of its radii deep  // a
-constexpr double kJointBend = 0.25;  // rad (about 15 degrees): a turn this sharp is a joint
-                                     // branch within this of the torso's line carries it on
+const Vec3 kClavicleDegrees(20.0, 20.0, 10.0);
 
 // Brute-force distance and ray queries against the mesh surface (few hundred queries per
 // description, so no acceleration structure beyond bounding-sphere culling).
@@ -218,7 +217,7 @@ class Describer {
   void Name();
   void CarryTorsoOn();
   void TrimRoot(SkeletonPart& part) const;
-  std::size_t OwnStart(const std::vector<Vec3>& curve, double limb_radius) const;
+  std::vector<double> Radii(const std::vector<Vec3>& curve) const;  // distances to the surface
   std::size_t ShoulderOf(const std::vector<Vec3>& curve, double limb_radius) const;
   std::size_t LimbSplit(const std::vector<Vec3>& curve, double limb_radius) const;
 
@@ -840,14 +839,6 @@ void Describer::Name() {
   if (t0.y() > t1.y()) Reverse(torso);  // from the lower end (the hips of a biped) up
 }
 
-// Where a limb's curve splits into its upper and lower segments (the elbow or knee): the
-// sharpest bend between 30% and 70% of the limb's own length if it turns by more than
-// kJointBend there, else its deepest waist there (see `waist`), else the middle. The limb's
-// own length starts where the curve is first within kRootRadius of its thickness of the
-// surface (the median distance over 20-50% of the curve; `limb_radius` if no point lies
-// there): a man's arm branch starts in his chest, and its turn down at the shoulder is no
-// elbow (it was taken for one, and his "forearm" ran from the shoulder to the hand). An index
-// strictly inside the curve, or 0 when the curve is too short to split.
 // Arc length from the curve's first point to each of its points.
 std::vector<double> ArcLengths(const std::vector<Vec3>& curve) {
   std::vector<double> at(curve.size(), 0.0);
@@ -868,24 +859,29 @@ double TurnAt(const std::vector<Vec3>& curve, const std::vector<double>& at, std
   return std::atan2(u.cross(v).norm(), u.dot(v));
 }
 
-// Where a limb's own length starts on its curve: the first point within kRootRadius of its
-// thickness of the surface, the thickness being the median distance over 20-50% of the curve
-// (an upper arm, a thigh; `limb_radius` if no point lies there). 0 when the root is no deeper.
-std::size_t Describer::OwnStart(const std::vector<Vec3>& curve, double limb_radius) const {
-  if (curve.size() < 2) return 0;
-  const std::vector<double> at = ArcLengths(curve);
-  std::vector<double> radius(curve.size());
-  for (std::size_t k = 0; k < curve.size(); ++k) radius[k] = surface_.Distance(curve[k]);
+// Where a limb's own length starts on its curve (arc lengths `at`, distances to the surface
+// `radius`): the first point within kRootRadius of its thickness of the surface, the thickness
+// being the median distance over 20-50% of the curve (an upper arm, a thigh; `limb_radius` if
+// no point lies there). 0 when the root is no deeper.
+std::size_t OwnStart(const std::vector<double>& at, const std::vector<double>& radius,
+                     double limb_radius) {
+  if (at.size() < 2) return 0;
   std::vector<double> upper;
-  for (std::size_t k = 0; k < curve.size(); ++k)
+  for (std::size_t k = 0; k < at.size(); ++k)
     if (at[k] >= 0.2 * at.back() && at[k] <= 0.5 * at.back()) upper.push_back(radius[k]);
   if (!upper.empty()) {
     std::nth_element(upper.begin(), upper.begin() + long(upper.size() / 2), upper.end());
     limb_radius = upper[upper.size() / 2];
   }
   std::size_t own = 0;
-  while (own + 1 < curve.size() && radius[own] > kRootRadius * limb_radius) ++own;
-  return own + 1 == curve.size() ? 0 : own;
+  while (own + 1 < at.size() && radius[own] > kRootRadius * limb_radius) ++own;
+  return own + 1 == at.size() ? 0 : own;
+}
+
+std::vector<double> Describer::Radii(const std::vector<Vec3>& curve) const {
+  std::vector<double> radius(curve.size());
+  for (std::size_t k = 0; k < curve.size(); ++k) radius[k] = surface_.Distance(curve[k]);
+  return radius;
 }
 
 // Where a biped's arm branch reaches its shoulder: its sharpest turn (over a tenth of the
@@ -893,8 +889,8 @@ std::size_t Describer::OwnStart(const std::vector<Vec3>& curve, double limb_radi
 // more than kJointBend there (the branch rises over the chest and turns down into the arm),
 // else its own start.
 std::size_t Describer::ShoulderOf(const std::vector<Vec3>& curve, double limb_radius) const {
-  const std::size_t own = OwnStart(curve, limb_radius);
   const std::vector<double> at = ArcLengths(curve);
+  const std::size_t own = OwnStart(at, Radii(curve), limb_radius);
   std::size_t sharpest = own;
   double sharpest_turn = kJointBend;
   for (std::size_t k = std::max<std::size_t>(own, 1); k + 1 < curve.size(); ++k) {
@@ -905,13 +901,20 @@ std::size_t Describer::ShoulderOf(const std::vector<Vec3>& curve, double limb_ra
   return sharpest;
 }
 
+// Where a limb's curve splits into its upper and lower segments (the elbow or knee): the
+// sharpest bend between 30% and 70% of the limb's own length if it turns by more than
+// kJointBend there, else its deepest waist there (see `waist`), else the middle. The limb's
+// own length starts where the curve is first within kRootRadius of its thickness of the
+// surface (the median distance over 20-50% of the curve; `limb_radius` if no point lies
+// there): a man's arm branch starts in his chest, and its turn down at the shoulder is no
+// elbow (it was taken for one, and his "forearm" ran from the shoulder to the hand). An index
+// strictly inside the curve, or 0 when the curve is too short to split.
 std::size_t Describer::LimbSplit(const std::vector<Vec3>& curve, double limb_radius) const {
   constexpr double kWaist = 0.05;  // of the radius there
   if (curve.size() < 5) return 0;
   const std::vector<double> at = ArcLengths(curve);
-  std::vector<double> radius(curve.size());
-  for (std::size_t k = 0; k < curve.size(); ++k) radius[k] = surface_.Distance(curve[k]);
-  const std::size_t own = OwnStart(curve, limb_radius);
+  const std::vector<double> radius = Radii(curve);
+  const std::size_t own = OwnStart(at, radius, limb_radius);
   const double length = at.back() - at[own];
   if (!(length > 0.0)) return 0;
   // The turn at k over a stretch of about a tenth of the limb on each side.
