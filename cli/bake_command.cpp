@@ -79,6 +79,10 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
                    "three.js does not read)")
       ->check(CLI::IsMember({4, 8}))
       ->capture_default_str();
+  bake->add_flag("--no-flesh-joints", options.no_flesh_joints,
+                 "skin mode: no joints for jiggling skin (by default, joints left in the "
+                 "--max-joints budget go where the bones miss the bake by more than "
+                 "--corrective-error)");
   bake->add_option("--key-tolerance", options.key_tolerance,
                    "skin mode: a joint key is left out when interpolating its neighbours moves "
                    "the joint's vertices by at most this, m (0: every key)")
@@ -87,9 +91,9 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
   // Options that do not apply to the chosen mode are refused, not ignored.
   bake->callback([bake, &options] {
     if (options.mode == "morph") {
-      for (const char* name :
-           {"--residual", "--max-joints", "--joints-per-part", "--max-correctives",
-            "--corrective-error", "--key-tolerance", "--compress", "--influences"}) {
+      for (const char* name : {"--residual", "--max-joints", "--joints-per-part",
+                               "--max-correctives", "--corrective-error", "--key-tolerance",
+                               "--compress", "--influences", "--no-flesh-joints"}) {
         if (bake->count(name) > 0) throw CLI::ValidationError(name, "applies to --mode skin only");
       }
     } else if (options.residual &&
@@ -141,6 +145,7 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   export_options.compress = options.compress;
   export_options.max_texture_size = options.max_texture_size;
   export_options.influences = options.influences;
+  export_options.flesh_joints = !options.no_flesh_joints;
   export_options.node_name = scene.description.name;
   // An export too large to write is refused with its numbers before anything is baked.
   {

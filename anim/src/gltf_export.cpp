@@ -84,6 +84,8 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::An
   fit_options.max_joints_per_part = options.max_joints_per_part;
   fit_options.key_tolerance = options.key_tolerance;
   fit_options.bridge_joints = options.bridge_joints;
+  fit_options.flesh_joints = options.flesh_joints;
+  fit_options.flesh_error = options.corrective_error;
   fit_options.influences = options.influences;
   if (options.compress) {
     fit_options.translation_bits = gltf::kTranslationBits;

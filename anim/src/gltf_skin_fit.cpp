@@ -1,19 +1,26 @@
 #include "gltf_skin_fit.h"
+#include "gltf_flesh_joints.h"
 #include "gltf_skin_weights.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
 #include <Eigen/SVD>
 
+#include "wirerig/runtime/parallel.h"
+
 namespace wirerig::gltf {
 namespace {
 
 using Rigid = RigidTransform;
+
+constexpr int kFleshRounds = 6;           // weight rounds with the flesh joints in, the best kept
+constexpr std::size_t kKeysPerTask = 16;  // keys per task of the transforms' fit
 
 Rigid SampleAt(const BakedSpine& spine, std::size_t key, std::size_t s) {
   const std::size_t i = key * spine.SampleCount() + s;
@@ -239,6 +246,36 @@ class KeyFit {
   std::vector<Vec3> residual_;
 };
 
+// Appends `flesh`'s joints after the #J joints so far ("thigh_l_flesh_0", ...): their parents,
+// names and rest frames, and their skinning transforms into each key's row (#K x #J, key-major,
+// becoming #K x (#J + #N)).
+void AppendFleshJoints(const FleshJoints& flesh, std::size_t keys, std::vector<int>* parent,
+                       std::vector<std::string>* names, std::vector<Rigid>* rest,
+                       std::vector<Mat3>* rotation, std::vector<Vec3>* translation) {
+  const std::size_t joints = parent->size(), added = flesh.Count(), total = joints + added;
+  std::vector<Mat3> rotations(keys * total);
+  std::vector<Vec3> translations(keys * total);
+  for (std::size_t k = 0; k < keys; ++k) {
+    std::copy_n(rotation->begin() + std::ptrdiff_t(k * joints), joints,
+                rotations.begin() + std::ptrdiff_t(k * total));
+    std::copy_n(translation->begin() + std::ptrdiff_t(k * joints), joints,
+                translations.begin() + std::ptrdiff_t(k * total));
+    std::copy_n(flesh.rotation.begin() + std::ptrdiff_t(k * added), added,
+                rotations.begin() + std::ptrdiff_t(k * total + joints));
+    std::copy_n(flesh.translation.begin() + std::ptrdiff_t(k * added), added,
+                translations.begin() + std::ptrdiff_t(k * total + joints));
+  }
+  *rotation = std::move(rotations);
+  *translation = std::move(translations);
+  std::vector<std::size_t> count(joints, 0);
+  for (std::size_t n = 0; n < added; ++n) {
+    const auto up = static_cast<std::size_t>(flesh.parent[n]);
+    parent->push_back(flesh.parent[n]);
+    names->push_back((*names)[up] + "_flesh_" + std::to_string(count[up]++));
+    rest->push_back(flesh.rest[n]);
+  }
+}
+
 }  // namespace
 
 Result<FittedSkin> FitSkeleton(const BakedAnimation& bake, const BaseVertices& base,
@@ -287,11 +324,12 @@ Result<FittedSkin> FitSkeleton(const BakedAnimation& bake, const BaseVertices& b
         "_bridge");
     joint_sample.push_back(joint_sample[child]);  // at the child's root
   }
-  const std::size_t joints = parent.size(), keys = bake.KeyCount();
+  std::size_t joints = parent.size();
+  const std::size_t keys = bake.KeyCount();
 
   FittedSkin fitted;
   fitted.influences = MapInfluences(bake, samples, first_joint, options.influences);
-  std::vector<Rigid> rest(joints), keyed(keys * joints);
+  std::vector<Rigid> rest(joints);
   for (std::size_t j = 0; j < joints; ++j)
     rest[j] = RestSampleAt(bake.spines[joint_sample[j].first], joint_sample[j].second);
   // Skinning transforms x -> R x + t of every joint at every key (the joint's world transform
@@ -318,21 +356,76 @@ Result<FittedSkin> FitSkeleton(const BakedAnimation& bake, const BaseVertices& b
                                          rotation[k * joints + bridge] * x;
     }
   }
+  // Keys are independent: tasks of kKeysPerTask keys on every core, each with its own KeyFit.
+  const ThreadPool pool(std::max(1u, std::thread::hardware_concurrency()));
   auto fit_transforms = [&] {
-    KeyFit fit(fitted.influences, base, joints);
-    for (std::size_t k = 0; k < keys; ++k) {
-      fit.Run(std::span(bake.positions).subspan(k * base.Count(), base.Count()), options.iterations,
-              std::span(rotation).subspan(k * joints, joints),
-              std::span(translation).subspan(k * joints, joints));
-    }
+    struct Context {
+      const SkinInfluences* influences;
+      const BaseVertices* base;
+      const BakedAnimation* bake;
+      std::size_t joints, keys;
+      int iterations;
+      Mat3* rotation;
+      Vec3* translation;
+    } context{&fitted.influences, &base, &bake, joints, keys, options.iterations, rotation.data(),
+              translation.data()};
+    const auto task = [](const void* c, std::size_t t) {
+      const Context& x = *static_cast<const Context*>(c);
+      KeyFit fit(*x.influences, *x.base, x.joints);
+      const std::size_t vertices = x.base->Count();
+      for (std::size_t k = t * kKeysPerTask; k < std::min(x.keys, (t + 1) * kKeysPerTask); ++k) {
+        fit.Run(std::span(x.bake->positions).subspan(k * vertices, vertices), x.iterations,
+                std::span(x.rotation + k * x.joints, x.joints),
+                std::span(x.translation + k * x.joints, x.joints));
+      }
+    };
+    RunTasks(&pool, (keys + kKeysPerTask - 1) / kKeysPerTask, task, &context);
   };
   // Weights first, on the baked frames (a rigid part's frames are already right); then the
   // transforms for those weights.
   for (int round = 0; round < options.weight_rounds; ++round) {
-    fitted.influences = FitWeights(fitted.influences, parent, base, bake, rotation, translation);
+    fitted.influences =
+        FitWeights(fitted.influences, parent, base, bake, rotation, translation, &pool);
     fit_transforms();
   }
   if (options.weight_rounds == 0) fit_transforms();
+  if (options.flesh_joints && options.weight_rounds > 0 && joints < options.max_joints) {
+    const FleshJoints flesh =
+        FindFleshJoints(fitted.influences, base, bake, rest, rotation, translation,
+                        options.max_joints - joints, options.flesh_error);
+    if (flesh.Count() > 0) {
+      // The alternation is not monotone (only the largest weights are kept), so the round that
+      // leaves the least squared error is kept, or the skin without flesh joints if none beats it.
+      const auto squared_error = [&] {
+        return SquaredSkinError(fitted.influences, base, bake, rotation, translation);
+      };
+      double best_error = squared_error();
+      std::vector<int> best_parent = parent;
+      std::vector<std::string> best_names = names;
+      std::vector<Rigid> best_rest = rest;
+      SkinInfluences best_influences = fitted.influences;
+      std::vector<Mat3> best_rotation = rotation;
+      std::vector<Vec3> best_translation = translation;
+      AppendFleshJoints(flesh, keys, &parent, &names, &rest, &rotation, &translation);
+      joints = parent.size();
+      for (int round = 0; round < kFleshRounds; ++round) {
+        fitted.influences =
+            FitWeights(fitted.influences, parent, base, bake, rotation, translation, &pool);
+        fit_transforms();
+        if (const double error = squared_error(); error < best_error) {
+          best_error = error;
+          best_parent = parent, best_names = names, best_rest = rest;
+          best_influences = fitted.influences;
+          best_rotation = rotation, best_translation = translation;
+        }
+      }
+      parent = std::move(best_parent), names = std::move(best_names), rest = std::move(best_rest);
+      fitted.influences = std::move(best_influences);
+      rotation = std::move(best_rotation), translation = std::move(best_translation);
+      joints = parent.size();
+    }
+  }
+  std::vector<Rigid> keyed(keys * joints);
   for (std::size_t i = 0; i < keys * joints; ++i) {
     const std::size_t j = i % joints;
     const Quat q(rotation[i]);

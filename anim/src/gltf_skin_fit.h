@@ -25,6 +25,9 @@
 // (gltf_skin_weights.h; the first round on the baked frames), each round followed by the
 // transform passes with the new weights held.
 //
+// Then, while max_joints allows and with flesh_joints, joints for what the bones miss
+// (gltf_flesh_joints.h: jiggling skin), followed by the weight rounds again.
+//
 // Last, each joint's track is stored (rotations as normalized shorts) and thinned within
 // key_tolerance (gltf_skin.h): the skeleton holds what a reader has at every key.
 #pragma once
@@ -46,8 +49,12 @@ struct SkinFitOptions {
   int weight_rounds = 2;       // weight solves (gltf_skin_weights.h), each followed by the passes
   double key_tolerance = 0.0;  // m: joint keys thinned within it (KeyThinning); 0 keeps all
   bool bridge_joints = true;   // a joint at each part's attachment, within max_joints
-  int translation_bits = 0;    // > 0: translation keys rounded for the EXPONENTIAL filter
-  int rotation_bits = 0;       // > 0: rotation keys rounded for the QUATERNION filter
+  // Flesh joints (gltf_flesh_joints.h) for the vertices still missed by more than flesh_error
+  // (m) after the weight rounds, within max_joints; then the weight rounds again with them in.
+  bool flesh_joints = true;
+  double flesh_error = 1e-3;
+  int translation_bits = 0;  // > 0: translation keys rounded for the EXPONENTIAL filter
+  int rotation_bits = 0;     // > 0: rotation keys rounded for the QUATERNION filter
 };
 
 struct FittedSkin {

@@ -59,46 +59,47 @@ Eigen::VectorXd NonNegative(const Eigen::MatrixXd& gram, const Eigen::VectorXd& 
   return w;
 }
 
-}  // namespace
+struct WeightProblem {
+  const SkinInfluences* start;
+  const std::vector<int>* parent;
+  const BaseVertices* base;
+  const BakedAnimation* bake;
+  std::span<const Mat3> rotation;
+  std::span<const Vec3> translation;
+  std::vector<std::vector<std::uint32_t>> children;                    // #J
+  std::vector<std::vector<std::pair<std::uint32_t, double>>>* solved;  // #V (joint, weight)
 
-SkinInfluences FitWeights(const SkinInfluences& start, const std::vector<int>& parent,
-                          const BaseVertices& base, const BakedAnimation& bake,
-                          std::span<const Mat3> rotation, std::span<const Vec3> translation) {
-  const std::size_t joints = parent.size(), keys = bake.KeyCount(), vertices = base.Count();
-  std::vector<std::vector<std::uint32_t>> children(joints);
-  for (std::size_t j = 0; j < joints; ++j)
-    if (parent[j] >= 0) children[std::size_t(parent[j])].push_back(std::uint32_t(j));
-  const std::size_t slots = start.slots;
-  const auto kept_count = static_cast<Eigen::Index>(slots);
-  SkinInfluences fitted;
-  fitted.slots = slots;
-  std::vector<std::uint32_t> candidates;
-  std::vector<std::pair<std::uint32_t, double>> pairs;
-  for (std::size_t v = 0; v < vertices; ++v) {
-    candidates.clear();
+  static constexpr std::size_t kTaskSize = 256;  // vertices per task
+
+  // Vertex v's weights: see the header.
+  void Solve(std::size_t v) const {
+    const std::size_t joints = parent->size(), keys = bake->KeyCount(), vertices = base->Count();
+    const std::size_t slots = start->slots;
+    const auto kept_count = static_cast<Eigen::Index>(slots);
+    std::vector<std::uint32_t> candidates;
     auto add = [&candidates](std::uint32_t j) {
       if (std::find(candidates.begin(), candidates.end(), j) == candidates.end())
         candidates.push_back(j);
     };
     for (std::size_t c = 0; c < slots; ++c) {
-      if (start.weights[v * slots + c] <= 0.0f) continue;
-      const std::uint32_t j = start.joints[v * slots + c];
+      if (start->weights[v * slots + c] <= 0.0f) continue;
+      const std::uint32_t j = start->joints[v * slots + c];
       add(j);
-      if (parent[j] >= 0) {
-        add(std::uint32_t(parent[j]));
-        for (std::uint32_t sibling : children[std::size_t(parent[j])]) add(sibling);
+      if ((*parent)[j] >= 0) {
+        add(std::uint32_t((*parent)[j]));
+        for (std::uint32_t sibling : children[std::size_t((*parent)[j])]) add(sibling);
       }
       for (std::uint32_t child : children[j]) add(child);
     }
     const auto n = static_cast<Eigen::Index>(candidates.size());
     Eigen::VectorXd start_weights = Eigen::VectorXd::Zero(n);
     for (std::size_t c = 0; c < slots; ++c) {
-      if (start.weights[v * slots + c] <= 0.0f) continue;  // unused slots name joint 0
-      const auto at = std::find(candidates.begin(), candidates.end(), start.joints[v * slots + c]);
-      start_weights(at - candidates.begin()) += start.weights[v * slots + c];
+      if (start->weights[v * slots + c] <= 0.0f) continue;  // unused slots name joint 0
+      const auto at = std::find(candidates.begin(), candidates.end(), start->joints[v * slots + c]);
+      start_weights(at - candidates.begin()) += start->weights[v * slots + c];
     }
     // Normal equations of sum over keys |sum_j w_j (R_jk r + t_jk) - p_k|^2.
-    const Vec3 r = Eigen::Map<const Eigen::Vector3f>(&base.positions[v * 3]).cast<double>();
+    const Vec3 r = Eigen::Map<const Eigen::Vector3f>(&base->positions[v * 3]).cast<double>();
     Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(n, n);
     Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
     Eigen::Matrix<double, 3, Eigen::Dynamic> moved(3, n);
@@ -108,7 +109,7 @@ SkinInfluences FitWeights(const SkinInfluences& start, const std::vector<int>& p
         moved.col(a) = rotation[j] * r + translation[j];
       }
       gram.noalias() += moved.transpose() * moved;
-      g.noalias() += moved.transpose() * bake.positions[k * vertices + v].cast<double>();
+      g.noalias() += moved.transpose() * bake->positions[k * vertices + v].cast<double>();
     }
     // Sum held to 1 by a stiff penalty; a faint pull to the start where keys cannot decide.
     const double scale = gram.trace() / double(n) + 1e-30;
@@ -135,6 +136,7 @@ SkinInfluences FitWeights(const SkinInfluences& start, const std::vector<int>& p
       w.setZero();
       for (Eigen::Index a = 0; a < kept_count; ++a) w(order[std::size_t(a)]) = kept(a);
     }
+    std::vector<std::pair<std::uint32_t, double>>& pairs = (*solved)[v];
     pairs.clear();
     for (Eigen::Index a = 0; a < n; ++a)
       if (w(a) > 0.0) pairs.emplace_back(candidates[std::size_t(a)], w(a));
@@ -143,9 +145,70 @@ SkinInfluences FitWeights(const SkinInfluences& start, const std::vector<int>& p
         if (start_weights(a) > 0.0)
           pairs.emplace_back(candidates[std::size_t(a)], start_weights(a));
     }
-    AppendInfluences(pairs, &fitted);
   }
+
+  static void Task(const void* context, std::size_t task) {
+    const auto& self = *static_cast<const WeightProblem*>(context);
+    const std::size_t end = std::min(self.base->Count(), (task + 1) * kTaskSize);
+    for (std::size_t v = task * kTaskSize; v < end; ++v) self.Solve(v);
+  }
+};
+
+}  // namespace
+
+SkinInfluences FitWeights(const SkinInfluences& start, const std::vector<int>& parent,
+                          const BaseVertices& base, const BakedAnimation& bake,
+                          std::span<const Mat3> rotation, std::span<const Vec3> translation,
+                          const ParallelFor* parallel) {
+  const std::size_t joints = parent.size(), vertices = base.Count();
+  std::vector<std::vector<std::pair<std::uint32_t, double>>> solved(vertices);
+  WeightProblem problem{&start,
+                        &parent,
+                        &base,
+                        &bake,
+                        rotation,
+                        translation,
+                        std::vector<std::vector<std::uint32_t>>(joints),
+                        &solved};
+  for (std::size_t j = 0; j < joints; ++j)
+    if (parent[j] >= 0) problem.children[std::size_t(parent[j])].push_back(std::uint32_t(j));
+  RunTasks(parallel, (vertices + WeightProblem::kTaskSize - 1) / WeightProblem::kTaskSize,
+           &WeightProblem::Task, &problem);
+  SkinInfluences fitted;
+  fitted.slots = start.slots;
+  for (auto& pairs : solved) AppendInfluences(std::move(pairs), &fitted);
   return fitted;
+}
+
+Vec3 SkinnedByTransforms(const SkinInfluences& influences, std::size_t v, const Vec3& r,
+                         std::span<const Mat3> rotation, std::span<const Vec3> translation) {
+  const std::size_t slots = influences.slots;
+  Vec3 skinned = Vec3::Zero();
+  for (std::size_t c = 0; c < slots; ++c) {
+    const double w = influences.weights[v * slots + c];
+    if (w == 0.0) continue;
+    const std::size_t j = influences.joints[v * slots + c];
+    skinned += w * (rotation[j] * r + translation[j]);
+  }
+  return skinned;
+}
+
+double SquaredSkinError(const SkinInfluences& influences, const BaseVertices& base,
+                        const BakedAnimation& bake, std::span<const Mat3> rotation,
+                        std::span<const Vec3> translation) {
+  const std::size_t keys = bake.KeyCount(), vertices = base.Count();
+  const std::size_t joints = keys == 0 ? 0 : rotation.size() / keys;
+  double sum = 0.0;
+  for (std::size_t k = 0; k < keys; ++k) {
+    for (std::size_t v = 0; v < vertices; ++v) {
+      const Vec3 r = Eigen::Map<const Eigen::Vector3f>(&base.positions[v * 3]).cast<double>();
+      const Vec3 skinned =
+          SkinnedByTransforms(influences, v, r, rotation.subspan(k * joints, joints),
+                              translation.subspan(k * joints, joints));
+      sum += (bake.positions[k * vertices + v].cast<double>() - skinned).squaredNorm();
+    }
+  }
+  return sum;
 }
 
 }  // namespace wirerig::gltf

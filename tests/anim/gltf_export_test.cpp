@@ -679,7 +679,9 @@ TEST_P(GltfExportRoundTrip, ReimportsValidatesAndReproducesTheBake) {
   if (param.mode == GltfAnimationMode::kSkin) {
     // The report's error is the file's skin with its correctives (without residuals):
     // recompute it independently; the correctives bring it within their 1 mm.
-    EXPECT_EQ(r.joint_count, 7u);  // two parts of 3 joints each, and the bridge joint between
+    // Two parts of 3 joints each, the bridge joint between, and flesh joints where those miss.
+    EXPECT_GE(r.joint_count, 7u);
+    EXPECT_LE(r.joint_count, 64u);
     if (!param.residuals) {
       EXPECT_NEAR(r.corrected_max_error, errors.max, 1e-6 * scene.diagonal);
       EXPECT_NEAR(r.corrected_rms_error, errors.rms, 1e-6 * scene.diagonal);
@@ -892,6 +894,7 @@ TEST(GltfExport, CompressedSkinDecodesToWhatTheReportMeasures) {
   const Scene scene = MakeScene(BendCase{});
   GltfExportOptions options;
   options.mode = GltfAnimationMode::kSkin;
+  options.flesh_joints = false;  // the bones alone miss the bend: correctives carry it
   const Result<GltfExportReport> plain =
       ExportGltf(scene.mesh, scene.bake, options, dir.path() / "plain.glb");
   ASSERT_TRUE(plain.ok()) << plain.error();
@@ -1370,6 +1373,7 @@ TEST(GltfExport, QuantizedCorrectivesAreBytesWithinTheTarget) {
   const Scene scene = MakeScene(BendCase{});
   GltfExportOptions options;
   options.mode = GltfAnimationMode::kSkin;
+  options.flesh_joints = false;  // the bones alone miss the bend: correctives carry it
   const Result<GltfExportReport> plain =
       ExportGltf(scene.mesh, scene.bake, options, dir.path() / "plain.glb");
   ASSERT_TRUE(plain.ok()) << plain.error();

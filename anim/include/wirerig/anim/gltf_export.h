@@ -49,6 +49,10 @@ struct GltfExportOptions {
   // kSkin: a bridge joint where each part hangs from its parent ("forearm_l_bridge", starting
   // half-way between the two sides), while max_joints allows once every part has its joints.
   bool bridge_joints = true;
+  // kSkin: flesh joints where the fitted skin still misses the bake by more than
+  // corrective_error (jiggling skin; gltf_flesh_joints.h), while max_joints allows once every
+  // part and bridge has its joint.
+  bool flesh_joints = true;
   // kSkin: joints per vertex, 4 (JOINTS_0 / WEIGHTS_0, what every engine reads) or 8 (also
   // JOINTS_1 / WEIGHTS_1: Blender, Babylon.js, Unity's glTFast and Godot read them; three.js
   // r187 reads the first set only).
