@@ -2,6 +2,8 @@
 
 #include "gltf_buffers.h"
 
+#include <algorithm>
+
 #include <meshoptimizer.h>
 
 namespace wirerig::gltf {
@@ -50,13 +52,21 @@ int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& ba
   tinygltf::Mesh gltf_mesh;
   gltf_mesh.name = name;
   const auto vertex_count = static_cast<std::uint32_t>(base.Count());
-  for (const MeshPart& part : parts) {
-    if (part.triangle_count == 0) continue;
+  // One primitive per material, its parts' triangles in part order: a reader draws (and, in
+  // three.js, uploads morph targets for) each primitive apart.
+  std::vector<int> part_materials;
+  for (const MeshPart& part : parts)
+    if (part.triangle_count > 0 && std::find(part_materials.begin(), part_materials.end(),
+                                             part.material) == part_materials.end())
+      part_materials.push_back(part.material);
+  for (const int material : part_materials) {
     std::vector<std::uint32_t> indices;
-    indices.reserve(std::size_t{part.triangle_count} * 3);
-    for (std::uint32_t f = 0; f < part.triangle_count; ++f) {
-      const Triangle& t = mesh.triangles[part.first_triangle + f];
-      indices.insert(indices.end(), t.begin(), t.end());
+    for (const MeshPart& part : parts) {
+      if (part.material != material) continue;
+      for (std::uint32_t f = 0; f < part.triangle_count; ++f) {
+        const Triangle& t = mesh.triangles[part.first_triangle + f];
+        indices.insert(indices.end(), t.begin(), t.end());
+      }
     }
     if (reorder_triangles) {
       std::vector<std::uint32_t> reordered(indices.size());
@@ -67,7 +77,7 @@ int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& ba
     primitive.attributes = attributes;
     primitive.indices = AddIndexAccessor(model, indices, vertex_count);
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
-    if (part.material >= 0) primitive.material = materials[static_cast<std::size_t>(part.material)];
+    if (material >= 0) primitive.material = materials[static_cast<std::size_t>(material)];
     gltf_mesh.primitives.push_back(std::move(primitive));
   }
   model.meshes.push_back(std::move(gltf_mesh));

@@ -1,5 +1,5 @@
 // The exported mesh at rest: its vertex attributes as stored in the file (float) and the glTF
-// mesh with one triangle primitive per mesh part.
+// mesh with one triangle primitive per material (its mesh parts' triangles, in part order).
 #pragma once
 
 #include <string>
@@ -23,12 +23,12 @@ struct BaseVertices {
 BaseVertices MakeBaseVertices(const Mesh& mesh);
 
 // Adds the mesh named `name`: POSITION (with min/max), NORMAL and TEXCOORD_0 when present,
-// shared by one primitive per part with triangles (one primitive for all triangles when the
-// mesh has no parts), each with its part's material (`materials`: glTF index per
-// Mesh::materials entry). With `reorder_triangles`, each primitive's triangles are reordered for
-// the GPU's vertex cache (meshoptimizer's optimizeVertexCache: the same triangles, corners in
-// the same order), which also lets the index codec of EXT_meshopt_compression store them in
-// fewer bytes. With `byte_normals`, NORMAL is stored as normalized signed bytes
+// shared by one primitive per material of the parts with triangles (their triangles in part
+// order; one primitive for all triangles when the mesh has no parts), each with that material
+// (`materials`: glTF index per Mesh::materials entry). With `reorder_triangles`, each primitive's
+// triangles are reordered for the GPU's vertex cache (meshoptimizer's optimizeVertexCache: the same
+// triangles, corners in the same order), which also lets the index codec of EXT_meshopt_compression
+// store them in fewer bytes. With `byte_normals`, NORMAL is stored as normalized signed bytes
 // (KHR_mesh_quantization, required). Returns the mesh index.
 int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& base,
                 const std::vector<int>& materials, const std::string& name,

@@ -1227,6 +1227,35 @@ TEST(GltfExport, PartsBecomePrimitivesSharingVerticesAndTargets) {
   }
 }
 
+// Parts that share a material are drawn as one primitive (a draw call, and in three.js one copy
+// of the morph targets, instead of one per part): three parts, two of them on material 0 and not
+// adjacent in part order, give two primitives holding all the triangles.
+TEST(GltfExport, PartsSharingAMaterialShareAPrimitive) {
+  TempDir dir;
+  Scene scene = MakeScene(BendCase{});
+  const auto third = static_cast<std::uint32_t>(scene.mesh.triangles.size() / 3);
+  const auto total = static_cast<std::uint32_t>(scene.mesh.triangles.size());
+  scene.mesh.parts = {MeshPart{"a", 0, third, 0}, MeshPart{"b", third, third, 1},
+                      MeshPart{"c", 2 * third, total - 2 * third, 0}};
+  scene.mesh.materials.push_back(MeshMaterial{"tip", Vec4(0.1, 0.2, 0.9, 0.5), "", {}});
+  GltfExportOptions options;
+  options.mode = GltfAnimationMode::kSkin;
+  const fs::path out = dir.path() / "shared.glb";
+  const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
+  ASSERT_TRUE(report.ok()) << report.error();
+  EXPECT_EQ(report.value().primitive_count, 2u);
+  const tinygltf::Model model = LoadWithTinygltf(out);
+  ASSERT_EQ(model.meshes.at(0).primitives.size(), 2u);
+  const tinygltf::Primitive& shared = model.meshes[0].primitives[0];
+  const tinygltf::Primitive& tip = model.meshes[0].primitives[1];
+  EXPECT_EQ(shared.material, 0);
+  EXPECT_EQ(tip.material, 1);
+  EXPECT_EQ(model.accessors.at(static_cast<std::size_t>(shared.indices)).count,
+            3u * (total - third));
+  EXPECT_EQ(model.accessors.at(static_cast<std::size_t>(tip.indices)).count, 3u * third);
+  EXPECT_LE(ReconstructionErrors(model, scene.bake).max, 1e-3);
+}
+
 // ---------------------------------------------------------------------------------------------
 // KHR_mesh_quantization (GltfExportOptions::quantize).
 

@@ -102,7 +102,7 @@ struct GltfExportReport {
   std::uintmax_t bytes_written = 0;          // sum of their sizes, bytes
   std::size_t vertex_count = 0;              // #V
   std::size_t triangle_count = 0;            // #F
-  std::size_t primitive_count = 0;           // one per mesh part with triangles
+  std::size_t primitive_count = 0;           // one per material of the parts with triangles
   std::size_t key_count = 0;                 // #K
   std::size_t morph_target_count = 0;        // #K in kMorph; #K, the correctives or 0 in kSkin
   std::size_t joint_count = 0;               // kSkin: the skeleton's joints
