@@ -37,6 +37,7 @@ constexpr double kRootDepth = 5.0;      // a child whose root lies deeper than t
                                         // radii ...
 constexpr double kRootRadius = 2.0;     // ... starts where it is this many of its radii deep
 constexpr double kJointBend = 0.25;     // rad (about 15 degrees): a turn this sharp is a joint
+constexpr double kAnkleTurn = 0.6;      // rad (about 35 degrees): a leg turning this far is a foot
 // How far a collar bone turns each way about its joint's axes, degrees.
 const Vec3 kClavicleDegrees(20.0, 20.0, 10.0);
 
@@ -944,6 +945,29 @@ std::size_t Describer::LimbSplit(const std::vector<Vec3>& curve, double limb_rad
   return middle;
 }
 
+// Where a leg's lower segment turns into its foot (the ankle): the first turn of more than
+// kAnkleTurn over 50-90% of the segment's length (over a tenth of it each side), taken at its
+// peak, with two points of the curve beyond it at least; 0 when the leg runs straight to its
+// end. The first turn, not the sharpest: the toes may turn
+// as sharply (man.off's right foot: 0.89 rad at the ankle, 65% down, 1.24 at the toes).
+std::size_t AnkleOf(const std::vector<Vec3>& curve) {
+  if (curve.size() < 5) return 0;
+  const std::vector<double> at = ArcLengths(curve);
+  const double length = at.back();
+  if (!(length > 0.0)) return 0;
+  for (std::size_t k = 1; k + 3 < curve.size(); ++k) {
+    const double f = at[k] / length;
+    if (f < 0.5) continue;
+    if (f > 0.9) break;
+    if (TurnAt(curve, at, k, 0.1 * length) <= kAnkleTurn) continue;
+    while (k + 4 < curve.size() &&
+           TurnAt(curve, at, k + 1, 0.1 * length) > TurnAt(curve, at, k, 0.1 * length))
+      ++k;
+    return k;
+  }
+  return 0;
+}
+
 // The names of a limb's two segments: a biped's arms and legs as a game skeleton names them,
 // a quadruped's legs "<leg>_upper" and "<leg>_lower".
 std::pair<std::string, std::string> SegmentNames(const std::string& limb) {
@@ -1224,8 +1248,25 @@ Result<RigDescription> Describer::Run() {
       out.name = upper;
       out.central_curve.assign(curve.begin(), curve.begin() + long(split) + 1);
       description.parts.push_back(std::move(out));
+      // A biped's leg that turns into a foot gets one. Not a quadruped's: the camel's legs turn
+      // at the pastern, and with a foot there its rig got worse (60-degree test: 10 -> 13 poses
+      // failing; verdict usable -> poor, 18 of 179 profiles crossing).
+      const bool biped_leg = part.name == "leg_left" || part.name == "leg_right";
+      const std::size_t ankle = biped_leg ? AnkleOf(second.central_curve) : 0;
+      PartDescription foot;
+      if (ankle > 0) {
+        foot.name = part.name == "leg_left" ? "foot_l" : "foot_r";
+        foot.parent = lower;
+        foot.central_curve.assign(second.central_curve.begin() + long(ankle),
+                                  second.central_curve.end());
+        second.central_curve.resize(ankle + 1);
+      }
       kept[i] = static_cast<int>(description.parts.size());
       description.parts.push_back(std::move(second));
+      if (ankle > 0) {
+        kept[i] = static_cast<int>(description.parts.size());
+        description.parts.push_back(std::move(foot));
+      }
       continue;
     }
     out.central_curve = std::move(curve);

@@ -545,9 +545,9 @@ TEST(CurveSkeleton, StandingManIsABiped) {
   const RigDescription& description = result.value();
   EXPECT_EQ(ValidateRigDescription(description), "");
   // Arms and legs as chains named as a game skeleton names them.
-  const std::multiset<std::string> expected{"torso",     "head",       "clavicle_l",  "upper_arm_l",
-                                            "forearm_l", "clavicle_r", "upper_arm_r", "forearm_r",
-                                            "thigh_l",   "shin_l",     "thigh_r",     "shin_r"};
+  const std::multiset<std::string> expected{
+      "torso",     "head",    "clavicle_l", "upper_arm_l", "forearm_l", "clavicle_r", "upper_arm_r",
+      "forearm_r", "thigh_l", "shin_l",     "foot_l",      "thigh_r",   "shin_r",     "foot_r"};
   EXPECT_EQ(Names(description), expected);
   // His arms' branches start in his chest: each hangs from a skinless collar bone that ends
   // where the arm's own length starts, 2 arm thicknesses from the surface.
@@ -580,6 +580,18 @@ TEST(CurveSkeleton, StandingManIsABiped) {
   EXPECT_EQ(Find(description, "shin_r")->parent, "thigh_r");
   for (const char* leg : {"shin_l", "shin_r"}) {
     EXPECT_LT(Find(description, leg)->central_curve.back().y(), -0.4) << leg;
+  }
+  // His feet: from the ankle, where the leg turns forwards (+Z), hanging from the shin; each
+  // runs forwards more than it drops.
+  for (const char* side : {"l", "r"}) {
+    const PartDescription* foot = Find(description, std::string("foot_") + side);
+    const PartDescription* shin = Find(description, std::string("shin_") + side);
+    ASSERT_TRUE(foot && shin);
+    EXPECT_EQ(foot->parent, shin->name);
+    EXPECT_LT((shin->central_curve.back() - foot->central_curve.front()).norm(), 1e-12);
+    const Vec3 run = foot->central_curve.back() - foot->central_curve.front();
+    EXPECT_GT(run.z(), 0.03) << side;
+    EXPECT_GT(run.z(), std::abs(run.y())) << side;
   }
   // Elbows and knees where a body has them: 30-65% of the way down from the limb's top to its
   // end (a man's elbow about 40% down from the shoulder to the fingertips, the knee about half
