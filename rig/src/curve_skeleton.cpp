@@ -40,6 +40,10 @@ constexpr double kJointBend = 0.25;     // rad (about 15 degrees): a turn this s
 constexpr double kAnkleTurn = 0.6;      // rad (about 35 degrees): a leg turning this far is a foot
 // How far a collar bone turns each way about its joint's axes, degrees.
 const Vec3 kClavicleDegrees(20.0, 20.0, 10.0);
+// How far an ankle turns about its joint's axes (X the biped's left: positive turns the toes
+// down), degrees: dorsiflexion 20, plantarflexion 45, and 15-20 each way about the others,
+// as the human description's feet.
+const Vec3 kAnkleMinDegrees(-20.0, -15.0, -20.0), kAnkleMaxDegrees(45.0, 15.0, 20.0);
 
 // Brute-force distance and ray queries against the mesh surface (few hundred queries per
 // description, so no acceleration structure beyond bounding-sphere culling).
@@ -228,6 +232,7 @@ class Describer {
   const CurveSkeleton& skeleton_;
   double diagonal_ = 0.0;
   Vec3 low_ = Vec3::Zero(), high_ = Vec3::Zero();
+  Vec3 left_ = Vec3::Zero();  // a biped's left (Name), zero for other shapes
 
   std::vector<Vec3> nodes_;
   std::vector<SkeletonEdge> edges_;
@@ -811,6 +816,7 @@ void Describer::Name() {
     const Vec3 spread = end_of(legs[0]) - end_of(legs[1]);
     const Vec3 left =
         std::abs(spread.z()) > std::abs(spread.x()) ? Vec3(-Vec3::UnitZ()) : Vec3(Vec3::UnitX());
+    left_ = left;
     std::vector<int> others = others_than(legs);
     int head = -1;
     for (int c : others) {
@@ -1248,7 +1254,8 @@ Result<RigDescription> Describer::Run() {
       out.name = upper;
       out.central_curve.assign(curve.begin(), curve.begin() + long(split) + 1);
       description.parts.push_back(std::move(out));
-      // A biped's leg that turns into a foot gets one. Not a quadruped's: the camel's legs turn
+      // A biped's leg that turns into a foot gets one, with an ankle's limits. Not a
+      // quadruped's: the camel's legs turn
       // at the pastern, and with a foot there its rig got worse (60-degree test: 10 -> 13 poses
       // failing; verdict usable -> poor, 18 of 179 profiles crossing).
       const bool biped_leg = part.name == "leg_left" || part.name == "leg_right";
@@ -1256,6 +1263,9 @@ Result<RigDescription> Describer::Run() {
       PartDescription foot;
       if (ankle > 0) {
         foot.name = part.name == "leg_left" ? "foot_l" : "foot_r";
+        foot.joint.axis = left_;
+        foot.joint.min_degrees = kAnkleMinDegrees;
+        foot.joint.max_degrees = kAnkleMaxDegrees;
         foot.parent = lower;
         foot.central_curve.assign(second.central_curve.begin() + long(ankle),
                                   second.central_curve.end());

@@ -592,6 +592,11 @@ TEST(CurveSkeleton, StandingManIsABiped) {
     const Vec3 run = foot->central_curve.back() - foot->central_curve.front();
     EXPECT_GT(run.z(), 0.03) << side;
     EXPECT_GT(run.z(), std::abs(run.y())) << side;
+    // An ankle's limits, flexing about his left (+X): 20 degrees up, 45 down.
+    ASSERT_TRUE(foot->joint.axis.has_value());
+    EXPECT_EQ(*foot->joint.axis, Vec3::UnitX());
+    EXPECT_EQ(foot->joint.min_degrees, Vec3(-20.0, -15.0, -20.0));
+    EXPECT_EQ(foot->joint.max_degrees, Vec3(45.0, 15.0, 20.0));
   }
   // Elbows and knees where a body has them: 30-65% of the way down from the limb's top to its
   // end (a man's elbow about 40% down from the shoulder to the fingertips, the knee about half
