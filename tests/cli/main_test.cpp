@@ -97,6 +97,8 @@ TEST(WirerigExitCodes, UsageErrorsExitTwo) {
   ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--mode", "morph", "--influences", "8"}),
              2, "--influences: applies to --mode skin only");
   ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--influences", "6"}), 2, "--influences");
+  ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--mode", "morph", "--no-flesh-joints"}),
+             2, "--no-flesh-joints: applies to --mode skin only");
   ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--mode", "skin", "--quantize",
                          "--max-correctives", "0"}),
              2, "--quantize: quantizes morph targets: this skin has none");
