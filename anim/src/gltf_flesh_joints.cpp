@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <limits>
 
-#include <Eigen/SVD>
+#include "motion_rotation.h"
 
 namespace wirerig::gltf {
 namespace {
@@ -19,17 +19,15 @@ Vec3 RestPosition(const BaseVertices& base, std::size_t v) {
   return Eigen::Map<const Eigen::Vector3f>(&base.positions[v * 3]).cast<double>();
 }
 
-// The rigid x -> R x + t minimising sum |R a_i + t - b_i|^2 (Kabsch).
+// The rigid x -> R x + t minimising sum |R a_i + t - b_i|^2 (Kabsch: the rotation nearest to
+// the centred points' covariance).
 RigidTransform Kabsch(std::span<const Vec3> a, std::span<const Vec3> b) {
   Vec3 ca = Vec3::Zero(), cb = Vec3::Zero();
   for (std::size_t i = 0; i < a.size(); ++i) ca += a[i], cb += b[i];
   ca /= double(a.size()), cb /= double(b.size());
   Mat3 covariance = Mat3::Zero();
   for (std::size_t i = 0; i < a.size(); ++i) covariance += (b[i] - cb) * (a[i] - ca).transpose();
-  const Eigen::JacobiSVD<Mat3> svd(covariance, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Mat3 fix = Mat3::Identity();
-  fix(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
-  const Mat3 r = svd.matrixU() * fix * svd.matrixV().transpose();
+  const Mat3 r = NearestRotation(covariance);
   return {Quat(r), cb - r * ca};
 }
 

@@ -399,10 +399,9 @@ Result<FittedSkin> FitSkeleton(const BakedAnimation& bake, const BaseVertices& b
       const auto squared_error = [&] {
         return SquaredSkinError(fitted.influences, base, bake, rotation, translation);
       };
+      const std::size_t bones = joints;
       double best_error = squared_error();
-      std::vector<int> best_parent = parent;
-      std::vector<std::string> best_names = names;
-      std::vector<Rigid> best_rest = rest;
+      bool best_has_flesh = false;
       SkinInfluences best_influences = fitted.influences;
       std::vector<Mat3> best_rotation = rotation;
       std::vector<Vec3> best_translation = translation;
@@ -414,12 +413,12 @@ Result<FittedSkin> FitSkeleton(const BakedAnimation& bake, const BaseVertices& b
         fit_transforms();
         if (const double error = squared_error(); error < best_error) {
           best_error = error;
-          best_parent = parent, best_names = names, best_rest = rest;
+          best_has_flesh = true;
           best_influences = fitted.influences;
           best_rotation = rotation, best_translation = translation;
         }
       }
-      parent = std::move(best_parent), names = std::move(best_names), rest = std::move(best_rest);
+      if (!best_has_flesh) parent.resize(bones), names.resize(bones), rest.resize(bones);
       fitted.influences = std::move(best_influences);
       rotation = std::move(best_rotation), translation = std::move(best_translation);
       joints = parent.size();

@@ -954,8 +954,8 @@ std::size_t Describer::LimbSplit(const std::vector<Vec3>& curve, double limb_rad
 // Where a leg's lower segment turns into its foot (the ankle): the first turn of more than
 // kAnkleTurn over 50-90% of the segment's length (over a tenth of it each side), taken at its
 // peak, with two points of the curve beyond it at least; 0 when the leg runs straight to its
-// end. The first turn, not the sharpest: the toes may turn
-// as sharply (man.off's right foot: 0.89 rad at the ankle, 65% down, 1.24 at the toes).
+// end. The first turn, not the sharpest: the toes may turn as sharply (man.off's right foot:
+// 0.89 rad at the ankle, 65% down, 1.24 at the toes).
 std::size_t AnkleOf(const std::vector<Vec3>& curve) {
   if (curve.size() < 5) return 0;
   const std::vector<double> at = ArcLengths(curve);
@@ -1255,9 +1255,9 @@ Result<RigDescription> Describer::Run() {
       out.central_curve.assign(curve.begin(), curve.begin() + long(split) + 1);
       description.parts.push_back(std::move(out));
       // A biped's leg that turns into a foot gets one, with an ankle's limits. Not a
-      // quadruped's: the camel's legs turn
-      // at the pastern, and with a foot there its rig got worse (60-degree test: 10 -> 13 poses
-      // failing; verdict usable -> poor, 18 of 179 profiles crossing).
+      // quadruped's: the camel's legs turn at the pastern, and with a foot there its rig got
+      // worse (60-degree test: 10 -> 13 poses failing; verdict usable -> poor, 18 of 179
+      // profiles crossing).
       const bool biped_leg = part.name == "leg_left" || part.name == "leg_right";
       const std::size_t ankle = biped_leg ? AnkleOf(second.central_curve) : 0;
       PartDescription foot;
