@@ -30,6 +30,14 @@ inline void RunTasks(const ParallelFor* parallel, std::size_t count, ParallelFor
   }
 }
 
+// RunTasks with a callable: f(k) for every k in [0, count).
+template <class F>
+void RunEach(const ParallelFor* parallel, std::size_t count, const F& f) {
+  RunTasks(
+      parallel, count,
+      [](const void* context, std::size_t k) { (*static_cast<const F*>(context))(k); }, &f);
+}
+
 // A fixed set of threads - 1 workers that, with the calling thread, run each Run's tasks.
 // Create it once (creation allocates and starts the threads); Run itself never allocates.
 // Calls to Run from several threads are serialised; a task must not call Run on the same pool.
