@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <thread>
+#include <utility>
 
 #include <Eigen/Eigenvalues>
 
@@ -157,41 +158,65 @@ Selection Select(const Eigen::MatrixXd& residuals,
 // diag(column_weight) residuals^T): each X^T u_i, unit (or bytes), with their weights per key
 // by weighted least squares over all of them at once (for float shapes these are the u_i
 // themselves up to scale: the shapes are orthogonal in the weights). One pass of products
-// rather than Select's passes per shape.
+// rather than Select's passes per shape, by vertex blocks on `pool`, sums in block order.
 Selection Project(const Eigen::MatrixXd& residuals,
                   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& eigen, std::size_t count,
-                  bool byte_shapes, const Eigen::VectorXd& column_weight) {
-  const Eigen::Index rows = residuals.rows();
+                  bool byte_shapes, const Eigen::VectorXd& column_weight, const ParallelFor& pool) {
+  const Eigen::Index rows = residuals.rows(), vertices = residuals.cols() / 3;
   const Eigen::Index k = std::min<Eigen::Index>(Eigen::Index(count), rows);
-  Selection out;
-  Eigen::MatrixXd shapes = eigen.eigenvectors().rightCols(k).rowwise().reverse().transpose() *
-                           residuals;  // k x 3#V, largest eigenvalue first
+  // Vertex blocks: the products below by column blocks on `pool`, sums in block order.
+  auto columns_of = [&](std::size_t b) {
+    const Eigen::Index begin = vertices * Eigen::Index(b) / Eigen::Index(kGramBlocks);
+    const Eigen::Index end = vertices * Eigen::Index(b + 1) / Eigen::Index(kGramBlocks);
+    return std::pair{3 * begin, 3 * (end - begin)};
+  };
+  const Eigen::MatrixXd u = eigen.eigenvectors().rightCols(k).rowwise().reverse();  // largest first
+  Eigen::MatrixXd shapes(k, residuals.cols());                                      // k x 3#V
+  RunEach(&pool, kGramBlocks, [&](std::size_t b) {
+    const auto [begin, size] = columns_of(b);
+    shapes.middleCols(begin, size).noalias() = u.transpose() * residuals.middleCols(begin, size);
+  });
   Eigen::Index kept = 0;
   for (Eigen::Index s = 0; s < k; ++s) {
-    Eigen::VectorXd shape = shapes.row(s).transpose();
-    const double norm = shape.norm();
+    const double norm = shapes.row(s).norm();
     if (!(norm > 0.0) || !std::isfinite(norm)) break;
-    shape /= norm;
+    shapes.row(kept) = shapes.row(s) / norm;
     if (byte_shapes)
-      shape = (shape * (kByteScale / shape.cwiseAbs().maxCoeff())).array().round() / kByteScale;
-    shapes.row(kept++) = shape.transpose();
+      shapes.row(kept) = (shapes.row(kept) * (kByteScale / shapes.row(kept).cwiseAbs().maxCoeff()))
+                             .array()
+                             .round() /
+                         kByteScale;
+    ++kept;
   }
   shapes.conservativeResize(kept, Eigen::NoChange);
-  const Eigen::MatrixXd weighted = shapes * column_weight.asDiagonal();  // k x 3#V
-  Eigen::MatrixXd normal = weighted * shapes.transpose();
+  // Weighted least squares for all the weights at once: normal = S W S^T, right = S W X^T.
+  std::vector<Eigen::MatrixXd> normals(kGramBlocks), rights(kGramBlocks);
+  RunEach(&pool, kGramBlocks, [&](std::size_t b) {
+    const auto [begin, size] = columns_of(b);
+    const Eigen::MatrixXd weighted =
+        shapes.middleCols(begin, size) * column_weight.segment(begin, size).asDiagonal();
+    normals[b] = weighted * shapes.middleCols(begin, size).transpose();
+    rights[b] = weighted * residuals.middleCols(begin, size).transpose();
+  });
+  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(kept, kept),
+                  right = Eigen::MatrixXd::Zero(kept, rows);
+  for (std::size_t b = 0; b < kGramBlocks; ++b) normal += normals[b], right += rights[b];
   normal.diagonal().array() += 1e-12 * normal.diagonal().cwiseAbs().maxCoeff() + 1e-300;
-  const Eigen::MatrixXd weights =
-      normal.ldlt().solve(weighted * residuals.transpose()).transpose();  // #K x k
-  Eigen::MatrixXd left = residuals;
-  left.noalias() -= weights * shapes;
+  const Eigen::MatrixXd weights = normal.ldlt().solve(right).transpose();  // #K x k
+  Selection out;
+  out.vertex_error = Eigen::VectorXd::Zero(vertices);
+  RunEach(&pool, kGramBlocks, [&](std::size_t b) {
+    const auto [begin, size] = columns_of(b);
+    Eigen::MatrixXd left = residuals.middleCols(begin, size);
+    left.noalias() -= weights * shapes.middleCols(begin, size);
+    for (Eigen::Index i = 0; i < size; i += 3)
+      out.vertex_error((begin + i) / 3) = left.middleCols<3>(i).rowwise().norm().maxCoeff();
+  });
   for (Eigen::Index s = 0; s < kept; ++s) {
     out.shapes.push_back(shapes.row(s).transpose());
     out.weights.push_back(weights.col(s));
   }
-  out.vertex_error = Eigen::VectorXd::Zero(left.cols() / 3);
-  for (Eigen::Index v = 0; v < out.vertex_error.size(); ++v)
-    out.vertex_error(v) = left.middleCols<3>(3 * v).rowwise().norm().maxCoeff();
-  out.error = out.vertex_error.size() > 0 ? out.vertex_error.maxCoeff() : 0.0;
+  out.error = vertices > 0 ? out.vertex_error.maxCoeff() : 0.0;
   return out;
 }
 
@@ -199,8 +224,9 @@ Selection Project(const Eigen::MatrixXd& residuals,
 // shapes' weights per key held: a vertex's error depends on its own entries only, so each
 // vertex the selection leaves above kRefineShare of the target gets Lawson's reweighting over
 // the keys (least squares with weights per key, each round's weights times the errors they
-// left), keeping its best entries. Byte shapes' entries stay multiples of 1 / 127 in [-1, 1].
-constexpr double kRefineShare = 0.5;
+// left) until it is within that share, keeping its best entries. Byte shapes' entries stay
+// multiples of 1 / 127 in [-1, 1]. Vertices run in parallel on `pool` (each writes its own).
+constexpr double kRefineShare = 0.8;
 constexpr int kVertexRounds = 24;
 void RefineVertices(const Eigen::MatrixXd& residuals, const CorrectiveOptions& options,
                     const ParallelFor& pool, Selection* selection) {
@@ -224,7 +250,8 @@ void RefineVertices(const Eigen::MatrixXd& residuals, const CorrectiveOptions& o
     Eigen::VectorXd errors;
     double best_error = worst(x, best, &errors);
     Eigen::VectorXd key_weight = Eigen::VectorXd::Ones(keys);
-    for (int round = 0; round < kVertexRounds; ++round) {
+    for (int round = 0; round < kVertexRounds && best_error > kRefineShare * options.max_error;
+         ++round) {
       const double mean = errors.cwiseProduct(key_weight).mean();
       if (!(mean > 0.0) || !std::isfinite(mean)) break;
       key_weight = key_weight.cwiseProduct(errors) / mean;
@@ -275,7 +302,7 @@ Selection SelectMinimax(const Eigen::MatrixXd& residuals, const CorrectiveOption
     // The solver reads the lower half.
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(
         WeightedGram(residuals, column_weight, pool));
-    last = Project(residuals, eigen, options.max_shapes, options.byte_shapes, column_weight);
+    last = Project(residuals, eigen, options.max_shapes, options.byte_shapes, column_weight, pool);
     Selection refined = last;
     RefineVertices(residuals, options, pool, &refined);
     if (refined.error < best.error) best = std::move(refined);
