@@ -72,13 +72,11 @@ gltf::MorphTargetSet ResidualDeltas(gltf::SkinFit fit, std::size_t keys, std::si
 
 // Adds the skeleton, skin and (optionally) residual targets; fills the skin numbers of `report`.
 // Returns the residual targets (none without residuals).
-Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::Animation& animation,
-                                            const Mesh& mesh, const BakedAnimation& bake,
-                                            const gltf::BaseVertices& base,
-                                            const GltfExportOptions& options,
-                                            const gltf::MorphQuantization& quantization,
-                                            int mesh_index, std::span<const float> times,
-                                            int time_accessor, GltfExportReport* report) {
+Result<gltf::MorphTargetsAdded> AddSkinMode(
+    tinygltf::Model& model, tinygltf::Animation& animation, const Mesh& mesh,
+    const BakedAnimation& bake, const gltf::BaseVertices& base, const GltfExportOptions& options,
+    const gltf::MorphQuantization& quantization, const gltf::PositionQuantization& stored_positions,
+    int mesh_index, std::span<const float> times, int time_accessor, GltfExportReport* report) {
   gltf::SkinFitOptions fit_options;
   fit_options.max_joints = options.max_joints;
   fit_options.max_joints_per_part = options.max_joints_per_part;
@@ -98,7 +96,8 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::An
   const gltf::SkinInfluences& influences = fitted.value().influences;
   const bool residuals = options.residual_morph_targets;
   std::vector<int> roots;
-  model.nodes[0].skin = gltf::AddSkeleton(model, animation, skeleton, times, time_accessor, &roots);
+  model.nodes[0].skin = gltf::AddSkeleton(model, animation, skeleton, times, time_accessor, &roots,
+                                          stored_positions.Dequantization());
   model.scenes[0].nodes.insert(model.scenes[0].nodes.end(), roots.begin(), roots.end());
   gltf::AddSkinAttributes(model, mesh_index, influences, skeleton.JointCount());
   const bool correct = !residuals && options.max_correctives > 0;
@@ -138,7 +137,11 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(tinygltf::Model& model, tinygltf::An
   report->corrected_max_error = correctives->max_error;
   report->corrected_rms_error = correctives->rms_error;
   if (correctives->shape_count == 0) return gltf::MorphTargetsAdded{};
-  gltf::AddWeightsChannel(model, animation, 0, time_accessor, correctives->weights);
+  // The shapes' deltas in stored position units: their weights over the quantization's scale.
+  std::vector<float> weights = correctives->weights;
+  if (stored_positions.enabled)
+    for (float& w : weights) w = static_cast<float>(double(w) / stored_positions.scale);
+  gltf::AddWeightsChannel(model, animation, 0, time_accessor, weights);
   gltf::MorphTargetSet set;
   set.key_count = correctives->shape_count;
   set.vertex_count = base.Count();
@@ -222,6 +225,18 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
   const gltf::MaterialsAdded materials = gltf::AddMaterials(
       model, mesh, options.texture_dir, out_dir, options.max_texture_size, &report.warnings);
   gltf::BaseVertices base = gltf::MakeBaseVertices(mesh);
+  // Rest normals as normalized bytes where no normal target is measured against them:
+  // compressed files (octahedral), and quantized skin files without residual targets.
+  const bool byte_normals =
+      options.compress || (options.quantize && options.mode == GltfAnimationMode::kSkin &&
+                           !options.residual_morph_targets);
+  // Quantized skin files without residual targets store POSITION as shorts too.
+  gltf::PositionQuantization position_quantization;
+  if (byte_normals && !options.compress) {
+    position_quantization = gltf::QuantizePositions(&base);
+    for (float& c : base.normals)
+      c = std::round(c * float(gltf::kByteScale)) / float(gltf::kByteScale);
+  }
   if (options.compress) {
     gltf::RoundLikeExpFilter(base.positions, 3, gltf::kPositionBits);
     gltf::RoundLikeOctFilter(base.normals, gltf::kOctahedralBits);
@@ -235,8 +250,8 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
     report.warnings.emplace_back("bake.normals left out: the mesh has no normals");
   }
   const int mesh_index = gltf::AddBaseMesh(model, mesh, base, materials.material, name,
-                                           /*reorder_triangles=*/options.compress,
-                                           /*byte_normals=*/options.compress);
+                                           /*reorder_triangles=*/options.compress, byte_normals,
+                                           position_quantization);
   tinygltf::Node node;
   node.name = name;
   node.mesh = mesh_index;
@@ -262,8 +277,8 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
     report.morph_target_count = bake.KeyCount();
   } else {
     Result<gltf::MorphTargetsAdded> skinned =
-        AddSkinMode(model, animation, mesh, bake, base, options, quantization, mesh_index, times,
-                    time_accessor, &report);
+        AddSkinMode(model, animation, mesh, bake, base, options, quantization,
+                    position_quantization, mesh_index, times, time_accessor, &report);
     if (!skinned) return Error{out.string() + ": skin: " + skinned.error()};
     targets = std::move(skinned).value();
   }

@@ -3,6 +3,9 @@
 #include "gltf_buffers.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include <meshoptimizer.h>
 
@@ -29,13 +32,82 @@ BaseVertices MakeBaseVertices(const Mesh& mesh) {
   return base;
 }
 
+Mat4d PositionQuantization::Dequantization() const {
+  Mat4d m = Mat4d::Identity();
+  if (!enabled) return m;
+  m.topLeftCorner<3, 3>() *= scale;
+  m.topRightCorner<3, 1>() = offset;
+  return m;
+}
+
+namespace {
+
+// The stored short of rest coordinate `value` along axis c.
+std::int16_t StoredShort(const PositionQuantization& q, float value, int c) {
+  const double stored = (double(value) - q.offset[c]) / q.scale * kShortScale;
+  return static_cast<std::int16_t>(std::lround(std::clamp(stored, -kShortScale, kShortScale)));
+}
+
+// POSITION as normalized shorts, 8 bytes a vertex (4-byte aligned); min/max in shorts.
+int AddQuantizedPositions(tinygltf::Model& model, const BaseVertices& base,
+                          const PositionQuantization& q, int target) {
+  const std::size_t count = base.Count();
+  std::vector<std::int16_t> padded(4 * count, 0);
+  std::vector<double> low(3, kShortScale), high(3, -kShortScale);
+  for (std::size_t v = 0; v < count; ++v)
+    for (int c = 0; c < 3; ++c) {
+      const std::int16_t s = StoredShort(q, base.positions[3 * v + std::size_t(c)], c);
+      padded[4 * v + std::size_t(c)] = s;
+      low[std::size_t(c)] = std::min(low[std::size_t(c)], double(s));
+      high[std::size_t(c)] = std::max(high[std::size_t(c)], double(s));
+    }
+  const int view =
+      AddBufferView(model, padded.data(), padded.size() * sizeof(std::int16_t), target);
+  model.bufferViews[static_cast<std::size_t>(view)].byteStride = 4 * sizeof(std::int16_t);
+  RequireExtension(model, kMeshQuantization);
+  const int index =
+      AddAccessor(model, view, TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC3, count, true);
+  if (count > 0) {
+    model.accessors[static_cast<std::size_t>(index)].minValues = std::move(low);
+    model.accessors[static_cast<std::size_t>(index)].maxValues = std::move(high);
+  }
+  return index;
+}
+
+}  // namespace
+
+PositionQuantization QuantizePositions(BaseVertices* base) {
+  PositionQuantization q;
+  const std::size_t count = base->Count();
+  if (count == 0) return q;
+  Vec3 low = Vec3::Constant(std::numeric_limits<double>::max()), high = -low;
+  for (std::size_t v = 0; v < count; ++v)
+    for (int c = 0; c < 3; ++c) {
+      low[c] = std::min(low[c], double(base->positions[3 * v + std::size_t(c)]));
+      high[c] = std::max(high[c], double(base->positions[3 * v + std::size_t(c)]));
+    }
+  q.offset = 0.5 * (low + high);
+  q.scale = 0.5 * (high - low).maxCoeff();
+  if (!(q.scale > 0.0) || !std::isfinite(q.scale)) return PositionQuantization{};
+  q.enabled = true;
+  for (std::size_t v = 0; v < count; ++v)
+    for (int c = 0; c < 3; ++c) {
+      float& value = base->positions[3 * v + std::size_t(c)];
+      value = static_cast<float>(q.offset[c] +
+                                 q.scale * double(StoredShort(q, value, c)) / kShortScale);
+    }
+  return q;
+}
+
 int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& base,
                 const std::vector<int>& materials, const std::string& name, bool reorder_triangles,
-                bool byte_normals) {
+                bool byte_normals, const PositionQuantization& positions) {
   const int target = TINYGLTF_TARGET_ARRAY_BUFFER;
   std::map<std::string, int> attributes;
   attributes["POSITION"] =
-      AddFloatAccessor(model, base.positions, TINYGLTF_TYPE_VEC3, target, /*min_max=*/true);
+      positions.enabled
+          ? AddQuantizedPositions(model, base, positions, target)
+          : AddFloatAccessor(model, base.positions, TINYGLTF_TYPE_VEC3, target, /*min_max=*/true);
   if (!base.normals.empty()) {
     attributes["NORMAL"] =
         byte_normals ? AddNormalizedByteVec3Accessor(model, base.normals, target)

@@ -11,6 +11,8 @@
 
 namespace wirerig::gltf {
 
+using Mat4d = Eigen::Matrix4d;
+
 // The rest mesh's render vertices as written: #V x 3 positions, #V x 3 unit normals (empty when
 // the mesh has none; a zero normal becomes +Y), #V x 2 uvs (or empty).
 struct BaseVertices {
@@ -22,6 +24,21 @@ struct BaseVertices {
 };
 BaseVertices MakeBaseVertices(const Mesh& mesh);
 
+// POSITION stored as normalized signed shorts (KHR_mesh_quantization), as gltfpack stores it:
+// p = offset + scale * max(q / 32767, -1). A skinned mesh's node transform is ignored by
+// readers, so the dequantization goes into the inverse bind matrices (Dequantization()) and the
+// morph targets' deltas into stored units (1 / scale: their animated weights).
+struct PositionQuantization {
+  bool enabled = false;
+  Vec3 offset = Vec3::Zero();  // m: the rest box's centre
+  double scale = 1.0;          // m per stored unit: half the rest box's largest side
+  // The map from stored to rest positions (identity when not enabled).
+  Mat4d Dequantization() const;
+};
+// Quantization for `base`'s positions, which are rounded onto the grid the shorts hold (so
+// that whatever is fitted to them and measured sees what the file stores).
+PositionQuantization QuantizePositions(BaseVertices* base);
+
 // Adds the mesh named `name`: POSITION (with min/max), NORMAL and TEXCOORD_0 when present,
 // shared by one primitive per material of the parts with triangles (their triangles in part
 // order; one primitive for all triangles when the mesh has no parts), each with that material
@@ -29,9 +46,11 @@ BaseVertices MakeBaseVertices(const Mesh& mesh);
 // triangles are reordered for the GPU's vertex cache (meshoptimizer's optimizeVertexCache: the same
 // triangles, corners in the same order), which also lets the index codec of EXT_meshopt_compression
 // store them in fewer bytes. With `byte_normals`, NORMAL is stored as normalized signed bytes
-// (KHR_mesh_quantization, required). Returns the mesh index.
+// (KHR_mesh_quantization, required); with `positions` enabled, POSITION as its shorts.
+// Returns the mesh index.
 int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& base,
                 const std::vector<int>& materials, const std::string& name,
-                bool reorder_triangles = false, bool byte_normals = false);
+                bool reorder_triangles = false, bool byte_normals = false,
+                const PositionQuantization& positions = {});
 
 }  // namespace wirerig::gltf

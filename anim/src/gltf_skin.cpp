@@ -186,7 +186,8 @@ void AppendInfluences(std::vector<std::pair<std::uint32_t, double>> pairs,
 }
 
 int AddSkeleton(tinygltf::Model& model, tinygltf::Animation& animation, const Skeleton& skeleton,
-                std::span<const float> times, int time_accessor, std::vector<int>* roots) {
+                std::span<const float> times, int time_accessor, std::vector<int>* roots,
+                const Eigen::Matrix4d& stored_to_rest) {
   const std::size_t joints = skeleton.JointCount();
   const std::size_t keys = skeleton.translations.size() / joints;
   const int first_node = static_cast<int>(model.nodes.size());
@@ -209,8 +210,10 @@ int AddSkeleton(tinygltf::Model& model, tinygltf::Animation& animation, const Sk
     }
   }
   std::vector<float> matrices;
-  for (const Mat4f& m : skeleton.inverse_bind)
+  for (const Mat4f& inverse_bind : skeleton.inverse_bind) {
+    const Mat4f m = (inverse_bind.cast<double>() * stored_to_rest).cast<float>();
     matrices.insert(matrices.end(), m.data(), m.data() + 16);
+  }
   skin.inverseBindMatrices = AddFloatAccessor(model, matrices, TINYGLTF_TYPE_MAT4, 0, false);
   if (std::count(skeleton.parent.begin(), skeleton.parent.end(), -1) == 1)
     skin.skeleton = first_node;

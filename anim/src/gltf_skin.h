@@ -88,9 +88,11 @@ void AppendInfluences(std::vector<std::pair<std::uint32_t, double>> pairs,
 // Appends the joint nodes (their roots to `roots`, for the scene), the skin with its inverse
 // bind matrices, and per joint a translation and a rotation channel (LINEAR) on its stored keys
 // to `animation`: `time_accessor` (all #K `times`) when it keeps every key, else an input of
-// its own, shared by joints keeping the same keys. Returns the skin index.
+// its own, shared by joints keeping the same keys. The inverse bind matrices are written times
+// `stored_to_rest` (the positions' dequantization, PositionQuantization). Returns the skin index.
 int AddSkeleton(tinygltf::Model& model, tinygltf::Animation& animation, const Skeleton& skeleton,
-                std::span<const float> times, int time_accessor, std::vector<int>* roots);
+                std::span<const float> times, int time_accessor, std::vector<int>* roots,
+                const Eigen::Matrix4d& stored_to_rest = Eigen::Matrix4d::Identity());
 
 // Adds JOINTS_0 and WEIGHTS_0 (and JOINTS_1, WEIGHTS_1 with 8 slots) to every primitive of mesh
 // `mesh_index`.

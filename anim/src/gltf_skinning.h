@@ -11,8 +11,6 @@
 
 namespace wirerig::gltf {
 
-using Mat4d = Eigen::Matrix4d;
-
 // Joint-to-world transforms (#J) for the local transforms `translations`, `rotations` (#J).
 std::vector<Mat4d> JointGlobals(const Skeleton& skeleton, std::span<const Vec3f> translations,
                                 std::span<const Quatf> rotations);

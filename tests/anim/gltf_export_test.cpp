@@ -1393,7 +1393,8 @@ INSTANTIATE_TEST_SUITE_P(
                       QuantizedCase{"skin_residual_glb", ".glb", GltfAnimationMode::kSkin}),
     [](const ::testing::TestParamInfo<QuantizedCase>& p) { return std::string(p.param.name); });
 
-// Skin mode with correctives, quantized: the shapes are normalized signed bytes at a 4-byte
+// Skin mode with correctives, quantized: the rest positions are shorts and the normals bytes, the
+// shapes are normalized signed bytes at a 4-byte
 // stride, exact multiples of 1/127 (their scale is in the weights); the file read back by
 // tinygltf plays within the error the report gives (measured on the bytes as stored), within
 // the 1 mm target, and is smaller than the float file.
@@ -1417,6 +1418,18 @@ TEST(GltfExport, QuantizedCorrectivesAreBytesWithinTheTarget) {
   const tinygltf::Model model = LoadWithTinygltf(out);
   EXPECT_TRUE(RequiresQuantization(model));
   const tinygltf::Primitive& primitive = model.meshes.at(0).primitives.at(0);
+  // The rest mesh quantized too: positions as normalized shorts (8 bytes a vertex; the
+  // dequantization rides in the inverse bind matrices, which the playback below uses), normals
+  // as normalized bytes.
+  const tinygltf::Accessor& positions =
+      model.accessors.at(std::size_t(primitive.attributes.at("POSITION")));
+  EXPECT_EQ(positions.componentType, TINYGLTF_COMPONENT_TYPE_SHORT);
+  EXPECT_TRUE(positions.normalized);
+  EXPECT_EQ(model.bufferViews.at(std::size_t(positions.bufferView)).byteStride, 8u);
+  const tinygltf::Accessor& normals =
+      model.accessors.at(std::size_t(primitive.attributes.at("NORMAL")));
+  EXPECT_EQ(normals.componentType, TINYGLTF_COMPONENT_TYPE_BYTE);
+  EXPECT_TRUE(normals.normalized);
   ASSERT_EQ(primitive.targets.size(), r.corrective_count);
   for (const auto& target : primitive.targets) {
     const tinygltf::Accessor& a = model.accessors.at(std::size_t(target.at("POSITION")));
