@@ -10,8 +10,12 @@
 // smaller worst vertex error, its weights per key fitted by least squares to what the shapes before
 // it leave. Shapes are added until every vertex at every key is within `max_error` of its exact
 // residual (in bind space: the skinning matrix blends rotations, so the skinned error is no larger
-// up to the blend's shrinkage), or `max_shapes` are used. The shapes carry positions only
-// (millimetres of bulge: the skinned normals stand, and each shape costs half the bytes).
+// up to the blend's shrinkage), or `max_shapes` are used. When that misses the target, rounds of
+// Lawson's reweighting (vertices weighted by the worst error the last round left them) choose
+// the shapes again, and each vertex's own entries are refined toward its smallest worst error
+// over the keys; once the target is met, one shape fewer is tried likewise while it holds.
+// The shapes carry positions only (millimetres of bulge: the skinned normals stand, and each
+// shape costs half the bytes).
 #pragma once
 
 #include <cstddef>
