@@ -36,27 +36,24 @@ double MaxVertexNorm(const Eigen::MatrixXd& m, const Eigen::VectorXd* weight = n
   return std::sqrt(worst);
 }
 
-// residuals diag(column_weight) residuals^T (column_weight empty: all 1), in its lower half:
-// kGramBlocks column blocks' products on `pool`, summed in block order (the same bits on any
-// number of threads).
-constexpr std::size_t kGramBlocks = 16;
+// residuals diag(column_weight) residuals^T (column_weight empty: all 1), its lower half: strips
+// of kGramStrips rows on `pool`, each strip's entries computed whole by one task (no partial
+// sums: the same bits on any number of threads, and no memory beyond the #K x #K result and a
+// strip of weighted rows per thread).
+constexpr std::size_t kGramStrips = 16;
 Eigen::MatrixXd WeightedGram(const Eigen::MatrixXd& residuals, const Eigen::VectorXd& column_weight,
                              const ParallelFor& pool) {
-  const Eigen::Index rows = residuals.rows(), columns = residuals.cols();
-  std::vector<Eigen::MatrixXd> parts(kGramBlocks, Eigen::MatrixXd::Zero(rows, rows));
-  RunEach(&pool, kGramBlocks, [&](std::size_t b) {
-    const Eigen::Index begin = columns * Eigen::Index(b) / Eigen::Index(kGramBlocks);
-    const Eigen::Index end = columns * Eigen::Index(b + 1) / Eigen::Index(kGramBlocks);
+  const Eigen::Index rows = residuals.rows();
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(rows, rows);
+  RunEach(&pool, kGramStrips, [&](std::size_t b) {
+    const Eigen::Index begin = rows * Eigen::Index(b) / Eigen::Index(kGramStrips);
+    const Eigen::Index end = rows * Eigen::Index(b + 1) / Eigen::Index(kGramStrips);
     if (end <= begin) return;
-    auto block = residuals.middleCols(begin, end - begin);
-    if (column_weight.size() == 0)
-      parts[b].selfadjointView<Eigen::Lower>().rankUpdate(block);
-    else
-      parts[b].selfadjointView<Eigen::Lower>().rankUpdate(
-          block * column_weight.segment(begin, end - begin).cwiseSqrt().asDiagonal());
+    Eigen::MatrixXd strip = residuals.middleRows(begin, end - begin);
+    if (column_weight.size() > 0) strip *= column_weight.asDiagonal();
+    gram.block(begin, 0, end - begin, end).noalias() = strip * residuals.topRows(end).transpose();
   });
-  for (std::size_t b = 1; b < kGramBlocks; ++b) parts[0] += parts[b];
-  return parts[0];
+  return gram;
 }
 
 // A candidate shape (unit length, or bytes), its least-squares weights per key against what the
@@ -158,7 +155,9 @@ Selection Select(const Eigen::MatrixXd& residuals,
 // diag(column_weight) residuals^T): each X^T u_i, unit (or bytes), with their weights per key
 // by weighted least squares over all of them at once (for float shapes these are the u_i
 // themselves up to scale: the shapes are orthogonal in the weights). One pass of products
-// rather than Select's passes per shape, by vertex blocks on `pool`, sums in block order.
+// rather than Select's passes per shape, by vertex blocks on `pool` (kVertexBlocks), sums in block
+// order.
+constexpr std::size_t kVertexBlocks = 16;
 Selection Project(const Eigen::MatrixXd& residuals,
                   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& eigen, std::size_t count,
                   bool byte_shapes, const Eigen::VectorXd& column_weight, const ParallelFor& pool) {
@@ -166,13 +165,13 @@ Selection Project(const Eigen::MatrixXd& residuals,
   const Eigen::Index k = std::min<Eigen::Index>(Eigen::Index(count), rows);
   // Vertex blocks: the products below by column blocks on `pool`, sums in block order.
   auto columns_of = [&](std::size_t b) {
-    const Eigen::Index begin = vertices * Eigen::Index(b) / Eigen::Index(kGramBlocks);
-    const Eigen::Index end = vertices * Eigen::Index(b + 1) / Eigen::Index(kGramBlocks);
+    const Eigen::Index begin = vertices * Eigen::Index(b) / Eigen::Index(kVertexBlocks);
+    const Eigen::Index end = vertices * Eigen::Index(b + 1) / Eigen::Index(kVertexBlocks);
     return std::pair{3 * begin, 3 * (end - begin)};
   };
   const Eigen::MatrixXd u = eigen.eigenvectors().rightCols(k).rowwise().reverse();  // largest first
   Eigen::MatrixXd shapes(k, residuals.cols());                                      // k x 3#V
-  RunEach(&pool, kGramBlocks, [&](std::size_t b) {
+  RunEach(&pool, kVertexBlocks, [&](std::size_t b) {
     const auto [begin, size] = columns_of(b);
     shapes.middleCols(begin, size).noalias() = u.transpose() * residuals.middleCols(begin, size);
   });
@@ -190,8 +189,8 @@ Selection Project(const Eigen::MatrixXd& residuals,
   }
   shapes.conservativeResize(kept, Eigen::NoChange);
   // Weighted least squares for all the weights at once: normal = S W S^T, right = S W X^T.
-  std::vector<Eigen::MatrixXd> normals(kGramBlocks), rights(kGramBlocks);
-  RunEach(&pool, kGramBlocks, [&](std::size_t b) {
+  std::vector<Eigen::MatrixXd> normals(kVertexBlocks), rights(kVertexBlocks);
+  RunEach(&pool, kVertexBlocks, [&](std::size_t b) {
     const auto [begin, size] = columns_of(b);
     const Eigen::MatrixXd weighted =
         shapes.middleCols(begin, size) * column_weight.segment(begin, size).asDiagonal();
@@ -200,12 +199,12 @@ Selection Project(const Eigen::MatrixXd& residuals,
   });
   Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(kept, kept),
                   right = Eigen::MatrixXd::Zero(kept, rows);
-  for (std::size_t b = 0; b < kGramBlocks; ++b) normal += normals[b], right += rights[b];
+  for (std::size_t b = 0; b < kVertexBlocks; ++b) normal += normals[b], right += rights[b];
   normal.diagonal().array() += 1e-12 * normal.diagonal().cwiseAbs().maxCoeff() + 1e-300;
   const Eigen::MatrixXd weights = normal.ldlt().solve(right).transpose();  // #K x k
   Selection out;
   out.vertex_error = Eigen::VectorXd::Zero(vertices);
-  RunEach(&pool, kGramBlocks, [&](std::size_t b) {
+  RunEach(&pool, kVertexBlocks, [&](std::size_t b) {
     const auto [begin, size] = columns_of(b);
     Eigen::MatrixXd left = residuals.middleCols(begin, size);
     left.noalias() -= weights * shapes.middleCols(begin, size);
@@ -274,8 +273,10 @@ void RefineVertices(const Eigen::MatrixXd& residuals, const CorrectiveOptions& o
 }
 
 // Rounds of Lawson's reweighting in SelectMinimax, and the least weight of a vertex (the mean
-// is 1).
+// is 1). Each round solves a #K x #K eigenproblem, so clips of more than kMinimaxKeys keys get
+// the per-vertex refinement only.
 constexpr int kMinimaxRounds = 12;
+constexpr Eigen::Index kMinimaxKeys = 1024;
 constexpr double kLeastVertexWeight = 1e-3;
 
 // The selection with the smallest worst error found by Lawson's iteratively reweighted least
@@ -291,7 +292,8 @@ Selection SelectMinimax(const Eigen::MatrixXd& residuals, const CorrectiveOption
   RefineVertices(residuals, options, pool, &best);
   Eigen::VectorXd vertex_weight = Eigen::VectorXd::Ones(columns / 3);
   Selection last = std::move(start);
-  for (int round = 0; round < kMinimaxRounds && best.error > options.max_error; ++round) {
+  const int rounds = residuals.rows() <= kMinimaxKeys ? kMinimaxRounds : 0;
+  for (int round = 0; round < rounds && best.error > options.max_error; ++round) {
     vertex_weight = vertex_weight.cwiseProduct(last.vertex_error.cwiseSqrt());
     const double mean = vertex_weight.mean();
     if (!(mean > 0.0) || !std::isfinite(mean)) break;
