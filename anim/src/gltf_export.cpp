@@ -225,18 +225,14 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
   const gltf::MaterialsAdded materials = gltf::AddMaterials(
       model, mesh, options.texture_dir, out_dir, options.max_texture_size, &report.warnings);
   gltf::BaseVertices base = gltf::MakeBaseVertices(mesh);
-  // Rest normals as normalized bytes where no normal target is measured against them:
-  // compressed files (octahedral), and quantized skin files without residual targets.
-  const bool byte_normals =
-      options.compress || (options.quantize && options.mode == GltfAnimationMode::kSkin &&
-                           !options.residual_morph_targets);
-  // Quantized skin files without residual targets store POSITION as shorts too.
+  // Quantized skin files without residual targets store POSITION as shorts and NORMAL as bytes
+  // (no normal target is measured against them); compressed files store NORMAL as bytes too
+  // (octahedral, rounded below).
+  const bool quantized_skin = options.quantize && options.mode == GltfAnimationMode::kSkin &&
+                              !options.residual_morph_targets && !options.compress;
+  const bool byte_normals = options.compress || quantized_skin;
   gltf::PositionQuantization position_quantization;
-  if (byte_normals && !options.compress) {
-    position_quantization = gltf::QuantizePositions(&base);
-    for (float& c : base.normals)
-      c = std::round(c * float(gltf::kByteScale)) / float(gltf::kByteScale);
-  }
+  if (quantized_skin) position_quantization = gltf::QuantizePositions(&base);
   if (options.compress) {
     gltf::RoundLikeExpFilter(base.positions, 3, gltf::kPositionBits);
     gltf::RoundLikeOctFilter(base.normals, gltf::kOctahedralBits);
