@@ -131,6 +131,13 @@ int AddNormalizedShortAccessor(tinygltf::Model& model, std::span<const std::uint
                      values.size() / static_cast<std::size_t>(Components(type)), true);
 }
 
+int AddNormalizedByteAccessor(tinygltf::Model& model, std::span<const std::uint8_t> values,
+                              int type, int target) {
+  const int view = AddBufferView(model, values.data(), values.size_bytes(), target);
+  return AddAccessor(model, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, type,
+                     values.size() / static_cast<std::size_t>(Components(type)), true);
+}
+
 int AddIndexAccessor(tinygltf::Model& model, std::span<const std::uint32_t> indices,
                      std::uint32_t vertex_count) {
   const int target = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;

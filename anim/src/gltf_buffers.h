@@ -43,6 +43,11 @@ int AddNormalizedShortAccessor(tinygltf::Model& model, std::span<const std::int1
                                int type, int target);
 int AddNormalizedShortAccessor(tinygltf::Model& model, std::span<const std::uint16_t> values,
                                int type, int target);
+// Normalized unsigned bytes (value = q / 255), as glTF allows for WEIGHTS_n and TEXCOORD_n
+// without any extension.
+inline constexpr double kUnsignedByteScale = 255.0;
+int AddNormalizedByteAccessor(tinygltf::Model& model, std::span<const std::uint8_t> values,
+                              int type, int target);
 
 // A view of `bytes` in buffer 0 (an embedded image: no target). Returns the view's index.
 int AddBytesView(tinygltf::Model& model, std::span<const unsigned char> bytes);

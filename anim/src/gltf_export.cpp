@@ -85,6 +85,8 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(
   fit_options.flesh_joints = options.flesh_joints;
   fit_options.flesh_error = options.corrective_error;
   fit_options.influences = options.influences;
+  // Files made small (quantized or compressed) store the weights as bytes.
+  fit_options.byte_weights = options.quantize || options.compress;
   if (options.compress) {
     fit_options.translation_bits = gltf::kTranslationBits;
     fit_options.rotation_bits = gltf::kRotationBits;
@@ -231,8 +233,11 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
   const bool quantized_skin = options.quantize && options.mode == GltfAnimationMode::kSkin &&
                               !options.residual_morph_targets && !options.compress;
   const bool byte_normals = options.compress || quantized_skin;
-  gltf::PositionQuantization position_quantization;
-  if (quantized_skin) position_quantization = gltf::QuantizePositions(&base);
+  gltf::BaseMeshStorage storage;
+  storage.reorder_triangles = options.compress;
+  storage.byte_normals = byte_normals;
+  storage.short_uvs = quantized_skin;
+  if (quantized_skin) storage.positions = gltf::QuantizePositions(&base);
   if (options.compress) {
     gltf::RoundLikeExpFilter(base.positions, 3, gltf::kPositionBits);
     gltf::RoundLikeOctFilter(base.normals, gltf::kOctahedralBits);
@@ -245,9 +250,7 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
   if (!bake.normals.empty() && mesh.normals.empty()) {
     report.warnings.emplace_back("bake.normals left out: the mesh has no normals");
   }
-  const int mesh_index = gltf::AddBaseMesh(model, mesh, base, materials.material, name,
-                                           /*reorder_triangles=*/options.compress, byte_normals,
-                                           position_quantization);
+  const int mesh_index = gltf::AddBaseMesh(model, mesh, base, materials.material, name, storage);
   tinygltf::Node node;
   node.name = name;
   node.mesh = mesh_index;
@@ -273,8 +276,8 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
     report.morph_target_count = bake.KeyCount();
   } else {
     Result<gltf::MorphTargetsAdded> skinned =
-        AddSkinMode(model, animation, mesh, bake, base, options, quantization,
-                    position_quantization, mesh_index, times, time_accessor, &report);
+        AddSkinMode(model, animation, mesh, bake, base, options, quantization, storage.positions,
+                    mesh_index, times, time_accessor, &report);
     if (!skinned) return Error{out.string() + ": skin: " + skinned.error()};
     targets = std::move(skinned).value();
   }

@@ -100,21 +100,34 @@ PositionQuantization QuantizePositions(BaseVertices* base) {
 }
 
 int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& base,
-                const std::vector<int>& materials, const std::string& name, bool reorder_triangles,
-                bool byte_normals, const PositionQuantization& positions) {
+                const std::vector<int>& materials, const std::string& name,
+                const BaseMeshStorage& storage) {
   const int target = TINYGLTF_TARGET_ARRAY_BUFFER;
   std::map<std::string, int> attributes;
   attributes["POSITION"] =
-      positions.enabled
-          ? AddQuantizedPositions(model, base, positions, target)
+      storage.positions.enabled
+          ? AddQuantizedPositions(model, base, storage.positions, target)
           : AddFloatAccessor(model, base.positions, TINYGLTF_TYPE_VEC3, target, /*min_max=*/true);
   if (!base.normals.empty()) {
     attributes["NORMAL"] =
-        byte_normals ? AddNormalizedByteVec3Accessor(model, base.normals, target)
-                     : AddFloatAccessor(model, base.normals, TINYGLTF_TYPE_VEC3, target, false);
+        storage.byte_normals
+            ? AddNormalizedByteVec3Accessor(model, base.normals, target)
+            : AddFloatAccessor(model, base.normals, TINYGLTF_TYPE_VEC3, target, false);
   }
   if (!base.uvs.empty()) {
-    attributes["TEXCOORD_0"] = AddFloatAccessor(model, base.uvs, TINYGLTF_TYPE_VEC2, target, false);
+    const bool unit = std::all_of(base.uvs.begin(), base.uvs.end(),
+                                  [](float c) { return c >= 0.0f && c <= 1.0f; });
+    if (storage.short_uvs && unit) {
+      std::vector<std::uint16_t> shorts(base.uvs.size());
+      std::transform(base.uvs.begin(), base.uvs.end(), shorts.begin(), [](float c) {
+        return static_cast<std::uint16_t>(std::lround(double(c) * kUnsignedShortScale));
+      });
+      attributes["TEXCOORD_0"] =
+          AddNormalizedShortAccessor(model, shorts, TINYGLTF_TYPE_VEC2, target);
+    } else {
+      attributes["TEXCOORD_0"] =
+          AddFloatAccessor(model, base.uvs, TINYGLTF_TYPE_VEC2, target, false);
+    }
   }
 
   std::vector<MeshPart> parts = mesh.parts;
@@ -140,7 +153,7 @@ int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& ba
         indices.insert(indices.end(), t.begin(), t.end());
       }
     }
-    if (reorder_triangles) {
+    if (storage.reorder_triangles) {
       std::vector<std::uint32_t> reordered(indices.size());
       meshopt_optimizeVertexCache(reordered.data(), indices.data(), indices.size(), vertex_count);
       indices.swap(reordered);

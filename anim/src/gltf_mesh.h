@@ -39,18 +39,27 @@ struct PositionQuantization {
 // that whatever is fitted to them and measured sees what the file stores).
 PositionQuantization QuantizePositions(BaseVertices* base);
 
+// How AddBaseMesh stores the rest mesh (the defaults: float attributes, triangles in order).
+struct BaseMeshStorage {
+  // Each primitive's triangles reordered for the GPU's vertex cache (meshoptimizer's
+  // optimizeVertexCache: the same triangles, corners in the same order), which also lets the
+  // index codec of EXT_meshopt_compression store them in fewer bytes.
+  bool reorder_triangles = false;
+  // NORMAL as normalized signed bytes (KHR_mesh_quantization, required).
+  bool byte_normals = false;
+  // TEXCOORD_0 as normalized unsigned shorts (core glTF) when every uv lies in [0, 1]: within
+  // 0.5 / 65535 of the float (0.03 texel of a 4096 texture).
+  bool short_uvs = false;
+  PositionQuantization positions;  // enabled: POSITION as its shorts
+};
+
 // Adds the mesh named `name`: POSITION (with min/max), NORMAL and TEXCOORD_0 when present,
 // shared by one primitive per material of the parts with triangles (their triangles in part
 // order; one primitive for all triangles when the mesh has no parts), each with that material
-// (`materials`: glTF index per Mesh::materials entry). With `reorder_triangles`, each primitive's
-// triangles are reordered for the GPU's vertex cache (meshoptimizer's optimizeVertexCache: the same
-// triangles, corners in the same order), which also lets the index codec of EXT_meshopt_compression
-// store them in fewer bytes. With `byte_normals`, NORMAL is stored as normalized signed bytes
-// (KHR_mesh_quantization, required); with `positions` enabled, POSITION as its shorts.
-// Returns the mesh index.
+// (`materials`: glTF index per Mesh::materials entry), stored as `storage` says. Returns the
+// mesh index.
 int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& base,
                 const std::vector<int>& materials, const std::string& name,
-                bool reorder_triangles = false, bool byte_normals = false,
-                const PositionQuantization& positions = {});
+                const BaseMeshStorage& storage = {});
 
 }  // namespace wirerig::gltf

@@ -15,9 +15,6 @@ namespace {
 
 using Rigid = RigidTransform;
 
-constexpr double kWeightScale = kUnsignedShortScale;
-constexpr std::uint32_t kWeightTotal = 65535;
-
 // A unit quaternion as stored: each component a normalized signed short.
 Quatf StoreRotation(const Quat& q) {
   const auto store = [](double c) {
@@ -168,11 +165,12 @@ void AppendInfluences(std::vector<std::pair<std::uint32_t, double>> pairs,
   if (pairs.size() > slots) pairs.resize(slots);
   double sum = 0.0;
   for (const auto& pair : pairs) sum += pair.second;
-  // Shorts summing to exactly 65535; the largest takes what rounding leaves.
+  // Integers summing to exactly the total; the largest takes what rounding leaves.
+  const std::uint32_t total = influences->WeightTotal();
   std::array<std::uint32_t, kMaxInfluences> quantized{};
-  std::uint32_t rest = kWeightTotal;
+  std::uint32_t rest = total;
   for (std::size_t c = 1; c < pairs.size(); ++c) {
-    quantized[c] = static_cast<std::uint32_t>(std::lround(pairs[c].second / sum * kWeightScale));
+    quantized[c] = static_cast<std::uint32_t>(std::lround(pairs[c].second / sum * total));
     rest -= quantized[c];
   }
   quantized[0] = rest;
@@ -181,7 +179,7 @@ void AppendInfluences(std::vector<std::pair<std::uint32_t, double>> pairs,
     const bool used = c < pairs.size() && quantized[c] > 0;
     influences->joints.push_back(used ? static_cast<std::uint16_t>(pairs[c].first)
                                       : std::uint16_t{0});
-    influences->weights.push_back(static_cast<float>(quantized[c] / kWeightScale));
+    influences->weights.push_back(static_cast<float>(double(quantized[c]) / total));
   }
 }
 
@@ -285,12 +283,17 @@ void AddSkinAttributes(tinygltf::Model& model, int mesh_index, const SkinInfluen
       for (std::size_t c = set * 4; c < set * 4 + 4; ++c) {
         set_joints.push_back(influences.joints[v * slots + c]);
         set_weights.push_back(static_cast<std::uint16_t>(
-            std::lround(influences.weights[v * slots + c] * kWeightScale)));
+            std::lround(double(influences.weights[v * slots + c]) * influences.WeightTotal())));
       }
     }
     const int joints = AddJointAccessor(model, set_joints, joint_count);
-    const int weights = AddNormalizedShortAccessor(model, set_weights, TINYGLTF_TYPE_VEC4,
-                                                   TINYGLTF_TARGET_ARRAY_BUFFER);
+    const int target = TINYGLTF_TARGET_ARRAY_BUFFER;
+    const int weights =
+        influences.byte_weights
+            ? AddNormalizedByteAccessor(
+                  model, std::vector<std::uint8_t>(set_weights.begin(), set_weights.end()),
+                  TINYGLTF_TYPE_VEC4, target)
+            : AddNormalizedShortAccessor(model, set_weights, TINYGLTF_TYPE_VEC4, target);
     const std::string suffix = std::to_string(set);
     for (tinygltf::Primitive& primitive :
          model.meshes[static_cast<std::size_t>(mesh_index)].primitives) {

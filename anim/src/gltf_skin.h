@@ -71,14 +71,18 @@ Skeleton MakeSkeleton(std::vector<int> parent, std::vector<std::string> names,
                       const KeyThinning& thinning);
 
 // Per vertex `slots` (4 or 8) joints and weights as written: sorted by decreasing weight, stored
-// as normalized unsigned shorts that sum to exactly 65535 over all slots (weights q / 65535);
-// unused slots are joint 0 with weight 0. Slots 0-3 are JOINTS_0 / WEIGHTS_0, 4-7 JOINTS_1 /
-// WEIGHTS_1.
+// as normalized unsigned shorts that sum to exactly 65535 over all slots (weights q / 65535) or,
+// with byte_weights, unsigned bytes summing to 255 (q / 255: within 0.5 / 255 of the fitted
+// weight, as gltfpack stores them); unused slots are joint 0 with weight 0. Slots 0-3 are
+// JOINTS_0 / WEIGHTS_0, 4-7 JOINTS_1 / WEIGHTS_1.
 inline constexpr std::size_t kMaxInfluences = 8;  // slots per vertex: 4 (default) or 8
 struct SkinInfluences {
   std::size_t slots = 4;
+  bool byte_weights = false;
   std::vector<std::uint16_t> joints;  // #V x slots
-  std::vector<float> weights;         // #V x slots, the stored q / 65535
+  std::vector<float> weights;         // #V x slots, the stored q / 65535 (or q / 255)
+  // What the stored integers of a vertex sum to: 65535, or 255 with byte_weights.
+  std::uint32_t WeightTotal() const { return byte_weights ? 255u : 65535u; }
 };
 // Appends one vertex's influences from (joint, weight) pairs (distinct joints, weights >= 0,
 // some positive): the `influences->slots` largest kept and normalized.

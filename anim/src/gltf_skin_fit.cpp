@@ -112,13 +112,15 @@ Result<std::vector<std::vector<std::size_t>>> ChooseSamples(const BakedAnimation
 // Per vertex, its bake weights on samples moved to the chosen joints (see the header).
 SkinInfluences MapInfluences(const BakedAnimation& bake,
                              const std::vector<std::vector<std::size_t>>& samples,
-                             const std::vector<std::size_t>& first_joint, std::size_t slots) {
+                             const std::vector<std::size_t>& first_joint, std::size_t slots,
+                             bool byte_weights) {
   // Global sample index -> (spine, sample).
   std::vector<std::pair<std::size_t, std::size_t>> sample_of;
   for (std::size_t i = 0; i < bake.spines.size(); ++i)
     for (std::size_t s = 0; s < bake.spines[i].SampleCount(); ++s) sample_of.emplace_back(i, s);
   SkinInfluences influences;
   influences.slots = slots;
+  influences.byte_weights = byte_weights;
   std::vector<std::pair<std::uint32_t, double>> pairs;
   auto add = [&pairs](std::size_t joint, double w) {
     if (!(w > 0.0)) return;
@@ -328,7 +330,8 @@ Result<FittedSkin> FitSkeleton(const BakedAnimation& bake, const BaseVertices& b
   const std::size_t keys = bake.KeyCount();
 
   FittedSkin fitted;
-  fitted.influences = MapInfluences(bake, samples, first_joint, options.influences);
+  fitted.influences =
+      MapInfluences(bake, samples, first_joint, options.influences, options.byte_weights);
   std::vector<Rigid> rest(joints);
   for (std::size_t j = 0; j < joints; ++j)
     rest[j] = RestSampleAt(bake.spines[joint_sample[j].first], joint_sample[j].second);

@@ -53,8 +53,9 @@ struct SkinFitOptions {
   // (m) after the weight rounds, within max_joints; then the weight rounds again with them in.
   bool flesh_joints = true;
   double flesh_error = 1e-3;
-  int translation_bits = 0;  // > 0: translation keys rounded for the EXPONENTIAL filter
-  int rotation_bits = 0;     // > 0: rotation keys rounded for the QUATERNION filter
+  bool byte_weights = false;  // weights stored as bytes (SkinInfluences)
+  int translation_bits = 0;   // > 0: translation keys rounded for the EXPONENTIAL filter
+  int rotation_bits = 0;      // > 0: rotation keys rounded for the QUATERNION filter
 };
 
 struct FittedSkin {

@@ -176,6 +176,7 @@ SkinInfluences FitWeights(const SkinInfluences& start, const std::vector<int>& p
            &WeightProblem::Task, &problem);
   SkinInfluences fitted;
   fitted.slots = start.slots;
+  fitted.byte_weights = start.byte_weights;
   for (auto& pairs : solved) AppendInfluences(std::move(pairs), &fitted);
   return fitted;
 }

@@ -324,14 +324,15 @@ tinygltf::Model LoadCompressedGlb(const fs::path& file) {
 // The values of a float accessor, tightly packed (count x components). Normalized integers are
 // decoded as glTF says: signed shorts max(q / 32767, -1) (KHR_mesh_quantization targets,
 // rotation keys), signed bytes max(q / 127, -1) (corrective shapes of quantized files),
-// unsigned shorts q / 65535 (WEIGHTS_0).
+// unsigned shorts q / 65535, unsigned bytes q / 255 (WEIGHTS_0).
 std::vector<float> ReadFloats(const tinygltf::Model& model, int index) {
   const tinygltf::Accessor& accessor = model.accessors.at(static_cast<std::size_t>(index));
   const bool shorts = accessor.componentType == TINYGLTF_COMPONENT_TYPE_SHORT;
   const bool unsigned_shorts = accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
   const bool bytes = accessor.componentType == TINYGLTF_COMPONENT_TYPE_BYTE;
+  const bool unsigned_bytes = accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
   EXPECT_TRUE(accessor.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-              ((shorts || unsigned_shorts || bytes) && accessor.normalized));
+              ((shorts || unsigned_shorts || bytes || unsigned_bytes) && accessor.normalized));
   EXPECT_FALSE(accessor.sparse.isSparse);
   const tinygltf::BufferView& view =
       model.bufferViews.at(static_cast<std::size_t>(accessor.bufferView));
@@ -339,7 +340,7 @@ std::vector<float> ReadFloats(const tinygltf::Model& model, int index) {
       model.buffers.at(static_cast<std::size_t>(view.buffer)).data;
   const auto components = static_cast<std::size_t>(
       tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type)));
-  const std::size_t size = bytes                       ? sizeof(std::int8_t)
+  const std::size_t size = bytes || unsigned_bytes     ? sizeof(std::int8_t)
                            : shorts || unsigned_shorts ? sizeof(std::int16_t)
                                                        : sizeof(float);
   const std::size_t stride = view.byteStride != 0 ? view.byteStride : components * size;
@@ -351,6 +352,10 @@ std::vector<float> ReadFloats(const tinygltf::Model& model, int index) {
       continue;
     }
     for (std::size_t c = 0; c < components; ++c) {
+      if (unsigned_bytes) {
+        values[i * components + c] = static_cast<float>(element[c]) / 255.0f;
+        continue;
+      }
       if (bytes) {
         const auto q = static_cast<std::int8_t>(element[c]);
         values[i * components + c] = std::max(static_cast<float>(q) / 127.0f, -1.0f);
@@ -1430,6 +1435,25 @@ TEST(GltfExport, QuantizedCorrectivesAreBytesWithinTheTarget) {
       model.accessors.at(std::size_t(primitive.attributes.at("NORMAL")));
   EXPECT_EQ(normals.componentType, TINYGLTF_COMPONENT_TYPE_BYTE);
   EXPECT_TRUE(normals.normalized);
+  // The weights as normalized unsigned bytes (core glTF), each vertex's summing to exactly 255;
+  // the playback below reads them so.
+  const tinygltf::Accessor& weights =
+      model.accessors.at(std::size_t(primitive.attributes.at("WEIGHTS_0")));
+  EXPECT_EQ(weights.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE);
+  EXPECT_TRUE(weights.normalized);
+  const std::vector<std::uint32_t> stored = ReadUints(model, primitive.attributes.at("WEIGHTS_0"));
+  for (std::size_t v = 0; v < weights.count; ++v)
+    EXPECT_EQ(stored[v * 4] + stored[v * 4 + 1] + stored[v * 4 + 2] + stored[v * 4 + 3], 255u) << v;
+  // The uvs (all in [0, 1] here) as normalized unsigned shorts, within 0.5 / 65535.
+  const tinygltf::Accessor& uvs =
+      model.accessors.at(std::size_t(primitive.attributes.at("TEXCOORD_0")));
+  EXPECT_EQ(uvs.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  EXPECT_TRUE(uvs.normalized);
+  const std::vector<float> uv = ReadFloats(model, primitive.attributes.at("TEXCOORD_0"));
+  ASSERT_EQ(uv.size(), 2 * scene.mesh.uvs.size());
+  for (std::size_t v = 0; v < scene.mesh.uvs.size(); ++v)
+    for (int c = 0; c < 2; ++c)
+      EXPECT_NEAR(uv[2 * v + std::size_t(c)], scene.mesh.uvs[v][c], 0.5 / 65535 + 1e-7) << v;
   ASSERT_EQ(primitive.targets.size(), r.corrective_count);
   for (const auto& target : primitive.targets) {
     const tinygltf::Accessor& a = model.accessors.at(std::size_t(target.at("POSITION")));
