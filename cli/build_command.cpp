@@ -2,6 +2,7 @@
 #include "option_checks.h"
 
 #include <cctype>
+#include <map>
 #include <ostream>
 
 #include <CLI/CLI.hpp>
@@ -37,8 +38,10 @@ int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::
     return fail(writable.error());
   Result<BuiltScene> built = LoadAndBuildScene(options.scene, options.import_limits.Isolation());
   if (!built) return fail(built.error());
-  // The clips first, while the scene is whole; nothing is written until everything is made.
+  // The clips first, while the scene is whole; nothing is written until everything is made and
+  // every clip's file is known to be writable and its own.
   std::vector<std::pair<std::filesystem::path, std::vector<std::uint8_t>>> clip_files;
+  std::map<std::filesystem::path, std::string> clip_of_file;
   if (options.clips) {
     const std::filesystem::path output(options.output);
     for (const Clip& clip : built.value().clips) {
@@ -52,6 +55,13 @@ int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::
       for (char& c : name)
         if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
       path.replace_filename(output.stem().string() + "." + name + ".wclip");
+      if (const auto [it, added] = clip_of_file.emplace(path, clip.name); !added)
+        return fail(options.scene + ": clips \"" + it->second + "\" and \"" + clip.name +
+                    "\" would both be written to " + path.string() +
+                    " (a clip's file name keeps letters, digits, '-' and '_'): rename one; "
+                    "nothing written");
+      if (Result<bool> writable = CheckOutputFile(path, {".wclip"}); !writable)
+        return fail(writable.error() + " (clip \"" + clip.name + "\"); nothing written");
       out << "clip \"" << clip.name << "\": " << sampled.value().frame_count() << " frames at "
           << options.fps << " fps";
       if (!sampled.value().wires.empty())
@@ -73,11 +83,22 @@ int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::
       << " welded vertices (" << asset.vertex_order.size() << " in the source order), "
       << asset.model.triangles.size() << " triangles, " << bytes.size() << " bytes\n"
       << "written: " << options.output << "\n";
+  std::vector<std::filesystem::path> written_files = {options.output};
   for (const auto& [path, clip_bytes] : clip_files) {
     const auto clip_written = WriteFileAtomically(
         path,
         std::string_view(reinterpret_cast<const char*>(clip_bytes.data()), clip_bytes.size()));
-    if (!clip_written) return fail(clip_written.error());
+    if (!clip_written) {
+      // All or nothing: what this run wrote goes again.
+      std::string removed;
+      for (const std::filesystem::path& file : written_files) {
+        std::error_code ignored;
+        std::filesystem::remove(file, ignored);
+        removed += (removed.empty() ? "" : ", ") + file.string();
+      }
+      return fail(clip_written.error() + "; removed what this run had written: " + removed);
+    }
+    written_files.push_back(path);
     out << "written: " << path.string() << " (" << clip_bytes.size() << " bytes)\n";
   }
   return 0;

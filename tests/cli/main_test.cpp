@@ -218,6 +218,56 @@ TEST(WirerigExitCodes, BuildAndViewWarnOfDeflectionsBeyondLinearTheory) {
 #endif
 }
 
+// The pushed beam's scene with two clips named `first` and `second`, written as `name`.
+fs::path TwoClipBeamScene(const std::string& name, const std::string& first,
+                          const std::string& second) {
+  const std::string clip = R"(", "duration": 1, "parts": [
+      {"part": "beam", "boundary": [{"time": 0, "boundary": "cantilever_free"}],
+       "tip_force": {"keys": [{"time": 0, "value": [1000, 0, 0]}]}}]})";
+  const fs::path scene = Scratch(name);
+  std::ofstream(scene) << R"({"format": "wirerig.scene", "version": 1, "name": "pushed",
+    "mesh": {"procedural": "cylinder", "parameters": {"radius": 0.1, "height": 1.0}},
+    "rig": {"description": {"parts": [{"name": "beam", "central_curve": [[0, 0, 0], [0, 1, 0]],
+                                       "profile_count": 8, "points_per_profile": 16}]}},
+    "parts": {"beam": {"kind": "deformable", "spine": {"material": "steel"}}},
+    "clips": [{"name": ")" + first +
+                              clip + R"(, {"name": ")" + second + clip + "]}";
+  return scene;
+}
+
+// build --clips writes the rig and every clip or nothing: two clips whose names make the same
+// file name, or a clip whose file name is too long, are refused before anything is written.
+TEST(WirerigExitCodes, BuildClipsWritesAllOrNothing) {
+  const fs::path output = Scratch("clips.wrig");
+  const fs::path folder = output.parent_path();
+  auto written = [&] {
+    std::size_t count = 0;
+    for (const auto& entry : fs::directory_iterator(folder))
+      count += entry.path().filename().string().rfind("clips.", 0) == 0;
+    return count;
+  };
+  const fs::path same = TwoClipBeamScene("same_file.scene.json", "a/b", "a_b");
+  ExpectExit(RunWirerig({"build", same.string(), "-o", output.string(), "--clips"}), 1,
+             "clips \"a/b\" and \"a_b\" would both be written to " +
+                 (folder / "clips.a_b.wclip").string());
+  EXPECT_EQ(written(), 0u);
+  const fs::path long_name =
+      TwoClipBeamScene("long_name.scene.json", "short", std::string(300, 'x'));
+  ExpectExit(RunWirerig({"build", long_name.string(), "-o", output.string(), "--clips"}), 1,
+             "the file name is too long");
+  EXPECT_EQ(written(), 0u);
+  // Distinct names: the rig and both clips.
+  const fs::path distinct = TwoClipBeamScene("distinct.scene.json", "a", "b");
+  const ProcessResult run =
+      RunWirerig({"build", distinct.string(), "-o", output.string(), "--clips"});
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(fs::exists(folder / "clips.a.wclip"));
+  EXPECT_TRUE(fs::exists(folder / "clips.b.wclip"));
+  EXPECT_EQ(written(), 3u);
+  for (const char* file : {"clips.wrig", "clips.a.wclip", "clips.b.wclip"})
+    fs::remove(folder / file);
+}
+
 TEST(WirerigExitCodes, BadInputExitsOne) {
   ExpectExit(RunWirerig({"wire", Scratch("missing.json").string()}), 1,
              "missing.json: no such file");
