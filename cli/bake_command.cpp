@@ -206,9 +206,18 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
                   report.skin_max_error_relative, report.skin_rms_error);
     out << line;
     if (options.residual) {
-      std::snprintf(line, sizeof line, "residual targets: %zu, error max %.3g m\n",
+      std::snprintf(line, sizeof line, "residual targets: %zu, error max %.3g m",
                     report.morph_target_count, report.residual_max_error);
       out << line;
+      if (report.quantized_position_targets > 0) {
+        // The shorts round each delta: the file's error is within their bound.
+        std::snprintf(line, sizeof line,
+                      " as floats; %zu of them stored as shorts, within %.2g m of the bake",
+                      report.quantized_position_targets,
+                      report.residual_max_error + report.quantization_max_error);
+        out << line;
+      }
+      out << "\n";
     } else if (options.max_correctives > 0) {
       std::snprintf(line, sizeof line,
                     "correctives: %zu shapes, error against the bake max %.3g m, RMS %.3g m\n",

@@ -25,6 +25,11 @@ CLI::App* AddBuildCommand(CLI::App& app, BuildCommandOptions& options) {
   build->add_option("--fps", options.fps, "Frames per second of the sampled clips")
       ->check(InRange(1, 1000))
       ->capture_default_str();
+  // Options that do not apply are refused, not ignored.
+  build->callback([build, &options] {
+    if (build->count("--fps") > 0 && !options.clips)
+      throw CLI::ValidationError("--fps", "samples the clips: applies with --clips only");
+  });
   AddImportLimitOptions(build, options.import_limits);
   return build;
 }

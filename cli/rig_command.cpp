@@ -147,6 +147,17 @@ CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options) {
                 "edges, stretch, limb volume and cross-section perimeters per skinning method");
   rig->add_flag("--joint-poses", options.joint_poses,
                 "With --joint-report: also list each pose where the wire rig misses a target");
+  // Options that do not apply are refused, not ignored.
+  rig->callback([rig, &options] {
+    if (options.joint_poses && !options.joint_report)
+      throw CLI::ValidationError("--joint-poses", "lists the poses of --joint-report: give both");
+    if (!options.description.empty())
+      for (const char* name : {"--ignore-skeleton", "--wrap-alpha"})
+        if (rig->count(name) > 0)
+          throw CLI::ValidationError(name,
+                                     "applies without a description only (the "
+                                     "description gives the parts)");
+  });
   AddImportLimitOptions(rig, options.import_limits);
   return rig;
 }
@@ -190,6 +201,8 @@ int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostr
     if (!automatic) return fail(options.mesh + ": " + automatic.error());
     source = automatic.value().source;
     wrap = std::move(automatic.value().wrap);
+    if (!wrap && options.wrap_alpha > 0.0)
+      out << "note: --wrap-alpha unused: this rig needed no wrap (" << source << ")\n";
     description = std::move(automatic).value().description;
     description.import = import;
   }

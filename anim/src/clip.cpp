@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace wirerig {
 namespace {
@@ -173,6 +174,49 @@ bool HasRigidInput(const PartChannels<RawTrack>& c) {
   return !c.rigid_forces.empty() || !c.rigid_torque.keys.empty() || !c.rigid_drag.IsZero();
 }
 
+// A load's keyed values that would make it vanish: a point load's direction of zero length, a
+// line load whose stretch (from, to, each clamped to [0, 1]; absent: 0 and 1) is empty at every
+// key of its ends, so that it never acts. (Both are skipped when sampled: the load would
+// silently do nothing. A stretch that closes at some keys only is a load sliding off: kept.)
+std::string CheckLoadKeys(const PointLoadChannels<RawTrack>& c, const std::string& where) {
+  for (std::size_t i = 0; i < c.direction.keys.size(); ++i)
+    if (!(c.direction.keys[i].value.norm() > 1e-12))
+      return At(where, "direction.keys[" + std::to_string(i) +
+                           "].value: must have a non-zero length (the force's direction)");
+  return {};
+}
+template <typename LineLoad>
+std::string CheckStretchKeys(const LineLoad& c, const std::string& where) {
+  const Track<double> from = Built(c.from), to = Built(c.to);
+  auto at = [](const Track<double>& track, double t, double absent) {
+    return track.IsEmpty() ? absent : std::clamp(track.Sample(t), 0.0, 1.0);
+  };
+  std::vector<double> times(from.KeyTimes().begin(), from.KeyTimes().end());
+  times.insert(times.end(), to.KeyTimes().begin(), to.KeyTimes().end());
+  if (times.empty()) return {};  // 0 to 1
+  for (const double t : times)
+    if (at(to, t, 1.0) > at(from, t, 0.0)) return {};
+  char values[96];
+  std::snprintf(values, sizeof values, " (at t = %g s: from %g, to %g)", times.front(),
+                at(from, times.front(), 0.0), at(to, times.front(), 1.0));
+  return At(where, std::string("to: must be greater than from at some key, or the load never "
+                               "acts") +
+                       values);
+}
+std::string CheckLoadKeys(const LineLoadChannels<RawTrack>& c, const std::string& where) {
+  return CheckStretchKeys(c, where);
+}
+std::string CheckLoadKeys(const AxialLineLoadChannels<RawTrack>& c, const std::string& where) {
+  return CheckStretchKeys(c, where);
+}
+template <typename List>
+std::string CheckListKeys(const List& list, const std::string& where, std::string_view member) {
+  for (std::size_t i = 0; i < list.size(); ++i)
+    if (std::string error = CheckLoadKeys(list[i], Indexed(where, member, i)); !error.empty())
+      return error;
+  return {};
+}
+
 }  // namespace
 
 std::string_view ToString(LoopMode mode) {
@@ -235,6 +279,11 @@ std::string ValidateRawClip(const RawClip& raw) {
       return boundary;
     VisitTracks(channels, where, check);
     if (!error.empty()) return error;
+    for (const std::string& loads :
+         {CheckListKeys(channels.point_loads, where, "point_loads"),
+          CheckListKeys(channels.line_loads, where, "line_loads"),
+          CheckListKeys(channels.axial_line_loads, where, "axial_line_loads")})
+      if (!loads.empty()) return loads;
   }
   for (std::size_t i = 0; i < raw.profiles.size(); ++i) {
     const std::string where = Indexed("", "profiles", i).substr(1);
@@ -246,6 +295,9 @@ std::string ValidateRawClip(const RawClip& raw) {
     if (family < 0 || family > 3) return At(where, "boundary: unknown family");
     VisitTracks(channels, where, check);
     if (!error.empty()) return error;
+    for (const std::string& loads : {CheckListKeys(channels.point_loads, where, "point_loads"),
+                                     CheckListKeys(channels.line_loads, where, "line_loads")})
+      if (!loads.empty()) return loads;
   }
   return {};
 }

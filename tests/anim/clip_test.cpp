@@ -88,6 +88,39 @@ TEST(Clip, RefusesBrokenTracksDurationsAndDuplicates) {
             "parts[0].boundary[1].time: key times must be strictly increasing");
 }
 
+// Loads that would never act are refused, naming the field: a point load without a direction,
+// a line load whose stretch is empty at every key (from above to). One that closes at some
+// keys only slides off: kept (LineLoadsOfZeroWidthAreSkippedAndPositionsClamped).
+TEST(Clip, RefusesLoadsThatNeverAct) {
+  RawClip raw = PointLoadClip();
+  RawVectorTrack direction = Constant(Vec3(1, 0, 0));
+  direction.keys.push_back({1.0, Vec3::Zero(), Interpolation::kStep});
+  raw.parts[0].channels.point_loads[0].direction = direction;
+  EXPECT_EQ(ValidateRawClip(raw),
+            "parts[0].point_loads[0].direction.keys[1].value: must have a non-zero length (the "
+            "force's direction)");
+  raw = PointLoadClip();
+  LineLoadChannels<RawTrack> line;
+  line.from = Keys({{0.0, 0.9}});
+  line.to = Keys({{0.0, 0.1}, {2.0, 0.3}});
+  line.force_per_length = Constant(Vec3(0, 1, 0));
+  raw.parts[0].channels.line_loads.push_back(line);
+  EXPECT_EQ(ValidateRawClip(raw),
+            "parts[0].line_loads[0].to: must be greater than from at some key, or the load "
+            "never acts (at t = 0 s: from 0.9, to 0.1)");
+  raw.parts[0].channels.line_loads[0].to = Keys({{0.0, 0.1}, {2.0, 1.0}});  // acts from 1.78 s
+  EXPECT_EQ(ValidateRawClip(raw), "");
+  RawProfileTracks bulge;
+  bulge.part = "beam";
+  bulge.channels.line_loads.push_back(line);
+  bulge.channels.line_loads[0].from = Keys({{0.0, 1.5}});  // clamped to 1: nothing above it
+  bulge.channels.line_loads[0].to.keys.clear();            // 1
+  raw.profiles.push_back(bulge);
+  EXPECT_EQ(ValidateRawClip(raw),
+            "profiles[0].line_loads[0].to: must be greater than from at some key, or the load "
+            "never acts (at t = 0 s: from 1, to 1)");
+}
+
 TEST(Clip, RefusesRigidBodyForcesOnDeformableParts) {
   RawClip raw = PointLoadClip();
   raw.parts[0].channels.rigid_torque = Constant(Vec3(0, 1, 0));

@@ -105,6 +105,17 @@ TEST(WirerigExitCodes, UsageErrorsExitTwo) {
   ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--mode", "skin", "--residual",
                          "--max-correctives", "4"}),
              2, "--residual: carries a target per key: it replaces the corrective shapes");
+  // rig and build likewise refuse what does not apply.
+  const std::string mesh = std::string(WIRERIG_ASSET_DIR) + "/cow.off";
+  ExpectExit(RunWirerig({"rig", mesh, "-o", "x.rig.json", "--joint-poses"}), 2,
+             "--joint-poses: lists the poses of --joint-report: give both");
+  for (const char* option : {"--ignore-skeleton", "--wrap-alpha"}) {
+    std::vector<std::string> args = {"rig", mesh, "-d", "d.json", "-o", "x.rig.json", option};
+    if (std::string(option) == "--wrap-alpha") args.push_back("0.05");
+    ExpectExit(RunWirerig(args), 2, std::string(option) + ": applies without a description only");
+  }
+  ExpectExit(RunWirerig({"build", kOctopus, "-o", "x.wrig", "--fps", "60"}), 2,
+             "--fps: samples the clips: applies with --clips only");
 #ifdef WIRERIG_HAS_VIEWER  // render and view exist only with the viewer
   // An image size out of range is a usage error like any other bad value (it exited 1).
   for (const char* size : {"0x0", "wide", "16x9000"}) {
@@ -235,11 +246,23 @@ fs::path TwoClipBeamScene(const std::string& name, const std::string& first,
   return scene;
 }
 
+// Quantized residual targets: the printed error is the stored file's bound, not the floats'.
+TEST(WirerigBake, QuantizedResidualsReportTheStoredBound) {
+  const fs::path scene = PushedBeamScene("residual.scene.json", 1e5);
+  const ProcessResult run = RunWirerig(
+      {"bake", scene.string(), "-o", Scratch("residual.glb").string(), "--residual", "--quantize"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("as floats; 31 of them stored as shorts, within 2.6e-05 m of the bake"),
+            std::string::npos)
+      << run.out;
+}
+
 // build --clips writes the rig and every clip or nothing: two clips whose names make the same
 // file name, or a clip whose file name is too long, are refused before anything is written.
 TEST(WirerigExitCodes, BuildClipsWritesAllOrNothing) {
-  const fs::path output = Scratch("clips.wrig");
-  const fs::path folder = output.parent_path();
+  const fs::path folder = Scratch("build_clips");  // a folder of its own, emptied
+  fs::create_directories(folder);
+  const fs::path output = folder / "clips.wrig";
   auto written = [&] {
     std::size_t count = 0;
     for (const auto& entry : fs::directory_iterator(folder))
@@ -264,8 +287,6 @@ TEST(WirerigExitCodes, BuildClipsWritesAllOrNothing) {
   EXPECT_TRUE(fs::exists(folder / "clips.a.wclip"));
   EXPECT_TRUE(fs::exists(folder / "clips.b.wclip"));
   EXPECT_EQ(written(), 3u);
-  for (const char* file : {"clips.wrig", "clips.a.wclip", "clips.b.wclip"})
-    fs::remove(folder / file);
 }
 
 TEST(WirerigExitCodes, BadInputExitsOne) {

@@ -22,7 +22,9 @@
 // every track follows ValidateRawTrack's rules with key times within [0, duration]; boundary
 // keys strictly increasing within [0, duration]; part names known to the rig and each part
 // listed at most once; profile indices within the part; rigid-body forces only on rigid parts;
-// joint angles only on parts with a parent (the root has no joint).
+// joint angles only on parts with a parent (the root has no joint); a point load's direction
+// keys of non-zero length and a line load's stretch non-empty (to > from, both clamped to
+// [0, 1]) at some key of its ends: a load that would never act is refused, not skipped.
 #pragma once
 
 #include <optional>
