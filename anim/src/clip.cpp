@@ -243,8 +243,9 @@ bool ParseLoopMode(std::string_view name, LoopMode* out) {
 
 std::string ValidateRawClip(const RawClip& raw) {
   if (raw.name.empty()) return "name: a clip needs a name";
-  if (!(std::isfinite(raw.duration) && raw.duration > 0.0))
-    return "duration: must be finite and positive (s)";
+  // At most about 11.6 days: a longer clip is a typo (its keys would not fit any file).
+  if (!(std::isfinite(raw.duration) && raw.duration > 0.0 && raw.duration <= kMaxClipDuration))
+    return "duration: must be positive and at most 1e6 (s)";
   const int loop = static_cast<int>(raw.loop);
   if (loop < 0 || loop > 2) return "loop: unknown loop mode";
   std::string error;

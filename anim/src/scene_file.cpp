@@ -21,9 +21,9 @@ namespace {
 using nlohmann::json;
 
 constexpr const char* kFormat = "wirerig.scene";
-// The duration a clip with a motion holds until BuildScene reads the motion (long enough for
-// any key of its own tracks; BuildClip checks them against the motion's duration).
-constexpr double kMotionPlaceholderDuration = 1e9;
+// The duration a clip with a motion holds until BuildScene reads the motion (the longest a clip
+// may be: room for any key of its own tracks; BuildClip checks them against the motion's).
+constexpr double kMotionPlaceholderDuration = kMaxClipDuration;
 
 MeshSource ReadMeshSource(const JsonObject& o) {
   o.RejectUnknownKeys({"file", "up_axis", "unit_scale", "procedural", "parameters", "subdivide"});

@@ -25,9 +25,11 @@ Result<std::filesystem::path> WriteFileAtomically(const std::filesystem::path& p
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     out.flush();
     if (!out) {
+      const int cause = errno;  // the failed write(2)'s: a full disk, a file-size limit
       std::error_code ignored;
       fs::remove(temp, ignored);
-      return Error{path.string() + ": write failed"};
+      return Error{path.string() + ": write failed (" +
+                   (cause != 0 ? std::strerror(cause) : "unknown cause") + ")"};
     }
   }
   std::error_code error;

@@ -1,6 +1,7 @@
 #include "wirerig/rig/joint_description.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include <nlohmann/json.hpp>
 
@@ -81,9 +82,12 @@ std::string ValidateJointDescription(const JointDescription& joint) {
     const std::string field = std::string("limits/") + kAxisNames[k];
     if (!(std::isfinite(joint.min_degrees[k]) && std::isfinite(joint.max_degrees[k])))
       return field + ": must be finite";
-    if (joint.min_degrees[k] > joint.max_degrees[k])
-      return field + ": the lower limit " + std::to_string(joint.min_degrees[k]) +
-             " is above the upper limit " + std::to_string(joint.max_degrees[k]);
+    if (joint.min_degrees[k] > joint.max_degrees[k]) {
+      char limits[96];
+      std::snprintf(limits, sizeof limits, ": the lower limit %g is above the upper limit %g",
+                    joint.min_degrees[k], joint.max_degrees[k]);
+      return field + limits;
+    }
   }
   if (joint.blend_length && !(std::isfinite(*joint.blend_length) && *joint.blend_length >= 0.0))
     return "blend: must be finite and >= 0 (m)";

@@ -108,10 +108,11 @@ std::string ValidateSkin(const RigDescription& description, std::size_t i) {
 Result<RigDescription> ParseRigDescription(const nlohmann::json& document) {
   try {
     const JsonObject root(document, "");
-    root.RejectUnknownKeys({"format", "version", "mesh", "up_axis", "unit_scale", "material",
-                            "defaults", "parts", "passive_mesh_parts", "clean_assignment"});
+    // The format first: another kind of file (a scene) is named as such, not by its fields.
     if (root.Has("format") && root.String("format") != "wirerig.rig_description")
       throw FieldError("/format", "must be \"wirerig.rig_description\"");
+    root.RejectUnknownKeys({"format", "version", "mesh", "up_axis", "unit_scale", "material",
+                            "defaults", "parts", "passive_mesh_parts", "clean_assignment"});
     if (root.Integer("version", 1) != 1) throw FieldError("/version", "unsupported version");
     RigDescription description;
     if (root.Has("mesh")) description.mesh = root.String("mesh");

@@ -74,7 +74,9 @@ TEST(Clip, RefusesBrokenTracksDurationsAndDuplicates) {
             "parts[0].point_loads[0].at.keys[1].time: key times must be strictly increasing");
   raw = PointLoadClip();
   raw.duration = 0.0;
-  EXPECT_EQ(ValidateRawClip(raw), "duration: must be finite and positive (s)");
+  EXPECT_EQ(ValidateRawClip(raw), "duration: must be positive and at most 1e6 (s)");
+  raw.duration = 1e308;  // finite, but no file holds its keys
+  EXPECT_EQ(ValidateRawClip(raw), "duration: must be positive and at most 1e6 (s)");
   raw = PointLoadClip();
   raw.parts.push_back(raw.parts[0]);
   EXPECT_EQ(ValidateRawClip(raw), "parts[1].part: this part already has tracks in the clip");

@@ -151,9 +151,10 @@ TEST(RigDescription, JointsParseWithTypeAxisLimitsAndBlend) {
 TEST(RigDescription, BrokenJointsAndCyclesAreNamed) {
   nlohmann::json d = Good();
   d["parts"][1]["joint"] = {{"limits", {{"y", {30, -30}}}}};
-  ExpectRefused(d,
-                "/parts/1/joint/limits/y: the lower limit 30.000000 is above the upper "
-                "limit -30.000000");
+  ExpectRefused(d, "/parts/1/joint/limits/y: the lower limit 30 is above the upper limit -30");
+  // Another kind of file given as a description is named by its format, not its fields.
+  d = {{"format", "wirerig.scene"}, {"version", 1}, {"camera", {{"yaw", 0}}}};
+  ExpectRefused(d, "/format: must be \"wirerig.rig_description\"");
   d = Good();
   d["parts"][1]["joint"] = {{"type", "hinge"}, {"axis", {0, 0, 0}}};
   ExpectRefused(d, "/parts/1/joint/axis: must be finite and of non-zero length");

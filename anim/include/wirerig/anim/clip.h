@@ -18,7 +18,7 @@
 // and per profile wire (paper Fig. 8): the stretch [from, to] of the loop that deforms, its
 // boundary condition, point and line loads in the profile's spine frame.
 //
-// RawClip rules (ValidateRawClip; BuildClip adds the rig's): a name; duration finite and > 0;
+// RawClip rules (ValidateRawClip; BuildClip adds the rig's): a name; duration in (0, 1e6] s;
 // every track follows ValidateRawTrack's rules with key times within [0, duration]; boundary
 // keys strictly increasing within [0, duration]; part names known to the rig and each part
 // listed at most once; profile indices within the part; rigid-body forces only on rigid parts;
@@ -38,6 +38,8 @@
 #include "wirerig/runtime/rig_model.h"
 
 namespace wirerig {
+
+inline constexpr double kMaxClipDuration = 1e6;  // s
 
 enum class LoopMode : int {
   kOnce = 0,      // times beyond the duration hold the last frame
