@@ -285,6 +285,12 @@ std::string ValidateRawClip(const RawClip& raw) {
           CheckListKeys(channels.line_loads, where, "line_loads"),
           CheckListKeys(channels.axial_line_loads, where, "axial_line_loads")})
       if (!loads.empty()) return loads;
+    // A part moved beyond the evaluation's reach (1e7 m) is a typo: named here, not where the
+    // bake's vertices overflow.
+    const std::vector<RawKey<Vec3>>& moves = channels.translation.keys;
+    for (std::size_t k = 0; k < moves.size(); ++k)
+      if (!(moves[k].value.norm() <= kMaxClipTranslation))
+        return At(where, "translation.keys[" + std::to_string(k) + "].value: beyond 1e6 m");
   }
   for (std::size_t i = 0; i < raw.profiles.size(); ++i) {
     const std::string where = Indexed("", "profiles", i).substr(1);

@@ -123,6 +123,14 @@ TEST(Clip, RefusesLoadsThatNeverAct) {
             "never acts (at t = 0 s: from 1, to 1)");
 }
 
+TEST(Clip, RefusesTranslationsBeyondReach) {
+  RawClip raw = PointLoadClip();
+  raw.parts[0].channels.translation = Constant(Vec3(0, 2e6, 0));
+  EXPECT_EQ(ValidateRawClip(raw), "parts[0].translation.keys[0].value: beyond 1e6 m");
+  raw.parts[0].channels.translation = Constant(Vec3(0, 1e5, 0));
+  EXPECT_EQ(ValidateRawClip(raw), "");
+}
+
 TEST(Clip, RefusesRigidBodyForcesOnDeformableParts) {
   RawClip raw = PointLoadClip();
   raw.parts[0].channels.rigid_torque = Constant(Vec3(0, 1, 0));

@@ -24,7 +24,8 @@
 // listed at most once; profile indices within the part; rigid-body forces only on rigid parts;
 // joint angles only on parts with a parent (the root has no joint); a point load's direction
 // keys of non-zero length and a line load's stretch non-empty (to > from, both clamped to
-// [0, 1]) at some key of its ends: a load that would never act is refused, not skipped.
+// [0, 1]) at some key of its ends: a load that would never act is refused, not skipped;
+// translation keys within 1e6 m.
 #pragma once
 
 #include <optional>
@@ -39,7 +40,8 @@
 
 namespace wirerig {
 
-inline constexpr double kMaxClipDuration = 1e6;  // s
+inline constexpr double kMaxClipDuration = 1e6;     // s
+inline constexpr double kMaxClipTranslation = 1e6;  // m, a part's translation key
 
 enum class LoopMode : int {
   kOnce = 0,      // times beyond the duration hold the last frame
