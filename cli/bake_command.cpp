@@ -200,10 +200,10 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   out << line;
   if (export_options.mode == GltfAnimationMode::kSkin) {
     std::snprintf(line, sizeof line,
-                  "skin: %zu joints (%zu keys stored), error against the bake max %.3g m (%.3g "
+                  "skin: %zu joint%s (%zu keys stored), error against the bake max %.3g m (%.3g "
                   "of the diagonal), RMS %.3g m\n",
-                  report.joint_count, report.joint_keys, report.skin_max_error,
-                  report.skin_max_error_relative, report.skin_rms_error);
+                  report.joint_count, report.joint_count == 1 ? "" : "s", report.joint_keys,
+                  report.skin_max_error, report.skin_max_error_relative, report.skin_rms_error);
     out << line;
     if (options.residual) {
       std::snprintf(line, sizeof line, "residual targets: %zu, error max %.3g m",
@@ -220,9 +220,9 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
       out << "\n";
     } else if (options.max_correctives > 0) {
       std::snprintf(line, sizeof line,
-                    "correctives: %zu shapes, error against the bake max %.3g m, RMS %.3g m\n",
-                    report.corrective_count, report.corrected_max_error,
-                    report.corrected_rms_error);
+                    "correctives: %zu shape%s, error against the bake max %.3g m, RMS %.3g m\n",
+                    report.corrective_count, report.corrective_count == 1 ? "" : "s",
+                    report.corrected_max_error, report.corrected_rms_error);
       out << line;
     }
   }

@@ -25,6 +25,15 @@ std::string CheckCount(double value, const char* name, double lo, double hi) {
   return std::string("/mesh/parameters/") + name + ": must be a whole number in [" +
          std::to_string(int(lo)) + ", " + std::to_string(int(hi)) + "]";
 }
+// A generator's count before its own check: a whole number, at least 1 and at most 4096 (what
+// any generator may allocate); the generator may allow fewer (the octopus's 64 arms), so the
+// message names only the bound that failed.
+std::string CheckAnyCount(double value, const char* name) {
+  const std::string where = std::string("/mesh/parameters/") + name + ": ";
+  if (!(value == std::floor(value)) || value < 1.0) return where + "must be a whole number >= 1";
+  if (value > 4096.0) return where + "must be at most 4096";
+  return {};
+}
 std::string FirstError(std::initializer_list<std::string> errors) {
   for (const std::string& e : errors)
     if (!e.empty()) return e;
@@ -53,7 +62,7 @@ struct DescribedShape {
       parameters.*field = Parameter(source, name, parameters.*field);
     for (auto [name, field] : counts) {
       const double value = Parameter(source, name, parameters.*field);
-      if (std::string e = CheckCount(value, name, 1, 4096); !e.empty()) return Error{e};
+      if (std::string e = CheckAnyCount(value, name); !e.empty()) return Error{e};
       parameters.*field = static_cast<int>(value);
     }
     Result<ProceduralRigSource> made = make(parameters);

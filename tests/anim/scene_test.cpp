@@ -374,8 +374,13 @@ TEST(Scene, EveryProceduralGeneratorBuildsWithItsDefaults) {
   d = CylinderScene();
   d["mesh"] = {{"procedural", "octopus"}, {"parameters", {{"tentacle_count", 2.5}}}};
   EXPECT_EQ(BuildError(d),
-            "scene \"beam\": /mesh/parameters/tentacle_count: must be a whole number in [1, "
-            "4096]");
+            "scene \"beam\": /mesh/parameters/tentacle_count: must be a whole number >= 1");
+  // Below 1 and above the octopus's own 64 name one range each, not two.
+  d["mesh"]["parameters"]["tentacle_count"] = 0;
+  EXPECT_EQ(BuildError(d),
+            "scene \"beam\": /mesh/parameters/tentacle_count: must be a whole number >= 1");
+  d["mesh"]["parameters"]["tentacle_count"] = 100;
+  EXPECT_EQ(BuildError(d), "scene \"beam\": /mesh/parameters/tentacle_count: must be in [1, 64]");
 }
 
 TEST(Scene, TheOctopusSampleBuilds) {
