@@ -36,6 +36,7 @@ constexpr double kCarryDegrees = 55.0;  // a branch within this of the torso's l
 constexpr double kRootDepth = 5.0;      // a child whose root lies deeper than this many of its
                                         // radii ...
 constexpr double kRootRadius = 2.0;     // ... starts where it is this many of its radii deep
+constexpr int kSmoothPasses = 1;        // passes of Describer::Smooth
 constexpr double kJointBend = 0.25;     // rad (about 15 degrees): a turn this sharp is a joint
 constexpr double kAnkleTurn = 0.6;      // rad (about 35 degrees): a leg turning this far is a foot
 // How far a collar bone turns each way about its joint's axes, degrees.
@@ -222,6 +223,7 @@ class Describer {
   void Name();
   void CarryTorsoOn();
   void TrimRoot(SkeletonPart& part) const;
+  void Smooth(SkeletonPart& part) const;
   std::vector<double> Radii(const std::vector<Vec3>& curve) const;  // distances to the surface
   std::size_t ShoulderOf(const std::vector<Vec3>& curve, double limb_radius) const;
   std::size_t LimbSplit(const std::vector<Vec3>& curve, double limb_radius) const;
@@ -715,6 +717,35 @@ void Describer::TrimRoot(SkeletonPart& part) const {
   }
 }
 
+std::vector<double> ArcLengths(const std::vector<Vec3>& curve);
+
+std::vector<double> ArcLengths(const std::vector<Vec3>& curve);
+
+// Profiles are traced in the planes normal to the part's curve, so a kink of the curve sharper
+// than the flesh around it is thick fans them out: they cross on the inside of the turn (a
+// cow's rump, where the skeleton climbs diagonally to the tail's root). Each point becomes the
+// mean of the curve's points within its distance to the surface along the curve (the window
+// held symmetric, so the ends stay where they are and a straight curve stays straight),
+// kSmoothPasses times.
+void Describer::Smooth(SkeletonPart& part) const {
+  std::vector<Vec3>& curve = part.curve;
+  if (curve.size() < 3) return;
+  const std::vector<double> radius = Radii(curve);
+  for (int pass = 0; pass < kSmoothPasses; ++pass) {
+    const std::vector<double> at = ArcLengths(curve);
+    std::vector<Vec3> smoothed = curve;
+    for (std::size_t k = 1; k + 1 < curve.size(); ++k) {
+      const double window = std::min({radius[k], at[k], at.back() - at[k]});
+      Vec3 sum = Vec3::Zero();
+      int count = 0;
+      for (std::size_t j = 0; j < curve.size(); ++j)
+        if (std::abs(at[j] - at[k]) <= window) sum += curve[j], ++count;
+      smoothed[k] = sum / double(count);
+    }
+    curve = std::move(smoothed);
+  }
+}
+
 void Reverse(SkeletonPart& part) {
   std::reverse(part.curve.begin(), part.curve.end());
   std::reverse(part.nodes.begin(), part.nodes.end());
@@ -1182,6 +1213,7 @@ Result<RigDescription> Describer::Run() {
   CarryTorsoOn();
   for (SkeletonPart& part : parts_) TrimRoot(part);
   for (SkeletonPart& part : parts_) ExtendEnds(part);
+  for (SkeletonPart& part : parts_) Smooth(part);
 
   // Output order: torso, the named parts in a fixed order, the rest as found (parents first).
   static const char* const kOrder[] = {

@@ -224,6 +224,39 @@ TEST(CurveSkeleton, CapsuleSkeletonIsItsAxis) {
   }
 }
 
+// A skeleton that jogs sideways inside a capsule by 0.4 of its radius in one 2 cm step (two
+// kinks of 63 degrees, as a contraction leaves where branches meet) is described as a curve
+// that turns gently: profiles are traced normal to the curve, and a kink sharper than the flesh
+// around it is thick would fan them out across each other. Its ends stay where they were.
+TEST(CurveSkeleton, KinksSharperThanTheFleshAreSmoothedOut) {
+  const double radius = 0.1, length = 0.6;
+  const Mesh mesh = Capsule(radius, length, 24, 6, 24);
+  CurveSkeleton skeleton;
+  CurveSkeleton::Branch branch;
+  branch.from = 0, branch.to = 1;
+  const int steps = 30;
+  for (int k = 0; k <= steps; ++k) {
+    const double jog = k > steps / 2 ? 0.4 * radius : 0.0;
+    branch.points.emplace_back(jog, length * k / steps, 0.0);
+  }
+  skeleton.nodes = {branch.points.front(), branch.points.back()};
+  skeleton.branches.push_back(branch);
+  const Result<RigDescription> description = DescribeFromCurveSkeleton(mesh, skeleton);
+  ASSERT_TRUE(description.ok()) << description.error();
+  ASSERT_EQ(description.value().parts.size(), 1u);
+  const std::vector<Vec3>& curve = description.value().parts[0].central_curve;
+  ASSERT_GE(curve.size(), 3u);
+  double sharpest = 0.0;
+  for (std::size_t k = 1; k + 1 < curve.size(); ++k) {
+    const Vec3 a = (curve[k] - curve[k - 1]).normalized(),
+               b = (curve[k + 1] - curve[k]).normalized();
+    sharpest = std::max(sharpest, std::acos(std::clamp(a.dot(b), -1.0, 1.0)));
+  }
+  EXPECT_LT(sharpest, 30.0 * std::numbers::pi / 180.0);  // unsmoothed: 63
+  EXPECT_LT(std::abs(curve.front().x()), 1e-9);
+  EXPECT_NEAR(curve.back().x(), 0.4 * radius, 1e-9);
+}
+
 // A UV sphere: its cospherical points make CGAL's interval arithmetic produce invalid
 // operations inside the Delaunay triangulation (a SIGFPE under this test main's traps unless
 // ExtractCurveSkeleton holds them).
