@@ -92,7 +92,8 @@ Status ValidateVertex(const RigModel& model, std::size_t v) {
     return Status::InvalidElement("vertices", index, "part", "names a part the model lacks");
   const PartModel& part = model.parts[a.part];
   const std::size_t profiles = part.profiles.size();
-  if (a.cap ? a.profile >= profiles : a.profile + 1 >= profiles)
+  // In size_t: a pair's profile + 1 must not wrap round (0xFFFFFFFF + 1 is 0 in 32 bits).
+  if (a.cap ? a.profile >= profiles : std::size_t(a.profile) + 1 >= profiles)
     return Status::InvalidElement("vertices", index, "profile", "names a profile the part lacks");
   if (a.cap) {
     if (!Finite(a.cap_local))

@@ -141,6 +141,12 @@ TEST(RigAsset, RefusesModelsThatCannotBeEvaluated) {
   EXPECT_NE(Refusal(SerializeRigAsset(asset)).find("vertices[" + std::to_string(paired) + "].pair"),
             std::string::npos);
 
+  // The largest profile index: profile + 1 wraps to 0 in 32 bits (found by the fuzzer).
+  asset = Limb();
+  asset.model.vertices[paired].profile = 0xFFFFFFFFu;
+  EXPECT_EQ(Refusal(SerializeRigAsset(asset)),
+            "vertices[" + std::to_string(paired) + "].profile: names a profile the part lacks");
+
   asset = Limb();
   asset.model.parts[0].spine_points[1].x() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_NE(Refusal(SerializeRigAsset(asset)).find("parts[0].spine_points"), std::string::npos);
