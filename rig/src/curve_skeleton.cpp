@@ -717,35 +717,6 @@ void Describer::TrimRoot(SkeletonPart& part) const {
   }
 }
 
-std::vector<double> ArcLengths(const std::vector<Vec3>& curve);
-
-std::vector<double> ArcLengths(const std::vector<Vec3>& curve);
-
-// Profiles are traced in the planes normal to the part's curve, so a kink of the curve sharper
-// than the flesh around it is thick fans them out: they cross on the inside of the turn (a
-// cow's rump, where the skeleton climbs diagonally to the tail's root). Each point becomes the
-// mean of the curve's points within its distance to the surface along the curve (the window
-// held symmetric, so the ends stay where they are and a straight curve stays straight),
-// kSmoothPasses times.
-void Describer::Smooth(SkeletonPart& part) const {
-  std::vector<Vec3>& curve = part.curve;
-  if (curve.size() < 3) return;
-  const std::vector<double> radius = Radii(curve);
-  for (int pass = 0; pass < kSmoothPasses; ++pass) {
-    const std::vector<double> at = ArcLengths(curve);
-    std::vector<Vec3> smoothed = curve;
-    for (std::size_t k = 1; k + 1 < curve.size(); ++k) {
-      const double window = std::min({radius[k], at[k], at.back() - at[k]});
-      Vec3 sum = Vec3::Zero();
-      int count = 0;
-      for (std::size_t j = 0; j < curve.size(); ++j)
-        if (std::abs(at[j] - at[k]) <= window) sum += curve[j], ++count;
-      smoothed[k] = sum / double(count);
-    }
-    curve = std::move(smoothed);
-  }
-}
-
 void Reverse(SkeletonPart& part) {
   std::reverse(part.curve.begin(), part.curve.end());
   std::reverse(part.nodes.begin(), part.nodes.end());
@@ -883,6 +854,31 @@ std::vector<double> ArcLengths(const std::vector<Vec3>& curve) {
   for (std::size_t k = 1; k < curve.size(); ++k)
     at[k] = at[k - 1] + (curve[k] - curve[k - 1]).norm();
   return at;
+}
+
+// Profiles are traced in the planes normal to the part's curve, so a kink of the curve sharper
+// than the flesh around it is thick fans them out: they cross on the inside of the turn (a
+// cow's rump, where the skeleton climbs diagonally to the tail's root). Each point becomes the
+// mean of the curve's points within its distance to the surface along the curve (the window
+// held symmetric, so the ends stay where they are and a straight curve stays straight),
+// kSmoothPasses times.
+void Describer::Smooth(SkeletonPart& part) const {
+  std::vector<Vec3>& curve = part.curve;
+  if (curve.size() < 3) return;
+  const std::vector<double> radius = Radii(curve);
+  for (int pass = 0; pass < kSmoothPasses; ++pass) {
+    const std::vector<double> at = ArcLengths(curve);
+    std::vector<Vec3> smoothed = curve;
+    for (std::size_t k = 1; k + 1 < curve.size(); ++k) {
+      const double window = std::min({radius[k], at[k], at.back() - at[k]});
+      Vec3 sum = Vec3::Zero();
+      int count = 0;
+      for (std::size_t j = 0; j < curve.size(); ++j)
+        if (std::abs(at[j] - at[k]) <= window) sum += curve[j], ++count;
+      smoothed[k] = sum / double(count);
+    }
+    curve = std::move(smoothed);
+  }
 }
 
 // The angle a curve turns by at point k (rad), between its chords over `stretch` (arc length
