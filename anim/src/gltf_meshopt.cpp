@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -216,6 +217,14 @@ void RoundLikeExpFilter(std::span<float> values, std::size_t components, int bit
     if (std::memcmp(values.data(), encoded.data(), values.size_bytes()) == 0) return;
     std::memcpy(values.data(), encoded.data(), values.size_bytes());
   }
+}
+
+int ExpFilterBits(double largest, double precision, int most) {
+  // A vector's components are rounded to multiples of 2^(e + 1 - bits), where 2^e, the power of
+  // two above its largest component, is at most 2 largest: within largest * 2^(1 - bits).
+  if (!(largest > precision)) return 1;
+  const double needed = 1.0 + std::ceil(std::log2(largest / precision));
+  return static_cast<int>(std::clamp(needed, 1.0, static_cast<double>(most)));
 }
 
 void RoundLikeOctFilter(std::span<float> values, int bits) {

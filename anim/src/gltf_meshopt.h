@@ -22,10 +22,13 @@ namespace wirerig::gltf {
 
 // Mantissa bits the EXPONENTIAL filter keeps (a vector's components share the exponent of its
 // largest): relative precision 2^(1 - bits) of that component.
-inline constexpr int kPositionBits = 16;     // 2 m from the origin: within 3.1e-5 m
-inline constexpr int kUvBits = 16;           // within 3e-5 of the texture
-inline constexpr int kDeltaBits = 10;        // a 2 cm corrective delta: within 2e-5 m
-inline constexpr int kTranslationBits = 18;  // 10 m from the parent joint: within 4e-5 m
+inline constexpr int kPositionBits = 16;  // 2 m from the origin: within 3.1e-5 m
+inline constexpr int kUvBits = 12;        // within 2.5e-4 of the texture (gltfpack's default)
+inline constexpr int kDeltaBits = 10;     // a 2 cm corrective delta: within 2e-5 m
+// Translation keys: each joint's bits chosen so that its keys are stored within
+// kTranslationPrecision (TranslationBits), at most kTranslationBits (the filter's maximum).
+inline constexpr double kTranslationPrecision = 4e-5;  // m
+inline constexpr int kTranslationBits = 24;
 // Bits of the OCTAHEDRAL filter for the rest normals, stored as normalized signed bytes: within
 // about a degree (lighting only; no error the export reports depends on them).
 inline constexpr int kOctahedralBits = 8;
@@ -38,6 +41,10 @@ inline constexpr int kRotationBits = 16;
 // `bits` mantissa bits stores and a reader decodes (meshoptimizer's own encoder and decoder),
 // repeated until the filter gives the values back unchanged.
 void RoundLikeExpFilter(std::span<float> values, std::size_t components, int bits);
+
+// The fewest mantissa bits (1 to `most`) with which the EXPONENTIAL filter stores vectors
+// whose largest component magnitude is at most `largest` within `precision` (both m).
+int ExpFilterBits(double largest, double precision, int most);
 
 // The unit quaternion `q` (x, y, z, w) as the QUATERNION filter with `bits` per component stores
 // it and a reader decodes it (normalized signed shorts, meshoptimizer's own encoder and

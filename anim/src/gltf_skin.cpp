@@ -50,6 +50,10 @@ struct Track {
 Track ThinTrack(std::span<const Rigid> exact, std::span<const float> times, double tolerance,
                 double reach, int translation_bits, int rotation_bits) {
   const std::size_t count = exact.size();
+  double largest = 0.0;  // of the translations' components
+  for (const Rigid& r : exact) largest = std::max(largest, r.translation.cwiseAbs().maxCoeff());
+  if (translation_bits > 0)
+    translation_bits = ExpFilterBits(largest, kTranslationPrecision, translation_bits);
   std::vector<Vec3f> stored_t(count);
   std::vector<Quatf> stored_q(count);
   Quat previous = Quat::Identity();

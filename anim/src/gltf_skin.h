@@ -58,7 +58,7 @@ struct KeyThinning {
   std::span<const float> times;   // #K key times as stored, s
   double tolerance = 0.0;         // m
   std::span<const double> reach;  // #J, m
-  int translation_bits = 0;       // > 0: translations stored through the EXPONENTIAL filter
+  int translation_bits = 0;       // > 0: through the EXPONENTIAL filter, at most these bits
   int rotation_bits = 0;          // > 0: rotations stored through the QUATERNION filter
 };
 
