@@ -10,6 +10,7 @@
 #include "wirerig/anim/scene.h"
 #include "wirerig/io/output_file.h"
 #include "wirerig/viewer/headless.h"
+#include "wirerig/viewer/image.h"
 #include "wirerig/viewer/scene_frame.h"
 
 namespace wirerig::cli {
@@ -59,6 +60,18 @@ int RunRenderCommand(const RenderCommandOptions& options, std::ostream& out, std
   Size size;
   if (!ParseImageSize(options.size, &size.width, &size.height))
     return fail(std::string("--size: must be ") + kImageSizeRule);
+  const int n = options.sheet;
+  const int columns = n <= 4 ? n : (n <= 9 ? 3 : 4);
+  if (n > 0) {
+    const SheetSize sheet = ContactSheetSize(n, size, columns);
+    if (sheet.width * sheet.height > kMaxPngPixels) {
+      err << "wirerig render: --size " << options.size << " with --sheet " << n
+          << ": the sheet would be " << sheet.width << "x" << sheet.height
+          << " pixels, more than the " << kMaxPngPixels
+          << " a PNG is written with; use a smaller --size or fewer times\n";
+      return 2;
+    }
+  }
   Result<BuiltScene> built = LoadAndBuildScene(options.scene, options.import_limits.Isolation());
   if (!built) return fail(built.error());
   const BuiltScene& scene = built.value();
@@ -102,8 +115,6 @@ int RunRenderCommand(const RenderCommandOptions& options, std::ostream& out, std
   }
   // Contact sheet: every tile keeps the first tile's camera so motion reads across tiles (moved
   // with the part the camera hint follows, if any).
-  const int n = options.sheet;
-  const int columns = n <= 4 ? n : (n <= 9 ? 3 : 4);
   std::vector<ContactSheetTile> tiles;
   std::vector<SceneFrame> pictures;
   pictures.reserve(static_cast<std::size_t>(n));

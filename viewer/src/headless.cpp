@@ -14,6 +14,8 @@
 namespace wirerig {
 namespace {
 
+constexpr int kSheetGutter = 2;  // white pixels around and between a contact sheet's tiles
+
 std::string EglErrorText() {
   char buffer[32];
   std::snprintf(buffer, sizeof(buffer), "EGL error 0x%04X", static_cast<unsigned>(eglGetError()));
@@ -261,22 +263,35 @@ Result<std::filesystem::path> RenderToPng(const RenderFrame& frame, const Camera
   return SavePng(image, path);
 }
 
+SheetSize ContactSheetSize(int count, Size tile_size, int columns) {
+  columns = std::max(1, std::min(columns, count));
+  const std::int64_t rows = (std::int64_t(count) + columns - 1) / columns;
+  return {columns * std::int64_t(tile_size.width) + (columns + 1) * std::int64_t(kSheetGutter),
+          rows * std::int64_t(tile_size.height) + (rows + 1) * std::int64_t(kSheetGutter)};
+}
+
 Result<std::filesystem::path> RenderContactSheet(std::span<const ContactSheetTile> tiles,
                                                  Size tile_size, int columns,
                                                  const std::filesystem::path& path,
                                                  const RenderOptions& options) {
   if (tiles.empty()) return Error{path.string() + ": a contact sheet needs at least one tile"};
   if (columns < 1) return Error{path.string() + ": a contact sheet needs at least one column"};
+  const int count = static_cast<int>(tiles.size());
+  const SheetSize size = ContactSheetSize(count, tile_size, columns);
+  if (size.width * size.height > kMaxPngPixels) {
+    return Error{path.string() + ": a contact sheet of " + std::to_string(count) + " tiles of " +
+                 std::to_string(tile_size.width) + "x" + std::to_string(tile_size.height) +
+                 " would be " + std::to_string(size.width) + "x" + std::to_string(size.height) +
+                 " pixels, more than the " + std::to_string(kMaxPngPixels) +
+                 " a PNG is written with"};
+  }
   Result<std::unique_ptr<HeadlessRenderer>> headless = HeadlessRenderer::Create();
   if (!headless) return Error{path.string() + ": " + headless.error()};
   HeadlessRenderer& renderer = *headless.value();
-  constexpr int kGutter = 2;
-  const int count = static_cast<int>(tiles.size());
   columns = std::min(columns, count);
-  const int rows = (count + columns - 1) / columns;
   Image sheet;
-  sheet.width = columns * tile_size.width + (columns + 1) * kGutter;
-  sheet.height = rows * tile_size.height + (rows + 1) * kGutter;
+  sheet.width = static_cast<int>(size.width);
+  sheet.height = static_cast<int>(size.height);
   sheet.rgba.assign(std::size_t(sheet.width) * std::size_t(sheet.height) * 4, 255);
   Image tile_image;
   for (int i = 0; i < count; ++i) {
@@ -291,8 +306,8 @@ Result<std::filesystem::path> RenderContactSheet(std::span<const ContactSheetTil
     }
     const int col = i % columns;
     const int row = i / columns;
-    const int x0 = kGutter + col * (tile_size.width + kGutter);
-    const int y0 = kGutter + row * (tile_size.height + kGutter);
+    const int x0 = kSheetGutter + col * (tile_size.width + kSheetGutter);
+    const int y0 = kSheetGutter + row * (tile_size.height + kSheetGutter);
     for (int y = 0; y < tile_size.height; ++y) {
       std::memcpy(sheet.rgba.data() +
                       (std::size_t(y0 + y) * std::size_t(sheet.width) + std::size_t(x0)) * 4,

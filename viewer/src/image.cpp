@@ -19,6 +19,11 @@ Result<std::filesystem::path> SavePng(const Image& image, const std::filesystem:
     return Error{path.string() + ": cannot write an empty or inconsistent image (" +
                  std::to_string(image.width) + "x" + std::to_string(image.height) + ")"};
   }
+  if (std::int64_t(image.width) * image.height > kMaxPngPixels) {
+    return Error{path.string() + ": a " + std::to_string(image.width) + "x" +
+                 std::to_string(image.height) + " image is more than the " +
+                 std::to_string(kMaxPngPixels) + " pixels a PNG is written with"};
+  }
   std::string bytes;
   auto append = [](void* context, void* data, int size) {
     static_cast<std::string*>(context)->append(static_cast<const char*>(data),

@@ -87,8 +87,16 @@ struct ContactSheetTile {
   std::string label;
 };
 
+// The size of a contact sheet of `count` tiles of `tile_size`, `columns` wide (at most `count`;
+// rows as needed), with a 2-pixel white gutter; in 64 bits (a sheet may exceed int).
+struct SheetSize {
+  std::int64_t width = 0, height = 0;
+};
+SheetSize ContactSheetSize(int count, Size tile_size, int columns);
+
 // Renders every tile at `tile_size` and tiles them `columns` wide (rows as needed) into one PNG
-// with a 2-pixel white gutter. Returns the path, or an error naming the file.
+// with a 2-pixel white gutter. Returns the path, or an error naming the file; a sheet of more
+// than kMaxPngPixels (image.h) is refused before anything is drawn.
 Result<std::filesystem::path> RenderContactSheet(std::span<const ContactSheetTile> tiles,
                                                  Size tile_size, int columns,
                                                  const std::filesystem::path& path,

@@ -23,8 +23,13 @@ struct Image {
   }
 };
 
+// The most pixels SavePng writes: stb's PNG encoder sizes its buffers in int, and 4 bytes a
+// pixel (a gigabyte here) stay well below 2^31.
+inline constexpr std::int64_t kMaxPngPixels = std::int64_t{1} << 28;
+
 // Writes `image` as a PNG atomically (a temporary file in the same folder renamed over
-// `path`). Returns the path, or an error naming the file.
+// `path`). Returns the path, or an error naming the file (an image of more than kMaxPngPixels
+// is refused).
 Result<std::filesystem::path> SavePng(const Image& image, const std::filesystem::path& path);
 
 // Reads a PNG (or any format stb_image reads) as RGBA. The error names the file.
