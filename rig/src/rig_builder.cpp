@@ -1,6 +1,7 @@
 #include "wirerig/rig/rig_builder.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <optional>
 
 #include "wirerig/rig/part_assignment.h"
@@ -22,9 +23,12 @@ double MeanRadius(const RigPart& part) {
 }
 
 // Section of each wire (see rig_builder.h).
-void AssignWires(RigPart& part, const Material& material, double thickness) {
+// Fails (naming the skin thickness) when a section would not be positive and finite.
+Status AssignWires(RigPart& part, const Material& material, double thickness) {
   const double radius = std::max(MeanRadius(part), 1e-6);
-  part.spine_wire = {material, TubeSection(radius, std::min(thickness, 2.0 * radius))};
+  const double wall = std::min(thickness, 2.0 * radius);
+  if (Status s = ValidateTube(radius, wall); !s) return s;
+  part.spine_wire = {material, TubeSection(radius, wall)};
   const std::size_t n = part.profiles.size();
   part.profile_wires.clear();
   for (std::size_t k = 0; k < n; ++k) {
@@ -32,8 +36,10 @@ void AssignWires(RigPart& part, const Material& material, double thickness) {
     const Vec3& prev = part.profiles[k > 0 ? k - 1 : std::min<std::size_t>(1, n - 1)].origin;
     const Vec3& next = part.profiles[k + 1 < n ? k + 1 : (n >= 2 ? n - 2 : 0)].origin;
     const double spacing = std::max(0.5 * ((here - prev).norm() + (next - here).norm()), 1e-6);
+    if (Status s = ValidateStrip(spacing, thickness); !s) return s;
     part.profile_wires.push_back({material, StripSection(spacing, thickness)});
   }
+  return Status::Ok();
 }
 
 void Warn(RigBuildReport& report, const std::string& part, const ProfileDiagnostics& d) {
@@ -224,7 +230,12 @@ Result<BuiltRig> BuildRigOnce(const Mesh& mesh, const RigDescription& descriptio
                    " profiles hit its surface; is its central curve inside the mesh? (" +
                    spine.error() + ")"};
     }
-    AssignWires(part, description.material, options.skin_thickness);
+    if (Status s = AssignWires(part, description.material, options.skin_thickness); !s) {
+      char thickness[32];
+      std::snprintf(thickness, sizeof thickness, "%g", options.skin_thickness);
+      return Error{"part '" + d.name + "': skin thickness " + thickness +
+                   " m: its wire sections: " + ToString(s)};
+    }
     part.joint = d.joint;
     if (!d.parent.empty()) {
       for (std::size_t p = 0; p < i; ++p)

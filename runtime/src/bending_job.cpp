@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "bending_internal.h"
 #include "validation.h"
@@ -78,6 +79,9 @@ Status BendingJob::Validate() const {
   }
   if (Status s = detail::CheckPositive("length", length, "must be positive and finite (m)"); !s)
     return s;
+  // Curvature is scaled by 1 / L^2 (compared, not computed: callers may trap overflow).
+  if (length < 1.0 / std::sqrt(std::numeric_limits<double>::max()))
+    return Status::Invalid("length", "too small: 1/L^2 overflows (m)");
   if (Status s = detail::CheckPositive("bending_stiffness", bending_stiffness,
                                        "must be positive and finite (N m^2)");
       !s)

@@ -125,6 +125,13 @@ TEST(WirerigExitCodes, UsageErrorsExitTwo) {
             size + "\")");
     ExpectExit(RunWirerig({"view", kOctopus, "--size", size}), 2, "--size");
   }
+  // A contact sheet beyond what a PNG is written with (4 x 16 tiles of 4096: 16394 x 65570
+  // pixels) is refused before anything is drawn; it crashed in the PNG encoder after 81 s.
+  const fs::path sheet = Scratch("huge_sheet.png");
+  ExpectExit(RunWirerig({"render", kOctopus, "-o", sheet.string(), "--size", "4096x4096", "--sheet",
+                         "64"}),
+             2, "--size 4096x4096 with --sheet 64: the sheet would be 16394x65570 pixels");
+  EXPECT_FALSE(fs::exists(sheet));
 #endif
 }
 
@@ -340,6 +347,13 @@ TEST(WirerigOutputs, OptionBoundsAreReadable) {
              "--fps: must be in [1, 1000] (got 0)");
   ExpectExit(RunWirerig({"rig", "m.obj", "-o", "x.json", "--skin-thickness", "-1"}), 2,
              "--skin-thickness: must be > 0 (got -1)");
+  // A thickness whose sections overflow: refused, naming it, and nothing written (it wrote a
+  // rig whose I was null, which no scene could load).
+  const fs::path thick = Scratch("thick.rig.json");
+  ExpectExit(RunWirerig({"rig", std::string(WIRERIG_ASSET_DIR) + "/cow.off", "-o", thick.string(),
+                         "--skin-thickness", "1e300"}),
+             1, "skin thickness 1e+300 m: its wire sections: h: gives with b a section");
+  EXPECT_FALSE(fs::exists(thick));
 #ifdef WIRERIG_HAS_VIEWER
   ExpectExit(RunWirerig({"render", kOctopus, "-o", "x.png", "-t", "-2"}), 2,
              "--time: must be >= 0 (got -2)");

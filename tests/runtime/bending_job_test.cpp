@@ -585,6 +585,11 @@ TEST_F(BendingJobValidation, LengthNotPositiveOrNotFinite) {
     job.length = bad;
     ExpectRefused("length");
   }
+  // So short that 1/L^2 overflows: the curvatures came out NaN (found by trying the CLI).
+  job.length = 1e-160;
+  ExpectRefused("length");
+  job.length = 1e-150;
+  EXPECT_TRUE(job.Validate().ok());
 }
 TEST_F(BendingJobValidation, StiffnessNotPositiveOrNotFinite) {
   for (double bad : {0.0, -3.0, NaN(), Inf()}) {

@@ -46,8 +46,21 @@ TEST(Section, InvalidDimensionsAreNamed) {
   EXPECT_EQ(ValidateTube(0.01, 0.0).field, "h");
   EXPECT_EQ(ValidateTube(0.01, 0.03).field, "h");  // inner radius would be negative
   EXPECT_TRUE(ValidateTube(0.01, 0.02).ok());      // a solid rod
+  // Finite inputs whose section overflows (b h^3 / 12 = inf) or underflows (b h = 0) are refused:
+  // a rig built with a skin thickness of 1e300 m wrote I = inf (JSON null) and could not be read.
+  EXPECT_EQ(ValidateStrip(0.05, 1e300).field, "h");
+  EXPECT_EQ(ValidateStrip(1e-200, 1e-200).field, "h");
+  EXPECT_EQ(ValidateTube(1e200, 1e200).field, "h");
+  EXPECT_TRUE(ValidateStrip(0.05, 1e-3).ok());
   EXPECT_EQ(ValidateSection(CustomSection(0.0, 1.0)).field, "A");
   EXPECT_EQ(ValidateSection(CustomSection(1.0, -1.0)).field, "I");
+  // Finite but so large that E A or E I would overflow (a scene's A = 1e300 was blamed on the
+  // clip's poses): refused; E A at the bounds is finite.
+  EXPECT_EQ(ValidateSection(CustomSection(1e300, 1.0)).field, "A");
+  EXPECT_EQ(ValidateSection(CustomSection(1.0, 1e151)).field, "I");
+  EXPECT_TRUE(ValidateSection(CustomSection(1e150, 1e150)).ok());
+  EXPECT_TRUE(
+      std::isfinite(ComputeStiffness({1e150, 0.3, 1.0}, CustomSection(1e150, 1e150)).axial));
   EXPECT_EQ(ValidateSection({static_cast<SectionKind>(9), 1.0, 1.0}).field, "kind");
 }
 
@@ -66,6 +79,7 @@ TEST(Material, PresetsAreValidAndFindable) {
 TEST(Material, InvalidFieldsAreNamed) {
   EXPECT_EQ(ValidateMaterial({0.0, 0.3, 1.0}).field, "E");
   EXPECT_EQ(ValidateMaterial({std::numeric_limits<double>::infinity(), 0.3, 1.0}).field, "E");
+  EXPECT_EQ(ValidateMaterial({1e300, 0.3, 1.0}).field, "E");
   EXPECT_EQ(ValidateMaterial({1e9, 0.5, 1.0}).field, "nu");
   EXPECT_EQ(ValidateMaterial({1e9, -1.0, 1.0}).field, "nu");
   EXPECT_EQ(ValidateMaterial({1e9, 0.3, -1.0}).field, "density");

@@ -21,9 +21,10 @@ struct Section {
   double second_moment = 0.0;  // I > 0, m^4
 };
 
-// Width b > 0 and thickness h > 0, metres.
+// Width b > 0 and thickness h > 0, metres, whose A and I are positive and finite.
 Status ValidateStrip(double width, double thickness);
-// Mean radius r > 0 and wall thickness 0 < h <= 2r (the inner radius r - h/2 is not negative).
+// Mean radius r > 0 and wall thickness 0 < h <= 2r (the inner radius r - h/2 is not negative),
+// whose A and I are positive and finite.
 Status ValidateTube(double mean_radius, double wall_thickness);
 
 // Call only with arguments that pass the matching Validate*; the result then passes
