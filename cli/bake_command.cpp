@@ -50,7 +50,8 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
   bake->add_flag("--residual", options.residual,
                  "skin mode: add residual morph targets so the export matches the bake exactly");
   bake->add_flag("--quantize", options.quantize,
-                 "Store morph position (and normal) deltas as shorts (KHR_mesh_quantization)");
+                 "Smaller file, KHR_mesh_quantization: morph mode: deltas as shorts; skin mode: "
+                 "corrective shapes as bytes, rest mesh as shorts and bytes, weights as bytes");
   bake->add_option("--max-joints", options.max_joints, "skin mode: joints per skin at most")
       ->check(InRange(1, 65535))
       ->capture_default_str();

@@ -291,7 +291,7 @@ CameraHint ReadCamera(const JsonObject& o) {
   if (!(camera.pitch > -1.57 && camera.pitch < 1.57))
     throw FieldError(o.PathOf("pitch"), "must lie within (-pi/2, pi/2)");
   if (!(camera.distance >= 0.0 && camera.distance < 1e6))
-    throw FieldError(o.PathOf("distance"), "must be 0 (frame the model) or positive");
+    throw FieldError(o.PathOf("distance"), "must be 0 (frame the model) or positive, below 1e6 m");
   if (!(camera.fov > 0.01 && camera.fov < 3.0))
     throw FieldError(o.PathOf("fov"), "must lie within (0.01, 3) rad");
   return camera;

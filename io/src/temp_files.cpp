@@ -41,9 +41,10 @@ extern "C" void RemoveRegisteredAndReraise(int signal_number) {
 }
 
 // Signals whose default action ends the process: a terminal hang-up, an interrupt, a kill or
-// quit request, a timer or user signal, a write to a closed pipe.
-constexpr int kCleanupSignals[] = {SIGHUP,  SIGINT,  SIGTERM, SIGQUIT,
-                                   SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2};
+// quit request, a timer or user signal, a write to a closed pipe, a file-size or CPU-time limit
+// reached (ulimit -f, ulimit -t).
+constexpr int kCleanupSignals[] = {SIGHUP,  SIGINT,  SIGTERM, SIGQUIT, SIGPIPE,
+                                   SIGALRM, SIGUSR1, SIGUSR2, SIGXFSZ, SIGXCPU};
 
 void InstallHandlers() {
   static std::once_flag once;

@@ -131,6 +131,10 @@ TEST(Scene, ErrorsNameTheFieldByJsonPointer) {
   d["camera"]["pitch"] = 2;
   EXPECT_EQ(ParseError(d), "/camera/pitch: must lie within (-pi/2, pi/2)");
   d = CylinderScene();
+  d["camera"]["distance"] = 1e6;  // positive, yet refused: the message gives the bound
+  EXPECT_EQ(ParseError(d),
+            "/camera/distance: must be 0 (frame the model) or positive, below 1e6 m");
+  d = CylinderScene();
   d["parts"]["beam"]["kind"] = "floppy";
   EXPECT_EQ(ParseError(d), "/parts/beam/kind: must be \"rigid\" or \"deformable\"");
   d = CylinderScene();

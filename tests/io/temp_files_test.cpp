@@ -92,10 +92,11 @@ void ExpectSignalRemoves(int signal_number) {
 
 TEST(TemporaryFiles, SigtermRemovesRegisteredFilesAndStillKills) { ExpectSignalRemoves(SIGTERM); }
 TEST(TemporaryFiles, SigintRemovesRegisteredFilesAndStillKills) { ExpectSignalRemoves(SIGINT); }
-// A hang-up (a closed terminal), a quit, a broken pipe, a timer or a user signal left the
-// temporary file behind until the next run.
+// A hang-up (a closed terminal), a quit, a broken pipe, a timer, a user signal or a file-size
+// or CPU-time limit (a bake under `ulimit -f`) left the temporary file behind until the next run.
 TEST(TemporaryFiles, EveryTerminatingSignalRemovesRegisteredFiles) {
-  for (int signal_number : {SIGHUP, SIGQUIT, SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2}) {
+  for (int signal_number :
+       {SIGHUP, SIGQUIT, SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2, SIGXFSZ, SIGXCPU}) {
     SCOPED_TRACE(signal_number);
     ExpectSignalRemoves(signal_number);
   }

@@ -1,8 +1,8 @@
 // Temporary files that never outlive their process: a file registered here is removed if the
-// process is killed by SIGHUP, SIGINT, SIGTERM, SIGQUIT, SIGPIPE, SIGALRM, SIGUSR1 or SIGUSR2
-// (an async-signal-safe handler unlinks every registered path, then re-raises the signal with
-// its default action), and a temporary file left by a
-// process that died otherwise (SIGKILL, a crash) is removed by the next write beside it.
+// process is killed by SIGHUP, SIGINT, SIGTERM, SIGQUIT, SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2,
+// SIGXFSZ or SIGXCPU (an async-signal-safe handler unlinks every registered path, then
+// re-raises the signal with its default action), and a temporary file left by a process that
+// died otherwise (SIGKILL, a crash) is removed by the next write beside it.
 // Temporary files are named "<target>.tmp<pid>" (TemporaryPathFor).
 #pragma once
 
