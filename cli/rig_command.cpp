@@ -128,7 +128,7 @@ CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options) {
   rig->add_option("--up", options.up_axis, "Source up axis, overriding the file")
       ->check(CLI::IsMember({"x", "y", "z"}));
   rig->add_option("--unit-scale", options.unit_scale, "Metres per source unit, overriding the file")
-      ->check(Above(0));
+      ->check(InRange(1e-12, 1e12));  // the importer's range (ImportOptions::unit_scale)
   rig->add_option("--skin-thickness", options.skin_thickness,
                   "Skin thickness for wire sections (m)")
       ->check(Above(0))

@@ -1,5 +1,7 @@
 #include "wirerig/anim/clip_json.h"
 
+#include <type_traits>
+
 #include <nlohmann/json.hpp>
 
 namespace wirerig {
@@ -36,6 +38,12 @@ RawTrack<T> ReadTrack(const json& value, const std::string& path) {
   if (IsConstant(value)) {
     track.keys.push_back({0.0, ReadValue<T>(value, path), Interpolation::kStep});
   } else {
+    if (!value.is_object()) {  // "must be an object" pointed away from the usual constant
+      throw FieldError(path, std::is_same_v<T, double>
+                                 ? "must be a number or a track {\"keys\": [[time, value], ...]}"
+                                 : "must be [x, y, z] or a track {\"keys\": [[time, [x, y, z]], "
+                                   "...]}");
+    }
     const JsonObject object(value, path);
     object.RejectUnknownKeys({"interpolation", "keys"});
     Interpolation fallback = Interpolation::kLinear;

@@ -135,6 +135,11 @@ Result<RigDescription> ParseRigDescription(const nlohmann::json& document) {
       d.RejectUnknownKeys({"profile_count", "points_per_profile"});
       defaults.profile_count = d.Integer("profile_count", defaults.profile_count);
       defaults.points_per_profile = d.Integer("points_per_profile", defaults.points_per_profile);
+      // Judged here, where they are written, even when every part sets its own.
+      if (defaults.profile_count < 2 || defaults.profile_count > kMaxProfiles)
+        throw FieldError("/defaults/profile_count", "must lie in [2, 4096]");
+      if (defaults.points_per_profile < 3 || defaults.points_per_profile > kMaxPointsPerProfile)
+        throw FieldError("/defaults/points_per_profile", "must lie in [3, 1024]");
     }
     description.passive_mesh_parts = ReadNames(root, "passive_mesh_parts");
     description.clean_assignment = root.Bool("clean_assignment", false);

@@ -180,9 +180,10 @@ nlohmann::json RigToJson(const Rig& rig) {
 Result<Rig> RigFromJson(const nlohmann::json& document) {
   try {
     const JsonObject root(document, "");
-    root.RejectUnknownKeys({"format", "version", "mesh", "parts", "vertex_part"});
+    // The format first: another kind of file (a scene) is named as such, not by its fields.
     if (root.String("format") != "wirerig.rig")
       throw FieldError("/format", "must be \"wirerig.rig\"");
+    root.RejectUnknownKeys({"format", "version", "mesh", "parts", "vertex_part"});
     if (root.Integer("version", -1) != Rig::kFormatVersion)
       throw FieldError("/version", "unsupported version (this build reads version 1)");
     Rig rig;

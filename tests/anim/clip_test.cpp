@@ -153,6 +153,30 @@ TEST(Clip, RigidDragNeedsARigidPartAndSaneCoefficientsAndRoundTrips) {
   EXPECT_EQ(loaded.parts[0].channels.rigid_drag.angular, 0.125);
 }
 
+// A track of the wrong type is told what it may be (it said "must be an object", though a
+// number or [x, y, z] is what is usually written).
+TEST(Clip, ATrackOfTheWrongTypeSaysWhatItMayBe) {
+  nlohmann::json saved = ClipToJson(PointLoadClip());
+  ASSERT_TRUE(saved["parts"][0]["point_loads"][0].contains("at")) << saved.dump();
+  const auto error = [&] {
+    try {
+      ReadClip(JsonObject(saved, ""));
+    } catch (const FieldError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  saved["parts"][0]["point_loads"][0]["at"] = "x";
+  EXPECT_EQ(error(),
+            "/parts/0/point_loads/0/at: must be a number or a track {\"keys\": [[time, value], "
+            "...]}");
+  saved = ClipToJson(PointLoadClip());
+  saved["parts"][0]["point_loads"][0]["direction"] = "x";
+  EXPECT_EQ(error(),
+            "/parts/0/point_loads/0/direction: must be [x, y, z] or a track {\"keys\": [[time, "
+            "[x, y, z]], ...]}");
+}
+
 TEST(Clip, LoopModesMapPlaybackTime) {
   Clip clip;
   clip.duration = 2.0;

@@ -347,6 +347,9 @@ TEST(WirerigOutputs, OptionBoundsAreReadable) {
              "--fps: must be in [1, 1000] (got 0)");
   ExpectExit(RunWirerig({"rig", "m.obj", "-o", "x.json", "--skin-thickness", "-1"}), 2,
              "--skin-thickness: must be > 0 (got -1)");
+  // The importer's range, as a usage error (it was exit 1, from the importer, after "> 0").
+  ExpectExit(RunWirerig({"rig", "m.obj", "-o", "x.json", "--unit-scale", "1e300"}), 2,
+             "--unit-scale: must be in [1e-12, 1e+12] (got 1e300)");
   // A thickness whose sections overflow: refused, naming it, and nothing written (it wrote a
   // rig whose I was null, which no scene could load).
   const fs::path thick = Scratch("thick.rig.json");

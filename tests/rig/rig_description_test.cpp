@@ -90,6 +90,15 @@ TEST(RigDescription, EachBrokenRuleIsNamed) {
   d = Good();
   d["parts"][0]["profile_count"] = 1;
   ExpectRefused(d, "/parts/0/profile_count: must lie in [2, 4096]");
+  // A bad default is named where it is written, even where every part sets its own (0 passed;
+  // -1 points was blamed on /parts/0, which did not write it).
+  d = Good();
+  d["defaults"]["profile_count"] = 0;
+  for (auto& part : d["parts"]) part["profile_count"] = 6;
+  ExpectRefused(d, "/defaults/profile_count: must lie in [2, 4096]");
+  d = Good();
+  d["defaults"]["points_per_profile"] = -1;
+  ExpectRefused(d, "/defaults/points_per_profile: must lie in [3, 1024]");
   d = Good();
   d["parts"][0]["parent"] = "arm";
   ExpectRefused(d, "/parts/0/parent: the first part is the root");

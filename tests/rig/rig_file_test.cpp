@@ -110,6 +110,9 @@ TEST(RigFile, EveryMalformedFieldIsNamed) {
   nlohmann::json d = good;
   d["format"] = "something";
   ExpectRefused(d, "/format: must be \"wirerig.rig\"");
+  // A scene given as a rig is named by its format, not by its first unknown field (/clips).
+  d = {{"format", "wirerig.scene"}, {"version", 1}, {"clips", nlohmann::json::array()}};
+  ExpectRefused(d, "/format: must be \"wirerig.rig\"");
   d = good;
   d["version"] = 2;
   ExpectRefused(d, "/version: unsupported version");
