@@ -271,6 +271,7 @@ wr_status wr_context_set_normal_mode(wr_context* context, wr_normal_mode mode) {
                 "wr_context_set_normal_mode: mode must be from triangles or rotated");
   context->normal_mode = mode == WR_NORMALS_ROTATED ? wirerig::NormalMode::kRotated
                                                     : wirerig::NormalMode::kFromTriangles;
+  last_error.clear();
   return WR_OK;
 }
 
@@ -296,6 +297,10 @@ wr_status wr_context_set_part_transform(wr_context* context, uint32_t part,
       !Finite(translation, 3))
     return Fail(WR_INVALID_ARGUMENT,
                 "wr_context_set_part_transform: rotation and translation must be finite");
+  for (int c = 0; c < 3; ++c)
+    if (!(std::abs(translation[c]) <= wirerig::kMaxTranslation))
+      return Fail(WR_INVALID_ARGUMENT,
+                  "wr_context_set_part_transform: translation must be within 1e6 m");
   const wirerig::Quat q(rotation_xyzw[3], rotation_xyzw[0], rotation_xyzw[1], rotation_xyzw[2]);
   if (!(q.norm() > 1e-6))
     return Fail(WR_INVALID_ARGUMENT, "wr_context_set_part_transform: rotation must not be zero");
@@ -312,6 +317,10 @@ wr_status wr_context_set_point_loads(wr_context* context, uint32_t part, const f
     if (wr_status s = CheckPart("wr_context_set_point_loads", context, part); s != WR_OK) return s;
     if (count > 0 && (at == nullptr || forces == nullptr))
       return Fail(WR_INVALID_ARGUMENT, "wr_context_set_point_loads: at and forces are required");
+    const wirerig::PartModel& model = context->rig->asset.model.parts[part];
+    if (count > 0 && model.kind != wirerig::SpineKind::kDeformable)  // they would move nothing
+      return Fail(WR_INVALID_ARGUMENT, "wr_context_set_point_loads: part " + model.name +
+                                           " is rigid: loads bend deformable parts only");
     std::vector<wirerig::PointLoad> loads(count);
     for (uint32_t i = 0; i < count; ++i) {
       if (!(at[i] >= 0.0f && at[i] <= 1.0f) || !Finite(forces + 3 * i, 3))

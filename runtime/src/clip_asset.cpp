@@ -214,14 +214,19 @@ ModalResidual LerpResidual(const Vec3* a, const Vec3* e, double f, std::uint32_t
 }  // namespace
 
 double ClipLocalTime(ClipLoop loop, double duration, double t) {
-  if (!std::isfinite(t) || t <= 0.0) return 0.0;
+  if (!std::isfinite(t) || !(duration > 0.0)) return 0.0;
+  // t modulo `period` in [0, period): a negative time wraps too (it held the first frame).
+  const auto wrap = [t](double period) {
+    const double u = std::fmod(t, period);
+    return u < 0.0 ? std::min(u + period, std::nextafter(period, 0.0)) : u;
+  };
   switch (loop) {
     case ClipLoop::kOnce:
-      return std::min(t, duration);
+      return std::clamp(t, 0.0, duration);
     case ClipLoop::kLoop:
-      return std::fmod(t, duration);
+      return wrap(duration);
     case ClipLoop::kPingPong: {
-      const double u = std::fmod(t, 2.0 * duration);
+      const double u = wrap(2.0 * duration);
       return u <= duration ? u : 2.0 * duration - u;
     }
   }

@@ -244,8 +244,10 @@ Status EvaluateRigJob::Validate() const {
     // A strided buffer holds output vertex i's three floats at [i * stride, i * stride + 3).
     const std::size_t outputs =
         float_vertex_order.empty() ? vertex_count : float_vertex_order.size();
+    // (outputs - 1) * stride + 3 <= size, without the product wrapping: a stride picked so
+    // that it wrapped passed and the stage wrote far outside the buffer.
     auto fits = [&](std::span<float> buffer, std::size_t stride) {
-      return stride >= 3 && buffer.size() >= (outputs - 1) * stride + 3;
+      return stride >= 3 && buffer.size() >= 3 && (outputs - 1) <= (buffer.size() - 3) / stride;
     };
     for (const std::uint32_t w : float_vertex_order)
       if (w >= vertex_count)
@@ -273,9 +275,10 @@ Status EvaluateRigJob::Validate() const {
     if (!(std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]) &&
           std::isfinite(q[3]) && std::abs(q.squaredNorm() - 1.0) < 1e-6))
       return Status::Invalid("poses", "rotations must be finite unit quaternions");
-    if (!(std::isfinite(pose.translation.x()) && std::isfinite(pose.translation.y()) &&
-          std::isfinite(pose.translation.z())))
-      return Status::Invalid("poses", "translations must be finite");
+    // Bounded so that the float stage's squares stay finite (1e36 gave NaN positions).
+    if (!(pose.translation.allFinite() &&
+          pose.translation.cwiseAbs().maxCoeff() <= kMaxTranslation))
+      return Status::Invalid("poses", "translations must be finite, within 1e6 m");
     if (Status s = ValidateLoads(pose.loads, model->parts[i].spine_points.size()); !s) return s;
   }
   for (const ProfileLoads& loads : profile_loads) {

@@ -186,9 +186,16 @@ TEST(Clip, LoopModesMapPlaybackTime) {
   EXPECT_EQ(clip.LocalTime(3.0), 2.0);
   clip.loop = LoopMode::kLoop;
   EXPECT_DOUBLE_EQ(clip.LocalTime(5.5), 1.5);
+  // Negative times loop back as positive ones do (they held the first frame).
+  EXPECT_DOUBLE_EQ(clip.LocalTime(-0.5), 1.5);
+  EXPECT_DOUBLE_EQ(clip.LocalTime(-4.5), 1.5);
+  EXPECT_DOUBLE_EQ(clip.LocalTime(-2.0), 0.0);
   clip.loop = LoopMode::kPingPong;
   EXPECT_DOUBLE_EQ(clip.LocalTime(2.5), 1.5);
   EXPECT_DOUBLE_EQ(clip.LocalTime(4.5), 0.5);
+  EXPECT_DOUBLE_EQ(clip.LocalTime(-1.0), 1.0);  // as +1: ping-pong is symmetric about 0
+  EXPECT_DOUBLE_EQ(clip.LocalTime(-0.5), 0.5);
+  EXPECT_DOUBLE_EQ(clip.LocalTime(-2.5), 1.5);
   for (LoopMode m : {LoopMode::kOnce, LoopMode::kLoop, LoopMode::kPingPong}) {
     LoopMode parsed = LoopMode::kOnce;
     ASSERT_TRUE(ParseLoopMode(ToString(m), &parsed));

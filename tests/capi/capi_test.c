@@ -1,10 +1,10 @@
 /* The C API (wirerig.h) from C: loads a built rig asset (argv[1], made by `wirerig build --clips`
  * from samples/human/human_wave.scene.json), its clip (argv[2]) and a clip of another rig
- * (argv[3], the octopus's), evaluates frames into interleaved float buffers and checks the API's
- * contract: errors with statuses and messages, outputs untouched on failure, determinism, a bent
- * joint moving only its side, the source and welded orders agreeing, a clip playing and looping,
- * a clip of another rig refused, rotated normals.
- * Prints a line per failed check; exits 0 only when every check holds. */
+ * (argv[3], the octopus's; argv[4] is the octopus's rig, whose mantle is rigid), evaluates frames
+ * into interleaved float buffers and checks the API's contract: errors with statuses and messages,
+ * outputs untouched on failure, determinism, a bent joint moving only its side, the source and
+ * welded orders agreeing, a clip playing and looping, a clip of another rig refused, rotated
+ * normals. Prints a line per failed check; exits 0 only when every check holds. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -31,8 +31,9 @@ static float* Evaluate(wr_context* context, wr_vertex_order order, uint32_t vert
 }
 
 int main(int argc, char** argv) {
-  if (argc != 4) {
-    fprintf(stderr, "usage: %s RIG.wrig CLIP.wclip OTHER_RIGS_CLIP.wclip\n", argv[0]);
+  if (argc != 5) {
+    fprintf(stderr, "usage: %s RIG.wrig CLIP.wclip OTHER_RIGS_CLIP.wclip OTHER_RIG.wrig\n",
+            argv[0]);
     return 2;
   }
   wr_rig* rig = NULL;
@@ -82,6 +83,10 @@ int main(int argc, char** argv) {
   CHECK(wr_context_set_joint_angles(context, 1, NAN, 0, 0) == WR_INVALID_ARGUMENT);
   const float at_bad[1] = {1.5f}, force[3] = {0, 5, 0};
   CHECK(wr_context_set_point_loads(context, 1, at_bad, force, 1) == WR_INVALID_ARGUMENT);
+  /* A translation beyond 1e6 m (1e36 gave NaN positions with WR_OK). */
+  const float identity[4] = {0, 0, 0, 1}, far[3] = {1e7f, 0, 0};
+  CHECK(wr_context_set_part_transform(context, 0, identity, far) == WR_INVALID_ARGUMENT);
+  CHECK(strstr(wr_last_error(), "within 1e6 m") != NULL);
   float small[6] = {42, 42, 42, 42, 42, 42};
   CHECK(wr_context_evaluate(context, WR_ORDER_WELDED, small, 3, NULL, 3, 6) == WR_INVALID_ARGUMENT);
   CHECK(strstr(wr_last_error(), "float_positions") != NULL);
@@ -172,6 +177,21 @@ int main(int argc, char** argv) {
   free(back);
   wr_context_free(context);
   wr_rig_free(rig);
+
+  /* Loads on a rigid part (the octopus's mantle) are refused: they would move nothing. */
+  wr_rig* octopus = NULL;
+  wr_context* octopus_context = NULL;
+  CHECK(wr_rig_load_file(argv[4], &octopus) == WR_OK);
+  if (octopus != NULL && wr_context_create(octopus, &octopus_context) == WR_OK) {
+    const int32_t mantle = wr_rig_find_part(octopus, "mantle");
+    CHECK(mantle == 0);
+    const float at[1] = {1.0f}, push[3] = {0, 1000, 1000};
+    CHECK(wr_context_set_point_loads(octopus_context, 0, at, push, 1) == WR_INVALID_ARGUMENT);
+    CHECK(strstr(wr_last_error(), "is rigid") != NULL);
+    CHECK(wr_context_set_point_loads(octopus_context, 1, at, push, 1) == WR_OK); /* an arm */
+  }
+  wr_context_free(octopus_context);
+  wr_rig_free(octopus);
   if (failures == 0) printf("all C API checks hold\n");
   return failures == 0 ? 0 : 1;
 }

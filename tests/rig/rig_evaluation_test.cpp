@@ -10,7 +10,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <limits>
 #include <thread>
 
 #include "support/busy_pose.h"
@@ -807,6 +809,27 @@ TEST(RigEvaluation, FloatOutputsAreCheckedBeforeAnythingIsWritten) {
   short_normals.float_normal_stride = 6;  // the last vertex's normal would run past the end
   short_normals.float_normals = short_normals.float_normals.first(6 * (n - 1) + 2);
   expect_invalid(short_normals, "float_normals");
+  // A stride whose (n - 1) * stride + 3 wraps to a small number passed, then the stage wrote
+  // far outside the buffer: s * (n - 1) = 1 modulo 2^64 for odd n - 1 (an engine programmer's
+  // crafted stride, through the C API).
+  const std::uint64_t m = n - 1;
+  ASSERT_EQ(m % 2, 1u) << "an odd n - 1 has an inverse modulo 2^64";
+  std::uint64_t inverse = m;  // Newton's iteration for the inverse of m modulo 2^64
+  for (int i = 0; i < 6; ++i) inverse *= 2 - m * inverse;
+  ASSERT_EQ(inverse * m, 1u);
+  EvaluateRigJob wrapping = job();
+  wrapping.float_positions = buffer;
+  wrapping.float_position_stride = inverse;
+  expect_invalid(wrapping, "float_positions");
+  EvaluateRigJob wrapping_normals = job();
+  wrapping_normals.float_positions = buffer;
+  wrapping_normals.float_normals = buffer;
+  wrapping_normals.float_normal_stride = inverse;
+  expect_invalid(wrapping_normals, "float_normals");
+  EvaluateRigJob huge = job();
+  huge.float_positions = buffer;
+  huge.float_position_stride = std::numeric_limits<std::size_t>::max();
+  expect_invalid(huge, "float_positions");
   EvaluateRigJob mixed = job();
   mixed.positions = positions;
   mixed.float_normals = buffer;

@@ -87,10 +87,16 @@ void wr_context_reset(wr_context* context);
 wr_status wr_context_set_joint_angles(wr_context* context, uint32_t part, float x_degrees,
                                       float y_degrees, float z_degrees);
 /* A part's rigid pose: rotation (x, y, z, w; normalised here) about its spine's root point,
- * then translation in metres, world axes. Joint angles set later compose after it. */
+ * then translation in metres (each component within 1e6), world axes; the part then follows
+ * its parent's motion, so poses compose down the chain (a child's translation adds to its
+ * parent's). Joint angles set later compose after it. Evaluation is in float, in world space:
+ * its precision falls with the distance from the origin (about 0.03 mm at 100 m, 0.2 mm and
+ * normals degrees off at 1 km), so keep a character near the origin and place it with the
+ * engine's model matrix. */
 wr_status wr_context_set_part_transform(wr_context* context, uint32_t part,
                                         const float rotation_xyzw[4], const float translation[3]);
-/* Bending point loads on a part's spine (deformable parts): `count` loads at spine parameters
+/* Bending point loads on a part's spine (deformable parts only: refused on a rigid one, where
+ * they would move nothing): `count` loads at spine parameters
  * at[i] in [0, 1] with forces forces[3 i .. 3 i + 2] in newtons, in the spine's local axes (x
  * along the rest normal, y along the rest binormal). Replaces the part's previous loads; count
  * 0 removes them. Allocates (call it when loads change, not per vertex). */
@@ -99,8 +105,9 @@ wr_status wr_context_set_point_loads(wr_context* context, uint32_t part, const f
 /* Plays `clip` (null: none) at playback time `time` in s (looping as the clip says): poses and
  * loads then come from the clip, with joint angles set above turning on top; part transforms
  * and point loads set above apply only while no clip is set. Refused when the clip was made for
- * another rig. Allocates when the clip differs from the context's previous one, never when
- * only the time changes. */
+ * a rig with another number of parts, or names profiles or wires this rig does not have (a clip
+ * does not otherwise identify its rig: play a rig's own clips). Allocates when the clip differs
+ * from the context's previous one, never when only the time changes. */
 wr_status wr_context_set_clip(wr_context* context, const wr_clip* clip, double time);
 /* How wr_context_evaluate makes normals: from the deformed triangles (the default), or each
  * vertex's rest normal turned with the frame it rides on (the vertices on joints' skin bridges
@@ -115,7 +122,9 @@ typedef enum wr_normal_mode {
 wr_status wr_context_set_normal_mode(wr_context* context, wr_normal_mode mode);
 /* Evaluates the pose into float buffers: vertex i's position at positions[i * position_stride
  * .. + 2] and its unit normal likewise (normals may be null). Strides in floats, at least 3.
- * `capacity` counts floats in each buffer. Writes nothing on failure. */
+ * From each pointer it writes within the first (n - 1) * stride + 3 floats, and `capacity`
+ * (floats available at each pointer) must cover that: an interleaved buffer of n vertices
+ * (positions at p, normals at p + 3, stride 6) passes 6 n. Writes nothing on failure. */
 wr_status wr_context_evaluate(wr_context* context, wr_vertex_order order, float* positions,
                               size_t position_stride, float* normals, size_t normal_stride,
                               size_t capacity);

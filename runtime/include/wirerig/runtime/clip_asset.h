@@ -170,7 +170,9 @@ struct SampleClipJob {
   Status Run() const;
 };
 
-// The clip-local time of playback time t by the loop mode (0 for t <= 0 or not finite).
+// The clip-local time of playback time t by the loop mode: once clamps t to [0, duration];
+// loop and ping-pong wrap any t, negative too (period duration, 2 duration); 0 for a t that is
+// not finite.
 double ClipLocalTime(ClipLoop loop, double duration, double t);
 
 }  // namespace wirerig

@@ -80,6 +80,11 @@ struct ProfileLoads {
   std::span<const Vec3> extra_displacement;
 };
 
+// Translations are within kMaxTranslation (m) per component. The float evaluation works in
+// world space: its precision falls with the distance from the origin (about 0.03 mm at 100 m,
+// 0.2 mm at 1 km, with normals several degrees off there): keep a character near the origin
+// and place it with the engine's model matrix.
+inline constexpr double kMaxTranslation = 1e6;
 struct PartPose {
   Quat rotation = Quat::Identity();  // about the spine's root point (rest), world axes
   Vec3 translation = Vec3::Zero();   // m, world axes
