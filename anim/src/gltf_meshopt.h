@@ -26,7 +26,7 @@ inline constexpr int kPositionBits = 16;  // 2 m from the origin: within 3.1e-5 
 inline constexpr int kUvBits = 12;        // within 2.5e-4 of the texture (gltfpack's default)
 inline constexpr int kDeltaBits = 10;     // a 2 cm corrective delta: within 2e-5 m
 // Translation keys: each joint's bits chosen so that its keys are stored within
-// kTranslationPrecision (TranslationBits), at most kTranslationBits (the filter's maximum).
+// kTranslationPrecision (ExpFilterBits), at most kTranslationBits (the filter's maximum).
 inline constexpr double kTranslationPrecision = 4e-5;  // m
 inline constexpr int kTranslationBits = 24;
 // Bits of the OCTAHEDRAL filter for the rest normals, stored as normalized signed bytes: within

@@ -3,11 +3,13 @@
 #include <array>
 #include <cmath>
 
+#include "validation.h"
+
 namespace wirerig {
 
 Status ValidateMaterial(const Material& m) {
-  // Within 1e150 so that a stiffness (E A, E I: A and I too are within 1e150) stays finite.
-  if (!std::isfinite(m.youngs_modulus) || m.youngs_modulus <= 0.0 || m.youngs_modulus > 1e150)
+  if (!std::isfinite(m.youngs_modulus) || m.youngs_modulus <= 0.0 ||
+      m.youngs_modulus > detail::kMaxStiffnessFactor)
     return Status::Invalid("E", "must be positive and finite, within 1e150 (Pa)");
   if (!std::isfinite(m.poisson_ratio) || m.poisson_ratio <= -1.0 || m.poisson_ratio >= 0.5)
     return Status::Invalid("nu", "must lie in (-1, 0.5)");

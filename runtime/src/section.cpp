@@ -4,20 +4,20 @@
 #include <initializer_list>
 #include <numbers>
 
+#include "validation.h"
+
 namespace wirerig {
 namespace {
 
-// A and I at most this: a stiffness (E A, E I; E is at most 1e150 too) stays finite.
-constexpr double kMaxSectionValue = 1e150;
+using detail::kMaxStiffnessFactor;
+using detail::PositiveFinite;
 
-bool PositiveFinite(double x) { return std::isfinite(x) && x > 0.0; }
-
-// Whether the product of positive `factors` is at most kMaxSectionValue, found in logarithms so
-// that nothing overflows (callers may trap floating-point overflow).
+// Whether the product of positive `factors` is at most kMaxStiffnessFactor, found in logarithms
+// so that nothing overflows (callers may trap floating-point overflow).
 bool ProductWithinBound(std::initializer_list<double> factors) {
   double log_product = 0.0;
   for (double f : factors) log_product += std::log(f);
-  return log_product <= std::log(kMaxSectionValue);
+  return log_product <= std::log(kMaxStiffnessFactor);
 }
 
 }  // namespace
@@ -63,9 +63,9 @@ Status ValidateSection(const Section& section) {
   if (section.kind != SectionKind::kCustom && section.kind != SectionKind::kStrip &&
       section.kind != SectionKind::kTube)
     return Status::Invalid("kind", "unknown section kind");
-  if (!PositiveFinite(section.area) || section.area > kMaxSectionValue)
+  if (!PositiveFinite(section.area) || section.area > kMaxStiffnessFactor)
     return Status::Invalid("A", "must be positive and finite, within 1e150 (m^2)");
-  if (!PositiveFinite(section.second_moment) || section.second_moment > kMaxSectionValue)
+  if (!PositiveFinite(section.second_moment) || section.second_moment > kMaxStiffnessFactor)
     return Status::Invalid("I", "must be positive and finite, within 1e150 (m^4)");
   return Status::Ok();
 }

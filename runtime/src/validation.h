@@ -19,6 +19,10 @@ inline bool InUnitInterval(double v) { return std::isfinite(v) && v >= 0.0 && v 
 // largest double guarantees no output becomes Inf or NaN.
 inline constexpr double kMaxDeflectionBound = 1e150;
 
+// The most a Young's modulus, a section area or a second moment may be: their products (the
+// stiffnesses E A and E I) then stay finite.
+inline constexpr double kMaxStiffnessFactor = 1e150;
+
 // One of BendingJob's four boundary families (a value cast from an integer may be none).
 inline bool IsKnownBoundary(BoundaryCondition bc) {
   switch (bc) {
