@@ -70,6 +70,9 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
   bake->add_flag("--compress", options.compress,
                  "skin mode: EXT_meshopt_compression (smaller; needs a reader with a meshopt "
                  "decoder: three.js, Babylon.js; not Assimp 5.2 or Blender 3.4)");
+  bake->add_flag("--keep-vertex-order", options.keep_vertex_order,
+                 "with --compress: store the vertices in the mesh's order (by default, in the "
+                 "order the codec stores in fewer bytes)");
   bake->add_option("--max-texture-size", options.max_texture_size,
                    "Embedded textures larger than this many pixels on their longer side are "
                    "downscaled to it and re-encoded (PNG, or JPEG at quality 90; 0: unchanged)")
@@ -91,6 +94,10 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
       ->capture_default_str();
   // Options that do not apply to the chosen mode are refused, not ignored.
   bake->callback([bake, &options] {
+    if (options.keep_vertex_order && !options.compress) {
+      throw CLI::ValidationError("--keep-vertex-order",
+                                 "applies to --compress only (other files keep the order)");
+    }
     if (options.mode == "morph") {
       for (const char* name : {"--residual", "--max-joints", "--joints-per-part",
                                "--max-correctives", "--corrective-error", "--key-tolerance",
@@ -144,6 +151,7 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   export_options.corrective_error = options.corrective_error;
   export_options.key_tolerance = options.key_tolerance;
   export_options.compress = options.compress;
+  export_options.keep_vertex_order = options.keep_vertex_order;
   export_options.max_texture_size = options.max_texture_size;
   export_options.influences = options.influences;
   export_options.flesh_joints = !options.no_flesh_joints;

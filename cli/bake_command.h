@@ -28,6 +28,7 @@ struct BakeCommandOptions {
   double corrective_error = 1e-3;    // skin mode: GltfExportOptions::corrective_error, m
   double key_tolerance = 0.0;        // skin mode: GltfExportOptions::key_tolerance, m
   bool compress = false;             // skin mode: GltfExportOptions::compress
+  bool keep_vertex_order = false;    // with compress: GltfExportOptions::keep_vertex_order
   int max_texture_size = 0;          // GltfExportOptions::max_texture_size
   std::size_t influences = 4;        // skin mode: GltfExportOptions::influences
   bool no_flesh_joints = false;      // skin mode: !GltfExportOptions::flesh_joints

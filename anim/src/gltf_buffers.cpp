@@ -1,6 +1,7 @@
 #include "gltf_buffers.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -168,6 +169,15 @@ int AddJointAccessor(tinygltf::Model& model, std::span<const std::uint16_t> join
   const int view = AddBufferView(model, joints.data(), joints.size_bytes(), target);
   return AddAccessor(model, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4,
                      count);
+}
+
+double JsonFloat(float value) {
+  if (!std::isfinite(value)) return double(value);
+  char text[32];
+  const std::to_chars_result end = std::to_chars(text, text + sizeof text, value);
+  double shortest = double(value);
+  std::from_chars(text, end.ptr, shortest);  // locale-independent, as to_chars
+  return shortest;
 }
 
 }  // namespace wirerig::gltf

@@ -67,6 +67,11 @@ int AddNormalizedByteVec3Accessor(tinygltf::Model& model, std::span<const float>
 // `size` rounded up to a multiple of 4 (glTF's alignment of views and GLB chunks).
 inline std::size_t Padded4(std::size_t size) { return (size + 3) / 4 * 4; }
 
+// `value` for a JSON number: the double nearest the float's shortest decimal, which prints in at
+// most 9 significant digits and reads back as the same float (the float itself, as a double,
+// prints in up to 17).
+double JsonFloat(float value);
+
 // Pads buffer 0's in-memory data (created when missing) to a multiple of 4 bytes and returns
 // its size: the offset at which reserved views may start.
 std::size_t AlignedBufferEnd(tinygltf::Model& model);

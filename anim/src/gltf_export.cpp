@@ -20,6 +20,7 @@
 #include "gltf_skin.h"
 #include "gltf_skin_fit.h"
 #include "gltf_skinning.h"
+#include "gltf_vertex_order.h"
 #include "gltf_write.h"
 
 namespace wirerig {
@@ -157,6 +158,104 @@ Result<gltf::MorphTargetsAdded> AddSkinMode(
   return gltf::AddMorphTargets(model, mesh_index, std::move(set), quantization);
 }
 
+// Builds and writes the checked input (ExportGltf's checks passed).
+Result<GltfExportReport> WriteExport(const Mesh& mesh, const BakedAnimation& bake,
+                                     const GltfExportOptions& options, const fs::path& out,
+                                     bool binary) {
+  const fs::path out_dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
+  const std::string name =
+      !options.node_name.empty() ? options.node_name : (!bake.name.empty() ? bake.name : "mesh");
+
+  GltfExportReport report;
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "wirerig";
+  const gltf::MaterialsAdded materials = gltf::AddMaterials(
+      model, mesh, options.texture_dir, out_dir, options.max_texture_size, &report.warnings);
+  gltf::BaseVertices base = gltf::MakeBaseVertices(mesh);
+  // Quantized skin files without residual targets store POSITION as shorts and NORMAL as bytes
+  // (no normal target is measured against them); compressed files store NORMAL as bytes too
+  // (octahedral, rounded below).
+  const bool quantized_skin = options.quantize && options.mode == GltfAnimationMode::kSkin &&
+                              !options.residual_morph_targets && !options.compress;
+  const bool byte_normals = options.compress || quantized_skin;
+  gltf::BaseMeshStorage storage;
+  storage.reorder_triangles = options.compress;
+  storage.byte_normals = byte_normals;
+  storage.short_uvs = quantized_skin;
+  if (quantized_skin || options.compress) storage.positions = gltf::QuantizePositions(&base);
+  if (options.compress) {
+    gltf::RoundLikeOctFilter(base.normals, gltf::kOctahedralBits);
+    gltf::RoundLikeExpFilter(base.uvs, 2, gltf::kUvBits);
+  }
+  if (base.zero_normals > 0) {
+    report.warnings.push_back(std::to_string(base.zero_normals) +
+                              " zero-length normals written as +Y");
+  }
+  if (!bake.normals.empty() && mesh.normals.empty()) {
+    report.warnings.emplace_back("bake.normals left out: the mesh has no normals");
+  }
+  const int mesh_index = gltf::AddBaseMesh(model, mesh, base, materials.material, name, storage);
+  tinygltf::Node node;
+  node.name = name;
+  node.mesh = mesh_index;
+  model.nodes.push_back(std::move(node));
+  model.scenes.emplace_back();
+  model.scenes[0].nodes.push_back(0);
+  model.defaultScene = 0;
+
+  std::vector<float> times;
+  for (double t : bake.times) times.push_back(static_cast<float>(t));
+  const int time_accessor =
+      gltf::AddFloatAccessor(model, times, TINYGLTF_TYPE_SCALAR, 0, /*min_max=*/true);
+  tinygltf::Animation animation;
+  animation.name = bake.name.empty() ? name : bake.name;
+  gltf::MorphQuantization quantization;
+  quantization.enabled = options.quantize;
+  quantization.max_position_error = kQuantizationTolerance * ComputeBounds(mesh).Diagonal();
+  gltf::MorphTargetsAdded targets;
+  if (options.mode == GltfAnimationMode::kMorph) {
+    // The weights' keys first: the targets are the last (streamed) part of the buffer.
+    gltf::AddKeyWeightsChannel(model, animation, 0, time_accessor, bake.KeyCount());
+    targets = gltf::AddMorphTargets(model, mesh_index, KeyDeltas(base, bake), quantization);
+    report.morph_target_count = bake.KeyCount();
+  } else {
+    Result<gltf::MorphTargetsAdded> skinned =
+        AddSkinMode(model, animation, mesh, bake, base, options, quantization, storage.positions,
+                    mesh_index, times, time_accessor, &report);
+    if (!skinned) return Error{out.string() + ": skin: " + skinned.error()};
+    targets = std::move(skinned).value();
+  }
+  model.animations.push_back(std::move(animation));
+  report.quantized_position_targets = targets.quantized_position_targets;
+  report.quantized_normal_targets = targets.quantized_normal_targets;
+  report.quantization_max_error = targets.quantization_max_error;
+  report.primitive_count = model.meshes[static_cast<std::size_t>(mesh_index)].primitives.size();
+  report.material_count = model.materials.size();
+
+  gltf::BufferTail tail;
+  gltf::MeshoptJson meshopt;
+  if (options.compress) {
+    meshopt = gltf::CompressBuffers(model, targets.stream);
+  } else {
+    tail.size = targets.stream.Size();
+    tail.write = [&targets](const gltf::ByteSink& sink) { return targets.stream.Write(sink); };
+  }
+  Result<std::vector<fs::path>> files =
+      gltf::WriteModel(std::move(model), tail, out, binary, meshopt);
+  if (!files) return Error{files.error()};
+  report.files = std::move(files.value());
+  for (const fs::path& file : report.files) {
+    std::error_code error;
+    report.bytes_written += fs::file_size(file, error);
+  }
+  report.vertex_count = mesh.positions.size();
+  report.triangle_count = mesh.triangles.size();
+  report.key_count = bake.KeyCount();
+  report.texture_count = materials.texture_count;
+  return report;
+}
+
 }  // namespace
 
 double EstimateGltfBytes(std::size_t vertex_count, std::size_t joint_count, double keys,
@@ -216,98 +315,22 @@ Result<GltfExportReport> ExportGltf(const Mesh& mesh, const BakedAnimation& bake
       bytes > kMaxGltfBytes) {
     return Error{out.string() + ": " + GltfTooLargeMessage(bytes)};
   }
-  const fs::path out_dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
-  const std::string name =
-      !options.node_name.empty() ? options.node_name : (!bake.name.empty() ? bake.name : "mesh");
-
-  GltfExportReport report;
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "wirerig";
-  const gltf::MaterialsAdded materials = gltf::AddMaterials(
-      model, mesh, options.texture_dir, out_dir, options.max_texture_size, &report.warnings);
-  gltf::BaseVertices base = gltf::MakeBaseVertices(mesh);
-  // Quantized skin files without residual targets store POSITION as shorts and NORMAL as bytes
-  // (no normal target is measured against them); compressed files store NORMAL as bytes too
-  // (octahedral, rounded below).
-  const bool quantized_skin = options.quantize && options.mode == GltfAnimationMode::kSkin &&
-                              !options.residual_morph_targets && !options.compress;
-  const bool byte_normals = options.compress || quantized_skin;
-  gltf::BaseMeshStorage storage;
-  storage.reorder_triangles = options.compress;
-  storage.byte_normals = byte_normals;
-  storage.short_uvs = quantized_skin;
-  if (quantized_skin) storage.positions = gltf::QuantizePositions(&base);
-  if (options.compress) {
-    gltf::RoundLikeExpFilter(base.positions, 3, gltf::kPositionBits);
-    gltf::RoundLikeOctFilter(base.normals, gltf::kOctahedralBits);
-    gltf::RoundLikeExpFilter(base.uvs, 2, gltf::kUvBits);
+  const bool binary = extension == ".glb";
+  if (options.keep_vertex_order && !options.compress) {
+    return Error{out.string() +
+                 ": keep_vertex_order applies to compressed files (the others "
+                 "keep it)"};
   }
-  if (base.zero_normals > 0) {
-    report.warnings.push_back(std::to_string(base.zero_normals) +
-                              " zero-length normals written as +Y");
+  if (!options.compress || options.keep_vertex_order)
+    return WriteExport(mesh, bake, options, out, binary);
+  // Compressed files store the vertices in the order the codecs store in fewer bytes.
+  std::vector<std::uint32_t> order = gltf::SmallerVertexOrder(mesh, bake);
+  if (std::is_sorted(order.begin(), order.end())) {
+    return WriteExport(mesh, bake, options, out, binary);
   }
-  if (!bake.normals.empty() && mesh.normals.empty()) {
-    report.warnings.emplace_back("bake.normals left out: the mesh has no normals");
-  }
-  const int mesh_index = gltf::AddBaseMesh(model, mesh, base, materials.material, name, storage);
-  tinygltf::Node node;
-  node.name = name;
-  node.mesh = mesh_index;
-  model.nodes.push_back(std::move(node));
-  model.scenes.emplace_back();
-  model.scenes[0].nodes.push_back(0);
-  model.defaultScene = 0;
-
-  std::vector<float> times;
-  for (double t : bake.times) times.push_back(static_cast<float>(t));
-  const int time_accessor =
-      gltf::AddFloatAccessor(model, times, TINYGLTF_TYPE_SCALAR, 0, /*min_max=*/true);
-  tinygltf::Animation animation;
-  animation.name = bake.name.empty() ? name : bake.name;
-  gltf::MorphQuantization quantization;
-  quantization.enabled = options.quantize;
-  quantization.max_position_error = kQuantizationTolerance * ComputeBounds(mesh).Diagonal();
-  gltf::MorphTargetsAdded targets;
-  if (options.mode == GltfAnimationMode::kMorph) {
-    // The weights' keys first: the targets are the last (streamed) part of the buffer.
-    gltf::AddKeyWeightsChannel(model, animation, 0, time_accessor, bake.KeyCount());
-    targets = gltf::AddMorphTargets(model, mesh_index, KeyDeltas(base, bake), quantization);
-    report.morph_target_count = bake.KeyCount();
-  } else {
-    Result<gltf::MorphTargetsAdded> skinned =
-        AddSkinMode(model, animation, mesh, bake, base, options, quantization, storage.positions,
-                    mesh_index, times, time_accessor, &report);
-    if (!skinned) return Error{out.string() + ": skin: " + skinned.error()};
-    targets = std::move(skinned).value();
-  }
-  model.animations.push_back(std::move(animation));
-  report.quantized_position_targets = targets.quantized_position_targets;
-  report.quantized_normal_targets = targets.quantized_normal_targets;
-  report.quantization_max_error = targets.quantization_max_error;
-  report.primitive_count = model.meshes[static_cast<std::size_t>(mesh_index)].primitives.size();
-  report.material_count = model.materials.size();
-
-  gltf::BufferTail tail;
-  gltf::MeshoptJson meshopt;
-  if (options.compress) {
-    meshopt = gltf::CompressBuffers(model, targets.stream);
-  } else {
-    tail.size = targets.stream.Size();
-    tail.write = [&targets](const gltf::ByteSink& sink) { return targets.stream.Write(sink); };
-  }
-  Result<std::vector<fs::path>> files =
-      gltf::WriteModel(std::move(model), tail, out, extension == ".glb", meshopt);
-  if (!files) return Error{files.error()};
-  report.files = std::move(files.value());
-  for (const fs::path& file : report.files) {
-    std::error_code error;
-    report.bytes_written += fs::file_size(file, error);
-  }
-  report.vertex_count = mesh.positions.size();
-  report.triangle_count = mesh.triangles.size();
-  report.key_count = bake.KeyCount();
-  report.texture_count = materials.texture_count;
+  Result<GltfExportReport> report = WriteExport(
+      gltf::ReorderVertices(mesh, order), gltf::ReorderVertices(bake, order), options, out, binary);
+  if (report) report.value().vertex_order = std::move(order);
   return report;
 }
 

@@ -99,6 +99,38 @@ PositionQuantization QuantizePositions(BaseVertices* base) {
   return q;
 }
 
+std::vector<PrimitiveTriangles> MakePrimitives(const Mesh& mesh, bool reorder_triangles) {
+  std::vector<MeshPart> parts = mesh.parts;
+  if (parts.empty()) {
+    parts.push_back(MeshPart{"", 0, static_cast<std::uint32_t>(mesh.triangles.size()), -1});
+  }
+  // One primitive per material, its parts' triangles in part order: a reader draws (and, in
+  // three.js, uploads morph targets for) each primitive apart.
+  std::vector<PrimitiveTriangles> primitives;
+  for (const MeshPart& part : parts) {
+    if (part.triangle_count == 0) continue;
+    auto primitive = std::find_if(primitives.begin(), primitives.end(),
+                                  [&](const auto& p) { return p.material == part.material; });
+    if (primitive == primitives.end()) {
+      primitives.push_back({part.material, {}});
+      primitive = primitives.end() - 1;
+    }
+    for (std::uint32_t f = 0; f < part.triangle_count; ++f) {
+      const Triangle& t = mesh.triangles[part.first_triangle + f];
+      primitive->indices.insert(primitive->indices.end(), t.begin(), t.end());
+    }
+  }
+  if (reorder_triangles) {
+    for (PrimitiveTriangles& primitive : primitives) {
+      std::vector<std::uint32_t> reordered(primitive.indices.size());
+      meshopt_optimizeVertexCache(reordered.data(), primitive.indices.data(),
+                                  primitive.indices.size(), mesh.positions.size());
+      primitive.indices.swap(reordered);
+    }
+  }
+  return primitives;
+}
+
 int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& base,
                 const std::vector<int>& materials, const std::string& name,
                 const BaseMeshStorage& storage) {
@@ -130,39 +162,16 @@ int AddBaseMesh(tinygltf::Model& model, const Mesh& mesh, const BaseVertices& ba
     }
   }
 
-  std::vector<MeshPart> parts = mesh.parts;
-  if (parts.empty()) {
-    parts.push_back(MeshPart{name, 0, static_cast<std::uint32_t>(mesh.triangles.size()), -1});
-  }
   tinygltf::Mesh gltf_mesh;
   gltf_mesh.name = name;
   const auto vertex_count = static_cast<std::uint32_t>(base.Count());
-  // One primitive per material, its parts' triangles in part order: a reader draws (and, in
-  // three.js, uploads morph targets for) each primitive apart.
-  std::vector<int> part_materials;
-  for (const MeshPart& part : parts)
-    if (part.triangle_count > 0 && std::find(part_materials.begin(), part_materials.end(),
-                                             part.material) == part_materials.end())
-      part_materials.push_back(part.material);
-  for (const int material : part_materials) {
-    std::vector<std::uint32_t> indices;
-    for (const MeshPart& part : parts) {
-      if (part.material != material) continue;
-      for (std::uint32_t f = 0; f < part.triangle_count; ++f) {
-        const Triangle& t = mesh.triangles[part.first_triangle + f];
-        indices.insert(indices.end(), t.begin(), t.end());
-      }
-    }
-    if (storage.reorder_triangles) {
-      std::vector<std::uint32_t> reordered(indices.size());
-      meshopt_optimizeVertexCache(reordered.data(), indices.data(), indices.size(), vertex_count);
-      indices.swap(reordered);
-    }
+  for (PrimitiveTriangles& triangles : MakePrimitives(mesh, storage.reorder_triangles)) {
     tinygltf::Primitive primitive;
     primitive.attributes = attributes;
-    primitive.indices = AddIndexAccessor(model, indices, vertex_count);
+    primitive.indices = AddIndexAccessor(model, triangles.indices, vertex_count);
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
-    if (material >= 0) primitive.material = materials[static_cast<std::size_t>(material)];
+    if (triangles.material >= 0)
+      primitive.material = materials[static_cast<std::size_t>(triangles.material)];
     gltf_mesh.primitives.push_back(std::move(primitive));
   }
   model.meshes.push_back(std::move(gltf_mesh));

@@ -53,6 +53,17 @@ struct BaseMeshStorage {
   PositionQuantization positions;  // enabled: POSITION as its shorts
 };
 
+// One triangle primitive's corners: the triangles of the parts with `material` (a
+// Mesh::materials index, or -1), in part order.
+struct PrimitiveTriangles {
+  int material = -1;
+  std::vector<std::uint32_t> indices;
+};
+// The mesh's primitives, one per material of the parts with triangles (in the order the parts
+// first name it; one for all triangles when the mesh has no parts), each reordered for the
+// vertex cache when `reorder_triangles` (BaseMeshStorage).
+std::vector<PrimitiveTriangles> MakePrimitives(const Mesh& mesh, bool reorder_triangles);
+
 // Adds the mesh named `name`: POSITION (with min/max), NORMAL and TEXCOORD_0 when present,
 // shared by one primitive per material of the parts with triangles (their triangles in part
 // order; one primitive for all triangles when the mesh has no parts), each with that material

@@ -199,8 +199,8 @@ int AddSkeleton(tinygltf::Model& model, tinygltf::Animation& animation, const Sk
     node.name = skeleton.names[j];
     const Vec3f& t = skeleton.rest_translations[j];
     const Quatf& q = skeleton.rest_rotations[j];
-    node.translation = {t.x(), t.y(), t.z()};
-    node.rotation = {q.x(), q.y(), q.z(), q.w()};
+    node.translation = {JsonFloat(t.x()), JsonFloat(t.y()), JsonFloat(t.z())};
+    node.rotation = {JsonFloat(q.x()), JsonFloat(q.y()), JsonFloat(q.z()), JsonFloat(q.w())};
     model.nodes.push_back(std::move(node));
     const int index = first_node + static_cast<int>(j);
     skin.joints.push_back(index);

@@ -36,6 +36,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/no_fp_traps.h"
+#include "support/shuffled_vertices.h"
 #include "support/test_folder.h"
 #include "wirerig/io/temp_files.h"
 #include "wirerig/procedural/shapes.h"
@@ -83,6 +84,8 @@ Quat RestFrame() {
 struct BendCase {
   int keys = 6;
   int samples_per_spine = 3;  // 3: joints every 1/4 m (rings between joints); 5: every 1/8 m
+  int radial = kRadial;       // vertices around the cylinder
+  int rings = kRings;         // height segments
 };
 
 // The mesh (with cylindrical UVs and one material) and its bake.
@@ -115,7 +118,7 @@ void SkinVertex(double y, int n, std::array<std::uint32_t, 4>* joints, Vec4f* we
 Scene MakeScene(const BendCase& c) {
   Scene scene;
   Mesh& mesh = scene.mesh;
-  mesh = MakeCylinder(kRadius, kHeight, kRadial, kRings);
+  mesh = MakeCylinder(kRadius, kHeight, c.radial, c.rings);
   for (const Vec3& p : mesh.positions) {
     const double angle = std::atan2(-p.z(), p.x());
     mesh.uvs.emplace_back(0.5 + angle / (2.0 * std::numbers::pi), 1.0 - p.y() / kHeight);
@@ -973,6 +976,92 @@ TEST(GltfExport, CompressedSkinDecodesToWhatTheReportMeasures) {
   EXPECT_NE(refused.error().find("compress applies to skin mode"), std::string::npos)
       << refused.error();
   EXPECT_FALSE(fs::exists(dir.path() / "morph.glb"));
+}
+
+// The bytes EXT_meshopt_compression stores for the mesh's vertex attributes, indices and
+// targets in the .glb `file` (its views' byteLength).
+std::size_t CompressedMeshBytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), {});
+  std::uint32_t json_length = 0;
+  std::memcpy(&json_length, bytes.data() + 12, 4);
+  const nlohmann::json document =
+      nlohmann::json::parse(bytes.begin() + 20, bytes.begin() + 20 + json_length);
+  std::set<std::size_t> accessors;
+  for (const nlohmann::json& primitive : document["meshes"][0]["primitives"]) {
+    accessors.insert(primitive["indices"].get<std::size_t>());
+    for (const auto& [name, accessor] : primitive["attributes"].items())
+      accessors.insert(accessor.get<std::size_t>());
+    for (const nlohmann::json& target : primitive.value("targets", nlohmann::json::array()))
+      for (const auto& [name, accessor] : target.items())
+        accessors.insert(accessor.get<std::size_t>());
+  }
+  std::set<std::size_t> views;
+  for (const std::size_t a : accessors)
+    views.insert(document["accessors"][a]["bufferView"].get<std::size_t>());
+  std::size_t total = 0;
+  for (const std::size_t v : views)
+    total += document["bufferViews"][v]["extensions"]["EXT_meshopt_compression"]["byteLength"]
+                 .get<std::size_t>();
+  return total;
+}
+
+// Compressed files store the vertices in the order the codecs store in fewer bytes: a mesh whose
+// vertices come in random order is stored in the order its triangles use them, smaller than in
+// its own order (keep_vertex_order); the report maps file vertices back, and through that map
+// the file decodes to the bake within the reported error. Plain files keep the order.
+TEST(GltfExport, CompressedFilesStoreVerticesInTheOrderTheCodecsPrefer) {
+  TempDir dir;
+  Scene scene = MakeScene(BendCase{.radial = 48, .rings = 48});
+  testing::ShuffleVertices(&scene.mesh, &scene.bake, 7);
+  GltfExportOptions options;
+  options.mode = GltfAnimationMode::kSkin;
+  options.flesh_joints = false;
+  options.compress = true;
+  const fs::path reordered_file = dir.path() / "reordered.glb";
+  const Result<GltfExportReport> reordered =
+      ExportGltf(scene.mesh, scene.bake, options, reordered_file);
+  ASSERT_TRUE(reordered.ok()) << reordered.error();
+  options.keep_vertex_order = true;
+  const fs::path kept_file = dir.path() / "kept.glb";
+  const Result<GltfExportReport> kept = ExportGltf(scene.mesh, scene.bake, options, kept_file);
+  ASSERT_TRUE(kept.ok()) << kept.error();
+  EXPECT_TRUE(kept.value().vertex_order.empty());
+
+  const std::vector<std::uint32_t>& order = reordered.value().vertex_order;
+  const std::size_t count = scene.mesh.positions.size();
+  ASSERT_EQ(order.size(), count);
+  std::vector<std::uint32_t> sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::uint32_t v = 0; v < count; ++v) ASSERT_EQ(sorted[v], v);
+  const std::size_t reordered_mesh = CompressedMeshBytes(reordered_file);
+  const std::size_t kept_mesh = CompressedMeshBytes(kept_file);
+  std::printf(
+      "[ measured ] a shuffled cylinder, compressed: %ju bytes reordered (its mesh %zu), "
+      "%ju kept (%zu)\n",
+      reordered.value().bytes_written, reordered_mesh, kept.value().bytes_written, kept_mesh);
+  EXPECT_LT(reordered.value().bytes_written, kept.value().bytes_written);
+  EXPECT_LT(double(reordered_mesh), 0.8 * double(kept_mesh));
+
+  // The file's vertex i is the mesh's vertex order[i].
+  BakedAnimation mapped = scene.bake;
+  for (std::size_t k = 0; k < mapped.KeyCount(); ++k)
+    for (std::size_t i = 0; i < count; ++i)
+      mapped.positions[k * count + i] = scene.bake.positions[k * count + order[i]];
+  const Errors errors = ReconstructionErrors(LoadCompressedGlb(reordered_file), mapped);
+  EXPECT_NEAR(reordered.value().corrected_max_error, errors.max, 1e-6 * scene.diagonal);
+  EXPECT_LE(errors.max, 1e-3);
+  const Errors kept_errors = ReconstructionErrors(LoadCompressedGlb(kept_file), scene.bake);
+  EXPECT_NEAR(kept.value().corrected_max_error, kept_errors.max, 1e-6 * scene.diagonal);
+
+  options.compress = false;
+  const Result<GltfExportReport> refused =
+      ExportGltf(scene.mesh, scene.bake, options, dir.path() / "plain.glb");
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().find("keep_vertex_order applies to compressed files"),
+            std::string::npos)
+      << refused.error();
+  EXPECT_FALSE(fs::exists(dir.path() / "plain.glb"));
 }
 
 // A texture the source held itself (an archive entry, an embedded texture) is embedded in the

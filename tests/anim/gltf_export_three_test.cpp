@@ -25,6 +25,7 @@
 #include <gtest/gtest.h>
 
 #include "gltf_playback_reference.h"
+#include "support/shuffled_vertices.h"
 #include "three_reader.h"
 #include "wirerig/anim/bake.h"
 #include "wirerig/anim/gltf_export.h"
@@ -95,6 +96,7 @@ struct Variant {
   // is compared with the bake at the keys only.
   bool fitted = false;
   bool compressed = false;  // EXT_meshopt_compression (fitted skins only)
+  bool reordered = false;   // the file stores the vertices in another order (vertex_order)
 };
 
 GltfExportOptions ExportOptions(const Variant& variant) {
@@ -186,6 +188,9 @@ void CheckVariant(const Baked& baked, const Variant& variant, const fs::path& di
   if (variant.quantize) {
     ASSERT_GT(report.value().quantized_position_targets, 0u);
   }
+  if (variant.reordered) {
+    ASSERT_EQ(report.value().vertex_order.size(), bake.vertex_count);
+  }
 
   const std::vector<PlayTime> times = PlayTimes(bake);
   std::vector<double> seconds;
@@ -211,7 +216,10 @@ void CheckVariant(const Baked& baked, const Variant& variant, const fs::path& di
   double least_step = 1e300;    // between keys: how far three's mesh is from the previous key
   for (std::size_t i = 0; i < times.size(); ++i) {
     SCOPED_TRACE("t = " + std::to_string(times[i].t) + " s");
-    const std::vector<Vec3>& positions = drawn.positions[i];
+    // Back in the mesh's vertex order (compressed files may store another: vertex_order).
+    std::vector<Vec3> positions = drawn.positions[i];
+    const std::vector<std::uint32_t>& order = report.value().vertex_order;
+    for (std::size_t v = 0; v < order.size(); ++v) positions[order[v]] = drawn.positions[i][v];
     if (variant.fitted) {
       if (times[i].u != 0.0) continue;
       const double keyed = MaxDistance(positions, BakedKey(bake, times[i].key));
@@ -269,6 +277,13 @@ TEST(GltfExportThree, BeamPlaysInThreeAsWirerigBakedIt) {
       {"skin_fitted", GltfPlayback::kSkin, false, false, true},
   };
   for (const Variant& variant : variants) CheckVariant(baked, variant, dir.path());
+  // Vertices in a random order: the compressed file stores them in another, mapped back.
+  Baked shuffled = baked;
+  testing::ShuffleVertices(&shuffled.scene.mesh, &shuffled.bake, 11);
+  CheckVariant(
+      shuffled,
+      {"skin_fitted_compressed_shuffled", GltfPlayback::kSkin, false, false, true, true, true},
+      dir.path());
 }
 
 TEST(GltfExportThree, OctopusPlaysInThreeAsWirerigBakedIt) {

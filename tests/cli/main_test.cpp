@@ -94,6 +94,8 @@ TEST(WirerigExitCodes, UsageErrorsExitTwo) {
              "--key-tolerance");
   ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--mode", "morph", "--compress"}), 2,
              "--compress: applies to --mode skin only");
+  ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--keep-vertex-order"}), 2,
+             "--keep-vertex-order: applies to --compress only");
   ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--mode", "morph", "--influences", "8"}),
              2, "--influences: applies to --mode skin only");
   ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--influences", "6"}), 2, "--influences");

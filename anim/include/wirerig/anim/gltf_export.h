@@ -89,12 +89,17 @@ struct GltfExportOptions {
   // stay float. The extension is then required: readers without it (Assimp 5.2) cannot load the
   // file. Off by default: exact float deltas, readable everywhere.
   bool quantize = false;
-  // kSkin only: EXT_meshopt_compression (meshoptimizer's codecs on every buffer view; float
-  // positions, normals, UVs, corrective deltas and translation keys rounded first to what its
-  // EXPONENTIAL filter stores, so the reported errors are the decoded file's). The extension is
-  // required: readers without a meshopt decoder (Assimp 5.2, Blender 3.4) cannot load the
-  // file; three.js, Babylon.js and gltfpack can. Off by default.
+  // kSkin only: EXT_meshopt_compression (meshoptimizer's codecs on every buffer view; rest
+  // positions as normalized shorts (KHR_mesh_quantization), normals, UVs, corrective deltas and
+  // translation keys rounded first to what its filters store, so the reported errors are the
+  // decoded file's). The vertices are stored in the order the codecs store in fewer bytes (the
+  // mesh's own, or the order the triangles use them: GltfExportReport::vertex_order). The
+  // extension is required: readers without a meshopt decoder (Assimp 5.2, Blender 3.4) cannot
+  // load the file; three.js, Babylon.js and gltfpack can. Off by default.
   bool compress = false;
+  // With compress: keep the mesh's vertex order (for a reader that matches file vertices to
+  // its own data by index), whatever it costs.
+  bool keep_vertex_order = false;
 };
 
 struct GltfExportReport {
@@ -110,6 +115,10 @@ struct GltfExportReport {
   std::size_t material_count = 0;
   std::size_t texture_count = 0;
   std::vector<std::string> warnings;  // what was left out, and why
+  // File vertex -> the mesh's render vertex, when the file stores them in another order (with
+  // options.compress: the order the triangles use them, for the codec); empty when the file
+  // keeps the mesh's order.
+  std::vector<std::uint32_t> vertex_order;
 
   // kSkin: error of the linear-blend-skinned positions against the bake at every key, computed
   // with the glTF skinning formula from the values as stored in the file (float). Metres, and
