@@ -78,6 +78,9 @@ CLI::App* AddBakeCommand(CLI::App& app, BakeCommandOptions& options) {
                    "downscaled to it and re-encoded (PNG, or JPEG at quality 90; 0: unchanged)")
       ->check(InRange(0, 65536))
       ->capture_default_str();
+  bake->add_flag("--jpeg-textures", options.jpeg_textures,
+                 "Embedded PNG textures stored as JPEG (quality 90) when that is smaller (the "
+                 "materials are opaque: their alpha is not used)");
   bake->add_option("--influences", options.influences,
                    "skin mode: joints per vertex, 4 or 8 (8 adds JOINTS_1/WEIGHTS_1, which "
                    "three.js does not read)")
@@ -153,6 +156,7 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   export_options.compress = options.compress;
   export_options.keep_vertex_order = options.keep_vertex_order;
   export_options.max_texture_size = options.max_texture_size;
+  export_options.jpeg_textures = options.jpeg_textures;
   export_options.influences = options.influences;
   export_options.flesh_joints = !options.no_flesh_joints;
   export_options.node_name = scene.description.name;

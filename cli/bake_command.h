@@ -30,6 +30,7 @@ struct BakeCommandOptions {
   bool compress = false;             // skin mode: GltfExportOptions::compress
   bool keep_vertex_order = false;    // with compress: GltfExportOptions::keep_vertex_order
   int max_texture_size = 0;          // GltfExportOptions::max_texture_size
+  bool jpeg_textures = false;        // GltfExportOptions::jpeg_textures
   std::size_t influences = 4;        // skin mode: GltfExportOptions::influences
   bool no_flesh_joints = false;      // skin mode: !GltfExportOptions::flesh_joints
   bool progress = false;             // set by main when stderr is a terminal

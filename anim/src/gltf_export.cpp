@@ -171,7 +171,8 @@ Result<GltfExportReport> WriteExport(const Mesh& mesh, const BakedAnimation& bak
   model.asset.version = "2.0";
   model.asset.generator = "wirerig";
   const gltf::MaterialsAdded materials = gltf::AddMaterials(
-      model, mesh, options.texture_dir, out_dir, options.max_texture_size, &report.warnings);
+      model, mesh, options.texture_dir, out_dir,
+      gltf::ImageStorage{options.max_texture_size, options.jpeg_textures}, &report.warnings);
   gltf::BaseVertices base = gltf::MakeBaseVertices(mesh);
   // Quantized skin files without residual targets store POSITION as shorts and NORMAL as bytes
   // (no normal target is measured against them); compressed files store NORMAL as bytes too

@@ -68,7 +68,7 @@ ImageRef ResolveTexture(const Mesh& mesh, const MeshMaterial& material, const fs
 }  // namespace
 
 MaterialsAdded AddMaterials(tinygltf::Model& model, const Mesh& mesh, const fs::path& texture_dir,
-                            const fs::path& out_dir, int max_texture_size,
+                            const fs::path& out_dir, const ImageStorage& images,
                             std::vector<std::string>* warnings) {
   MaterialsAdded added;
   std::map<std::string, int> texture_of_uri;  // one image and texture per distinct file
@@ -110,24 +110,33 @@ MaterialsAdded AddMaterials(tinygltf::Model& model, const Mesh& mesh, const fs::
           image.mimeType = ref.mime_type;
           if (held) {
             image.name = fs::path(source.base_color_texture).stem().string();
-            Result<std::vector<unsigned char>> fitted =
-                FitImage(source.base_color_image, ref.mime_type, max_texture_size);
-            if (!fitted) {
+            Result<StoredImage> stored = StoreImage(source.base_color_image, ref.mime_type, images);
+            if (!stored) {
               warnings->push_back("material '" + source.name + "': texture '" +
                                   source.base_color_texture +
-                                  "' embedded at its own size: " + fitted.error());
+                                  "' embedded as the source held it: " + stored.error());
+            } else {
+              image.mimeType = stored.value().mime_type;
             }
             image.bufferView = AddBytesView(
-                model, fitted ? std::span<const unsigned char>(fitted.value())
+                model, stored ? std::span<const unsigned char>(stored.value().bytes)
                               : std::span<const unsigned char>(source.base_color_image));
-          } else if (max_texture_size > 0) {
+          } else {
             int width = 0, height = 0;
-            if (ImageSize(texture_dir / source.base_color_texture, &width, &height) &&
-                std::max(width, height) > max_texture_size) {
+            const bool too_large =
+                images.max_size > 0 &&
+                ImageSize(texture_dir / source.base_color_texture, &width, &height) &&
+                std::max(width, height) > images.max_size;
+            if (too_large) {
               warnings->push_back("material '" + source.name + "': texture '" +
                                   source.base_color_texture + "' (" + std::to_string(width) +
                                   " x " + std::to_string(height) +
                                   ") is referenced, not embedded: left at its size");
+            }
+            if (images.as_jpeg && ref.mime_type != "image/jpeg") {
+              warnings->push_back("material '" + source.name + "': texture '" +
+                                  source.base_color_texture +
+                                  "' is referenced, not embedded: left as PNG");
             }
           }
           model.images.push_back(image);

@@ -12,6 +12,7 @@
 
 #include <tiny_gltf.h>
 
+#include "gltf_texture_size.h"
 #include "wirerig/rig/mesh.h"
 
 namespace wirerig::gltf {
@@ -24,11 +25,11 @@ struct MaterialsAdded {
 // `texture_dir`: the folder MeshMaterial::base_color_texture is relative to (empty: no texture
 // files; held images are embedded still); `out_dir`: the output file's folder. A texture is
 // left out, with a warning, when the mesh has no UVs, the file does not exist, or it is not PNG
-// or JPEG. `max_texture_size` > 0: embedded images fitted within it (FitImage); referenced
-// files larger than it are left as they are, with a warning.
+// or JPEG. Embedded images are stored as `images` says (StoreImage); referenced files it would
+// change are left as they are, with a warning.
 MaterialsAdded AddMaterials(tinygltf::Model& model, const Mesh& mesh,
                             const std::filesystem::path& texture_dir,
-                            const std::filesystem::path& out_dir, int max_texture_size,
+                            const std::filesystem::path& out_dir, const ImageStorage& images,
                             std::vector<std::string>* warnings);
 
 }  // namespace wirerig::gltf

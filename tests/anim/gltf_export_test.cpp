@@ -1184,6 +1184,88 @@ TEST(GltfExport, DownscalesAHeldTextureToMaxTextureSize) {
       << referenced.value().warnings[0];
 }
 
+// jpeg_textures: a held PNG that JPEG stores in fewer bytes (a photograph-like gradient, part
+// of it transparent) is embedded as JPEG with its colours, alpha dropped (the material is
+// opaque); one PNG stores smaller (two flat colours) is embedded byte for byte; a referenced
+// file is left as PNG, with a warning.
+TEST(GltfExport, StoresAHeldPngAsJpegWhenThatIsSmaller) {
+  TempDir dir;
+  Scene scene = MakeScene(BendCase{});
+  constexpr int kSide = 256;
+  std::vector<unsigned char> rgba(kSide * kSide * 4);
+  const auto colour = [](int x, int y, int c) {
+    const double u = x / double(kSide), v = y / double(kSide);
+    const double value = c == 0   ? 0.5 + 0.5 * std::sin(6.0 * u + 2.0 * v)
+                         : c == 1 ? u * v
+                                  : 0.5 + 0.4 * std::cos(9.0 * v);
+    return static_cast<unsigned char>(std::lround(255.0 * value));
+  };
+  for (int y = 0; y < kSide; ++y)
+    for (int x = 0; x < kSide; ++x) {
+      unsigned char* p = &rgba[std::size_t(4 * (y * kSide + x))];
+      for (int c = 0; c < 3; ++c) p[c] = colour(x, y, c);
+      p[3] = x < 16 && y < 16 ? 0 : 255;  // a transparent corner
+    }
+  std::vector<unsigned char> png;
+  auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(context);
+    out->insert(out->end(), static_cast<unsigned char*>(data),
+                static_cast<unsigned char*>(data) + size);
+  };
+  ASSERT_TRUE(stbi_write_png_to_func(append, &png, kSide, kSide, 4, rgba.data(), kSide * 4));
+  scene.mesh.materials.at(0).base_color_image = png;
+  GltfExportOptions options;
+  options.jpeg_textures = true;
+  const fs::path out = dir.path() / "jpeg.glb";
+  const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
+  ASSERT_TRUE(report.ok()) << report.error();
+  EXPECT_TRUE(report.value().warnings.empty());
+  const tinygltf::Model model = LoadWithTinygltf(out);
+  ASSERT_EQ(model.images.size(), 1u);
+  const tinygltf::Image& image = model.images[0];
+  EXPECT_EQ(image.mimeType, "image/jpeg");
+  const tinygltf::BufferView& view = model.bufferViews.at(std::size_t(image.bufferView));
+  std::printf("[ measured ] a 256 x 256 gradient: PNG %zu bytes, JPEG %zu\n", png.size(),
+              view.byteLength);
+  EXPECT_LT(view.byteLength, png.size());
+  ASSERT_EQ(image.width, kSide);
+  ASSERT_EQ(image.height, kSide);
+  ASSERT_GE(image.component, 3);
+  for (int y = 0; y < kSide; y += 17)
+    for (int x = 0; x < kSide; x += 13)
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(image.image[std::size_t(image.component * (y * kSide + x) + c)],
+                    colour(x, y, c), 12)
+            << x << ", " << y << ", " << c;
+  const Validation validation = Validate(out);
+  EXPECT_NE(validation.output.find(": 0 errors, 0 warnings"), std::string::npos)
+      << validation.output;
+
+  // Two flat colours: PNG is smaller, kept byte for byte.
+  const std::vector<unsigned char> flat = TwoColourImage(false);
+  scene.mesh.materials[0].base_color_image = flat;
+  const fs::path kept = dir.path() / "kept.glb";
+  ASSERT_TRUE(ExportGltf(scene.mesh, scene.bake, options, kept).ok());
+  const tinygltf::Model whole = LoadWithTinygltf(kept);
+  EXPECT_EQ(whole.images.at(0).mimeType, "image/png");
+  const tinygltf::BufferView& flat_view =
+      whole.bufferViews.at(std::size_t(whole.images.at(0).bufferView));
+  const auto begin = whole.buffers.at(0).data.begin() + long(flat_view.byteOffset);
+  EXPECT_TRUE(std::equal(flat.begin(), flat.end(), begin, begin + long(flat_view.byteLength)));
+
+  // A referenced texture file is left as it is, with the reason.
+  scene.mesh.materials[0].base_color_image.clear();
+  scene.mesh.materials[0].base_color_texture = "textures/logo.png";
+  options.texture_dir = InstallTexture(dir.path());
+  const Result<GltfExportReport> referenced =
+      ExportGltf(scene.mesh, scene.bake, options, dir.path() / "src" / "referenced.glb");
+  ASSERT_TRUE(referenced.ok()) << referenced.error();
+  ASSERT_EQ(referenced.value().warnings.size(), 1u);
+  EXPECT_NE(referenced.value().warnings[0].find("is referenced, not embedded: left as PNG"),
+            std::string::npos)
+      << referenced.value().warnings[0];
+}
+
 TEST(GltfExport, UsesTheNodeNameAndKeepsAnExistingFileOnError) {
   TempDir dir;
   Scene scene = MakeScene(BendCase{});

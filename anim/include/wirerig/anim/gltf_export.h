@@ -81,6 +81,11 @@ struct GltfExportOptions {
   // (aspect kept, filtered in sRGB) and re-encoded in its format (PNG, or JPEG at quality 90);
   // a texture file referenced by URI is left as it is, with a report warning. 0: unchanged.
   int max_texture_size = 0;
+  // An embedded PNG texture re-encoded as JPEG at quality 90 when that is smaller (after
+  // max_texture_size). JPEG has no alpha, and none is lost: every material the export writes is
+  // opaque (glTF's default alphaMode), so readers ignore a texture's alpha. Files referenced by
+  // URI are left as they are, with a report warning. Off: textures keep their format.
+  bool jpeg_textures = false;
   // Morph targets (kMorph, and kSkin's residual targets) as KHR_mesh_quantization normalized
   // signed shorts (value / 32767, at an 8-byte stride) instead of float: a key's POSITION
   // deltas when every component lies within [-1, 1] m and the rounding bound per vertex,
