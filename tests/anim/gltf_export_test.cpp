@@ -1123,6 +1123,41 @@ std::vector<unsigned char> TwoColourImage(bool jpeg) {
   return bytes;
 }
 
+// Exports `scene` as `options` says to `out` with no warning, and reads the file back with
+// tinygltf (its images decoded).
+tinygltf::Model ExportTexturedAndLoad(const Scene& scene, const GltfExportOptions& options,
+                                      const fs::path& out) {
+  const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
+  EXPECT_TRUE(report.ok()) << (report.ok() ? "" : report.error());
+  if (report.ok()) {
+    EXPECT_TRUE(report.value().warnings.empty());
+  }
+  return LoadWithTinygltf(out);
+}
+
+// The bytes of the first image embedded in `model`'s buffer.
+std::vector<unsigned char> EmbeddedImageBytes(const tinygltf::Model& model) {
+  const tinygltf::BufferView& view =
+      model.bufferViews.at(std::size_t(model.images.at(0).bufferView));
+  const auto begin = model.buffers.at(0).data.begin() + long(view.byteOffset);
+  return {begin, begin + long(view.byteLength)};
+}
+
+// Exports `scene` with its texture referenced (textures/logo.png under `dir`/src) instead of
+// held, as `options` says: the file is written with one warning, which names `reason`.
+void ExpectReferencedTextureLeftAlone(Scene scene, GltfExportOptions options, const fs::path& dir,
+                                      const std::string& reason) {
+  scene.mesh.materials.at(0).base_color_image.clear();
+  scene.mesh.materials[0].base_color_texture = "textures/logo.png";
+  options.texture_dir = InstallTexture(dir);
+  const Result<GltfExportReport> referenced =
+      ExportGltf(scene.mesh, scene.bake, options, dir / "src" / "referenced.glb");
+  ASSERT_TRUE(referenced.ok()) << referenced.error();
+  ASSERT_EQ(referenced.value().warnings.size(), 1u);
+  EXPECT_NE(referenced.value().warnings[0].find(reason), std::string::npos)
+      << referenced.value().warnings[0];
+}
+
 // max_texture_size: a held image larger than it is embedded downscaled to it, aspect kept, in
 // its own format, with its colours (decoded by tinygltf's reader); one that fits is embedded
 // byte for byte; a referenced file is left as it is, with a warning.
@@ -1135,10 +1170,7 @@ TEST(GltfExport, DownscalesAHeldTextureToMaxTextureSize) {
     GltfExportOptions options;
     options.max_texture_size = 16;
     const fs::path out = dir.path() / (jpeg ? "small_jpeg.glb" : "small_png.glb");
-    const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
-    ASSERT_TRUE(report.ok()) << report.error();
-    EXPECT_TRUE(report.value().warnings.empty());
-    const tinygltf::Model model = LoadWithTinygltf(out);
+    const tinygltf::Model model = ExportTexturedAndLoad(scene, options, out);
     ASSERT_EQ(model.images.size(), 1u);
     const tinygltf::Image& image = model.images[0];
     EXPECT_EQ(image.mimeType, jpeg ? "image/jpeg" : "image/png");
@@ -1163,25 +1195,13 @@ TEST(GltfExport, DownscalesAHeldTextureToMaxTextureSize) {
     options.max_texture_size = 64;
     const fs::path kept = dir.path() / "kept.glb";
     ASSERT_TRUE(ExportGltf(scene.mesh, scene.bake, options, kept).ok());
-    const tinygltf::Model whole = LoadWithTinygltf(kept);
-    const tinygltf::BufferView& view =
-        whole.bufferViews.at(std::size_t(whole.images.at(0).bufferView));
-    const auto begin = whole.buffers.at(0).data.begin() + long(view.byteOffset);
-    EXPECT_TRUE(std::equal(source.begin(), source.end(), begin, begin + long(view.byteLength)));
+    EXPECT_EQ(EmbeddedImageBytes(LoadWithTinygltf(kept)), source);
   }
   // A referenced texture file keeps its size, with the reason.
-  scene.mesh.materials.at(0).base_color_image.clear();
-  scene.mesh.materials[0].base_color_texture = "textures/logo.png";
   GltfExportOptions options;
-  options.texture_dir = InstallTexture(dir.path());
   options.max_texture_size = 16;
-  const Result<GltfExportReport> referenced =
-      ExportGltf(scene.mesh, scene.bake, options, dir.path() / "src" / "referenced.glb");
-  ASSERT_TRUE(referenced.ok()) << referenced.error();
-  ASSERT_EQ(referenced.value().warnings.size(), 1u);
-  EXPECT_NE(referenced.value().warnings[0].find("is referenced, not embedded: left at its size"),
-            std::string::npos)
-      << referenced.value().warnings[0];
+  ExpectReferencedTextureLeftAlone(scene, options, dir.path(),
+                                   "is referenced, not embedded: left at its size");
 }
 
 // jpeg_textures: a held PNG that JPEG stores in fewer bytes (a photograph-like gradient, part
@@ -1217,10 +1237,7 @@ TEST(GltfExport, StoresAHeldPngAsJpegWhenThatIsSmaller) {
   GltfExportOptions options;
   options.jpeg_textures = true;
   const fs::path out = dir.path() / "jpeg.glb";
-  const Result<GltfExportReport> report = ExportGltf(scene.mesh, scene.bake, options, out);
-  ASSERT_TRUE(report.ok()) << report.error();
-  EXPECT_TRUE(report.value().warnings.empty());
-  const tinygltf::Model model = LoadWithTinygltf(out);
+  const tinygltf::Model model = ExportTexturedAndLoad(scene, options, out);
   ASSERT_EQ(model.images.size(), 1u);
   const tinygltf::Image& image = model.images[0];
   EXPECT_EQ(image.mimeType, "image/jpeg");
@@ -1248,22 +1265,10 @@ TEST(GltfExport, StoresAHeldPngAsJpegWhenThatIsSmaller) {
   ASSERT_TRUE(ExportGltf(scene.mesh, scene.bake, options, kept).ok());
   const tinygltf::Model whole = LoadWithTinygltf(kept);
   EXPECT_EQ(whole.images.at(0).mimeType, "image/png");
-  const tinygltf::BufferView& flat_view =
-      whole.bufferViews.at(std::size_t(whole.images.at(0).bufferView));
-  const auto begin = whole.buffers.at(0).data.begin() + long(flat_view.byteOffset);
-  EXPECT_TRUE(std::equal(flat.begin(), flat.end(), begin, begin + long(flat_view.byteLength)));
-
+  EXPECT_EQ(EmbeddedImageBytes(whole), flat);
   // A referenced texture file is left as it is, with the reason.
-  scene.mesh.materials[0].base_color_image.clear();
-  scene.mesh.materials[0].base_color_texture = "textures/logo.png";
-  options.texture_dir = InstallTexture(dir.path());
-  const Result<GltfExportReport> referenced =
-      ExportGltf(scene.mesh, scene.bake, options, dir.path() / "src" / "referenced.glb");
-  ASSERT_TRUE(referenced.ok()) << referenced.error();
-  ASSERT_EQ(referenced.value().warnings.size(), 1u);
-  EXPECT_NE(referenced.value().warnings[0].find("is referenced, not embedded: left as PNG"),
-            std::string::npos)
-      << referenced.value().warnings[0];
+  ExpectReferencedTextureLeftAlone(scene, options, dir.path(),
+                                   "is referenced, not embedded: left as PNG");
 }
 
 TEST(GltfExport, UsesTheNodeNameAndKeepsAnExistingFileOnError) {
