@@ -176,16 +176,19 @@ Result<GltfExportReport> WriteExport(const Mesh& mesh, const BakedAnimation& bak
   gltf::BaseVertices base = gltf::MakeBaseVertices(mesh);
   // Quantized skin files without residual targets store POSITION as shorts and NORMAL as bytes
   // (no normal target is measured against them); compressed files store NORMAL as bytes too
-  // (octahedral, rounded below).
-  const bool quantized_skin = options.quantize && options.mode == GltfAnimationMode::kSkin &&
-                              !options.residual_morph_targets && !options.compress;
-  const bool byte_normals = options.compress || quantized_skin;
+  // (octahedral, rounded below), and POSITION as shorts unless residual targets (deltas in
+  // metres at weight 1) are added to it.
+  const bool skin_without_residuals =
+      options.mode == GltfAnimationMode::kSkin && !options.residual_morph_targets;
+  const bool quantized_skin = options.quantize && skin_without_residuals && !options.compress;
+  const bool short_positions = skin_without_residuals && (options.quantize || options.compress);
   gltf::BaseMeshStorage storage;
   storage.reorder_triangles = options.compress;
-  storage.byte_normals = byte_normals;
+  storage.byte_normals = options.compress || quantized_skin;
   storage.short_uvs = quantized_skin;
-  if (quantized_skin || options.compress) storage.positions = gltf::QuantizePositions(&base);
+  if (short_positions) storage.positions = gltf::QuantizePositions(&base);
   if (options.compress) {
+    if (!short_positions) gltf::RoundLikeExpFilter(base.positions, 3, gltf::kPositionBits);
     gltf::RoundLikeOctFilter(base.normals, gltf::kOctahedralBits);
     gltf::RoundLikeExpFilter(base.uvs, 2, gltf::kUvBits);
   }

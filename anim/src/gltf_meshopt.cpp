@@ -58,6 +58,7 @@ std::map<int, ViewUse> ViewUses(const tinygltf::Model& model) {
   for (const tinygltf::Mesh& mesh : model.meshes) {
     for (const tinygltf::Primitive& primitive : mesh.primitives) {
       for (const auto& [name, accessor] : primitive.attributes) {
+        if (name == "POSITION") wanted[accessor] = {Filter::kExponential, kPositionBits};
         if (name == "NORMAL") wanted[accessor] = {Filter::kOctahedral, kOctahedralBits};
         if (name == "TEXCOORD_0") wanted[accessor] = {Filter::kExponential, kUvBits};
       }

@@ -2,12 +2,13 @@
 // is encoded with meshoptimizer's codecs (triangle indices with the index codec, everything else
 // with the vertex codec) into buffer 0, while the views point into a fallback buffer 1 that holds
 // no data, as the extension asks. Float data that tolerates rounding (UVs, corrective deltas,
-// translation keys) is first rounded the way the EXPONENTIAL filter stores it
+// translation keys, float rest positions) is first rounded the way the EXPONENTIAL filter stores it
 // (RoundLikeExpFilter), before anything is fitted to or measured on it, so every error the export
 // reports is the decoded file's; the filter then stores it with no further loss. Rotation keys
 // (normalized shorts) are rounded likewise for the QUATERNION filter (RoundLikeQuatFilter), rest
 // normals (normalized bytes) for the OCTAHEDRAL filter (RoundLikeOctFilter). Rest positions are
-// normalized shorts (QuantizePositions), stored by the codec with no filter.
+// normalized shorts (QuantizePositions), stored by the codec with no filter, except beside
+// residual targets (float, EXPONENTIAL).
 #pragma once
 
 #include <cstddef>
@@ -23,8 +24,9 @@ namespace wirerig::gltf {
 
 // Mantissa bits the EXPONENTIAL filter keeps (a vector's components share the exponent of its
 // largest): relative precision 2^(1 - bits) of that component.
-inline constexpr int kUvBits = 12;     // within 2.5e-4 of the texture (gltfpack's default)
-inline constexpr int kDeltaBits = 10;  // a 2 cm corrective delta: within 2e-5 m
+inline constexpr int kPositionBits = 16;  // float rest positions (beside residual targets)
+inline constexpr int kUvBits = 12;        // within 2.5e-4 of the texture (gltfpack's default)
+inline constexpr int kDeltaBits = 10;     // a 2 cm corrective delta: within 2e-5 m
 // Translation keys: each joint's bits chosen so that its keys are stored within
 // kTranslationPrecision (ExpFilterBits), at most kTranslationBits (the filter's maximum).
 inline constexpr double kTranslationPrecision = 4e-5;  // m

@@ -12,11 +12,12 @@
 namespace wirerig::gltf {
 namespace {
 
-// out[i] = in[order[i]] for each of `blocks` consecutive blocks of order.size() values.
+// out[i] = in[order[i]] for each of `blocks` consecutive blocks of order.size() values; empty
+// when `in` does not hold exactly that many (an optional array the export does not read).
 template <typename T>
 std::vector<T> Gather(const std::vector<T>& in, std::span<const std::uint32_t> order,
                       std::size_t blocks = 1) {
-  if (in.empty()) return {};
+  if (in.size() != blocks * order.size()) return {};
   std::vector<T> out;
   out.reserve(in.size());
   for (std::size_t b = 0; b < blocks; ++b) {
@@ -53,7 +54,12 @@ std::vector<unsigned char> AsShorts(std::size_t count, At at) {
 // The codecs' bytes for the part of the file SmallerVertexOrder compares, vertices in `order`.
 std::size_t CodedBytes(const Mesh& mesh, const BakedAnimation& bake,
                        std::span<const std::uint32_t> order) {
-  const Mesh ordered = ReorderVertices(mesh, order);
+  Mesh shape;  // what is coded: no materials (their images), skin or welding copied
+  shape.positions = mesh.positions;
+  shape.normals = mesh.normals;
+  shape.triangles = mesh.triangles;
+  shape.parts = mesh.parts;
+  const Mesh ordered = ReorderVertices(shape, order);
   const std::size_t count = order.size();
   std::size_t bytes = 0;
   for (const PrimitiveTriangles& primitive : MakePrimitives(ordered, /*reorder_triangles=*/true)) {

@@ -153,9 +153,11 @@ bool WriteBuffer(std::span<const unsigned char> data, const BufferTail& tail,
 void AddMeshoptJson(nlohmann::json& document, const MeshoptJson& meshopt) {
   if (meshopt.fallback_bytes == 0) return;
   if (document.contains("animations")) {
-    for (nlohmann::json& animation : document["animations"])
+    for (nlohmann::json& animation : document["animations"]) {
+      if (!animation.contains("samplers")) continue;
       for (nlohmann::json& sampler : animation["samplers"])
         if (sampler.value("interpolation", "") == "LINEAR") sampler.erase("interpolation");
+    }
   }
   for (const auto& [view, extension] : meshopt.views) {
     document["bufferViews"][view]["extensions"]["EXT_meshopt_compression"] =

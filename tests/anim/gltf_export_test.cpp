@@ -83,9 +83,10 @@ Quat RestFrame() {
 
 struct BendCase {
   int keys = 6;
-  int samples_per_spine = 3;  // 3: joints every 1/4 m (rings between joints); 5: every 1/8 m
-  int radial = kRadial;       // vertices around the cylinder
-  int rings = kRings;         // height segments
+  int samples_per_spine = 3;   // 3: joints every 1/4 m (rings between joints); 5: every 1/8 m
+  int radial = kRadial;        // vertices around the cylinder
+  int rings = kRings;          // height segments
+  bool unused_vertex = false;  // one vertex no triangle uses, beside the cylinder
 };
 
 // The mesh (with cylindrical UVs and one material) and its bake.
@@ -119,6 +120,11 @@ Scene MakeScene(const BendCase& c) {
   Scene scene;
   Mesh& mesh = scene.mesh;
   mesh = MakeCylinder(kRadius, kHeight, c.radial, c.rings);
+  if (c.unused_vertex) {
+    mesh.positions.emplace_back(0.3, 0.5, 0.0);
+    mesh.normals.emplace_back(Vec3::UnitX());
+    WeldByPosition(mesh);
+  }
   for (const Vec3& p : mesh.positions) {
     const double angle = std::atan2(-p.z(), p.x());
     mesh.uvs.emplace_back(0.5 + angle / (2.0 * std::numbers::pi), 1.0 - p.y() / kHeight);
@@ -969,6 +975,24 @@ TEST(GltfExport, CompressedSkinDecodesToWhatTheReportMeasures) {
   EXPECT_EQ(filter_of(*views_of_path["translation"].begin()), "EXPONENTIAL");
   EXPECT_EQ(filter_of(*views_of_path["rotation"].begin()), "QUATERNION");
 
+  // With a residual target per key (deltas in metres at weight 1) the rest positions stay
+  // float (EXPONENTIAL), and the file decodes to the bake.
+  options.residual_morph_targets = true;
+  const fs::path residual_file = dir.path() / "residual.glb";
+  const Result<GltfExportReport> residual =
+      ExportGltf(scene.mesh, scene.bake, options, residual_file);
+  ASSERT_TRUE(residual.ok()) << residual.error();
+  const tinygltf::Model residual_model = LoadCompressedGlb(residual_file);
+  EXPECT_EQ(residual_model.accessors
+                .at(std::size_t(residual_model.meshes[0].primitives[0].attributes.at("POSITION")))
+                .componentType,
+            TINYGLTF_COMPONENT_TYPE_FLOAT);
+  const Errors residual_errors = ReconstructionErrors(residual_model, scene.bake);
+  std::printf("[ measured ] compressed skin with residual targets: decoded error max %.3g m\n",
+              residual_errors.max);
+  EXPECT_LE(residual_errors.max, 1e-4 * scene.diagonal);
+  options.residual_morph_targets = false;
+
   options.mode = GltfAnimationMode::kMorph;
   const Result<GltfExportReport> refused =
       ExportGltf(scene.mesh, scene.bake, options, dir.path() / "morph.glb");
@@ -1012,11 +1036,15 @@ std::size_t CompressedMeshBytes(const fs::path& file) {
 // the file decodes to the bake within the reported error. Plain files keep the order.
 TEST(GltfExport, CompressedFilesStoreVerticesInTheOrderTheCodecsPrefer) {
   TempDir dir;
-  Scene scene = MakeScene(BendCase{.radial = 48, .rings = 48});
+  Scene scene = MakeScene(BendCase{.radial = 48, .rings = 48, .unused_vertex = true});
   testing::ShuffleVertices(&scene.mesh, &scene.bake, 7);
   GltfExportOptions options;
   options.mode = GltfAnimationMode::kSkin;
   options.flesh_joints = false;
+  const Result<GltfExportReport> plain =
+      ExportGltf(scene.mesh, scene.bake, options, dir.path() / "plain.glb");
+  ASSERT_TRUE(plain.ok()) << plain.error();
+  EXPECT_TRUE(plain.value().vertex_order.empty());
   options.compress = true;
   const fs::path reordered_file = dir.path() / "reordered.glb";
   const Result<GltfExportReport> reordered =
@@ -1048,20 +1076,33 @@ TEST(GltfExport, CompressedFilesStoreVerticesInTheOrderTheCodecsPrefer) {
   for (std::size_t k = 0; k < mapped.KeyCount(); ++k)
     for (std::size_t i = 0; i < count; ++i)
       mapped.positions[k * count + i] = scene.bake.positions[k * count + order[i]];
-  const Errors errors = ReconstructionErrors(LoadCompressedGlb(reordered_file), mapped);
+  const tinygltf::Model decoded = LoadCompressedGlb(reordered_file);
+  const Errors errors = ReconstructionErrors(decoded, mapped);
   EXPECT_NEAR(reordered.value().corrected_max_error, errors.max, 1e-6 * scene.diagonal);
   EXPECT_LE(errors.max, 1e-3);
+  // The normals (octahedral bytes) and uvs (12-bit EXPONENTIAL) moved with their vertices.
+  const tinygltf::Primitive& primitive = decoded.meshes.at(0).primitives.at(0);
+  const std::vector<float> normals = ReadFloats(decoded, primitive.attributes.at("NORMAL"));
+  const std::vector<float> uvs = ReadFloats(decoded, primitive.attributes.at("TEXCOORD_0"));
+  ASSERT_EQ(normals.size(), 3 * count);
+  ASSERT_EQ(uvs.size(), 2 * count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const Vec3 n = Vec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]).normalized();
+    EXPECT_GT(n.dot(scene.mesh.normals[order[i]].normalized()), std::cos(0.03)) << i;
+    for (int c = 0; c < 2; ++c)
+      EXPECT_NEAR(uvs[2 * i + std::size_t(c)], scene.mesh.uvs[order[i]][c], 5e-4) << i;
+  }
   const Errors kept_errors = ReconstructionErrors(LoadCompressedGlb(kept_file), scene.bake);
   EXPECT_NEAR(kept.value().corrected_max_error, kept_errors.max, 1e-6 * scene.diagonal);
 
   options.compress = false;
   const Result<GltfExportReport> refused =
-      ExportGltf(scene.mesh, scene.bake, options, dir.path() / "plain.glb");
+      ExportGltf(scene.mesh, scene.bake, options, dir.path() / "refused.glb");
   ASSERT_FALSE(refused.ok());
   EXPECT_NE(refused.error().find("keep_vertex_order applies to compressed files"),
             std::string::npos)
       << refused.error();
-  EXPECT_FALSE(fs::exists(dir.path() / "plain.glb"));
+  EXPECT_FALSE(fs::exists(dir.path() / "refused.glb"));
 }
 
 // A texture the source held itself (an archive entry, an embedded texture) is embedded in the
@@ -1257,6 +1298,21 @@ TEST(GltfExport, StoresAHeldPngAsJpegWhenThatIsSmaller) {
   const Validation validation = Validate(out);
   EXPECT_NE(validation.output.find(": 0 errors, 0 warnings"), std::string::npos)
       << validation.output;
+
+  // Downscaled first (max_texture_size), then stored as JPEG: a 64 x 64 JPEG of the gradient.
+  options.max_texture_size = 64;
+  const tinygltf::Model small = ExportTexturedAndLoad(scene, options, dir.path() / "small.glb");
+  const tinygltf::Image& small_image = small.images.at(0);
+  EXPECT_EQ(small_image.mimeType, "image/jpeg");
+  ASSERT_EQ(small_image.width, 64);
+  ASSERT_EQ(small_image.height, 64);
+  for (int y = 4; y < 64; y += 9)
+    for (int x = 4; x < 64; x += 7)
+      for (int c = 0; c < 3; ++c)  // pixel (x, y) covers source pixels 4x..4x+3
+        EXPECT_NEAR(small_image.image[std::size_t(small_image.component * (y * 64 + x) + c)],
+                    colour(4 * x + 2, 4 * y + 2, c), 12)
+            << x << ", " << y << ", " << c;
+  options.max_texture_size = 0;
 
   // Two flat colours: PNG is smaller, kept byte for byte.
   const std::vector<unsigned char> flat = TwoColourImage(false);

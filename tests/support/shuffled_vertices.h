@@ -8,6 +8,8 @@
 #include <random>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "wirerig/anim/baked_animation.h"
 #include "wirerig/rig/mesh.h"
 
@@ -24,6 +26,8 @@ inline std::vector<std::uint32_t> ShuffleVertices(Mesh* mesh, BakedAnimation* ba
   std::shuffle(order.begin(), order.end(), random);
   const auto gather = [&](auto& values, std::size_t blocks) {
     if (values.empty()) return;
+    EXPECT_EQ(values.size(), blocks * count) << "a per-vertex array of another length";
+    if (values.size() != blocks * count) return;
     auto source = values;
     for (std::size_t b = 0; b < blocks; ++b)
       for (std::size_t i = 0; i < count; ++i) values[b * count + i] = source[b * count + order[i]];
