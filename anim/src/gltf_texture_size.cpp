@@ -16,6 +16,8 @@ namespace {
 
 constexpr int kJpegQuality = 90;
 constexpr const char* kJpeg = "image/jpeg";
+// JPEG stores each side in 16 bits; stb_image_write would truncate a longer one unchecked.
+constexpr int kJpegMaxSide = 65535;
 
 void Append(void* context, void* data, int size) {
   auto* sink = static_cast<std::vector<unsigned char>*>(context);
@@ -65,12 +67,14 @@ Result<StoredImage> StoreImage(std::span<const unsigned char> bytes, const std::
                                                 pixels.get(), width * channels);
     if (!ok) return Error{"cannot encode the resized image"};
   }
-  if (to_jpeg) {
-    // JPEG has no alpha: stb_image_write leaves the alpha channel out.
+  if (to_jpeg && std::max(width, height) <= kJpegMaxSide) {
+    // JPEG has no alpha: stb_image_write leaves the alpha channel out. Kept only when smaller;
+    // an encoding that fails keeps the PNG (resized, if it was).
     std::vector<unsigned char> jpeg;
-    if (!stbi_write_jpg_to_func(Append, &jpeg, width, height, channels, pixels.get(), kJpegQuality))
-      return Error{"cannot encode the image as JPEG"};
-    if (jpeg.size() < stored.bytes.size()) stored = StoredImage{std::move(jpeg), kJpeg};
+    if (stbi_write_jpg_to_func(Append, &jpeg, width, height, channels, pixels.get(),
+                               kJpegQuality) &&
+        jpeg.size() < stored.bytes.size())
+      stored = StoredImage{std::move(jpeg), kJpeg};
   }
   return stored;
 }

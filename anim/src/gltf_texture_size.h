@@ -26,8 +26,9 @@ struct StoredImage {
 // `bytes` (a PNG or JPEG, `mime_type` "image/png" or "image/jpeg") stored as `storage` says: its
 // longer side fitted within max_size (aspect kept, each side at least 1; re-encoded in its own
 // format), then, with as_jpeg, a PNG re-encoded as JPEG (quality 90, no alpha) if that takes
-// fewer bytes. The same bytes when nothing applies. Fails, with the reason, when the image
-// cannot be decoded or encoded.
+// fewer bytes and JPEG can hold its sides (at most 65,535 pixels). The same bytes when nothing
+// applies. Fails, with the reason, when the image cannot be decoded or resized; a JPEG that
+// cannot be encoded leaves the PNG.
 Result<StoredImage> StoreImage(std::span<const unsigned char> bytes, const std::string& mime_type,
                                const ImageStorage& storage);
 

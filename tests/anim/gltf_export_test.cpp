@@ -1327,6 +1327,38 @@ TEST(GltfExport, StoresAHeldPngAsJpegWhenThatIsSmaller) {
                                    "is referenced, not embedded: left as PNG");
 }
 
+// JPEG stores each side in 16 bits: a wider PNG, whose JPEG would be smaller but would carry
+// a truncated width, stays PNG byte for byte.
+TEST(GltfExport, KeepsAPngWiderThanJpegAllowsAsPng) {
+  TempDir dir;
+  Scene scene = MakeScene(BendCase{});
+  constexpr int kWide = 70000, kHigh = 16;
+  std::vector<unsigned char> rgb(std::size_t(kWide) * kHigh * 3);
+  for (int y = 0; y < kHigh; ++y)
+    for (int x = 0; x < kWide; ++x)
+      for (int c = 0; c < 3; ++c)
+        rgb[std::size_t(3 * (y * kWide + x) + c)] = static_cast<unsigned char>(
+            std::lround(127.5 + 127.0 * std::sin(0.05 * x * (c + 1) + 0.3 * y * (3 - c))));
+  std::vector<unsigned char> png, jpeg;
+  auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(context);
+    out->insert(out->end(), static_cast<unsigned char*>(data),
+                static_cast<unsigned char*>(data) + size);
+  };
+  ASSERT_TRUE(stbi_write_png_to_func(append, &png, kWide, kHigh, 3, rgb.data(), kWide * 3));
+  // What a JPEG would have cost: less than the PNG, so only the side limit keeps the PNG.
+  ASSERT_TRUE(stbi_write_jpg_to_func(append, &jpeg, kWide, kHigh, 3, rgb.data(), 90));
+  ASSERT_LT(jpeg.size(), png.size());
+  scene.mesh.materials.at(0).base_color_image = png;
+  GltfExportOptions options;
+  options.jpeg_textures = true;
+  const tinygltf::Model model = ExportTexturedAndLoad(scene, options, dir.path() / "wide.glb");
+  ASSERT_EQ(model.images.size(), 1u);
+  EXPECT_EQ(model.images[0].mimeType, "image/png");
+  EXPECT_EQ(model.images[0].width, kWide);
+  EXPECT_EQ(EmbeddedImageBytes(model), png);
+}
+
 TEST(GltfExport, UsesTheNodeNameAndKeepsAnExistingFileOnError) {
   TempDir dir;
   Scene scene = MakeScene(BendCase{});

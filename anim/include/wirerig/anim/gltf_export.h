@@ -83,8 +83,9 @@ struct GltfExportOptions {
   int max_texture_size = 0;
   // An embedded PNG texture re-encoded as JPEG at quality 90 when that is smaller (after
   // max_texture_size). JPEG has no alpha, and none is lost: every material the export writes is
-  // opaque (glTF's default alphaMode), so readers ignore a texture's alpha. Files referenced by
-  // URI are left as they are, with a report warning. Off: textures keep their format.
+  // opaque (glTF's default alphaMode), so readers ignore a texture's alpha. A PNG with a side
+  // over 65,535 pixels (JPEG's limit) stays PNG. Files referenced by URI are left as they are,
+  // with a report warning. Off: textures keep their format.
   bool jpeg_textures = false;
   // Morph targets (kMorph, and kSkin's residual targets) as KHR_mesh_quantization normalized
   // signed shorts (value / 32767, at an 8-byte stride) instead of float: a key's POSITION
@@ -95,7 +96,8 @@ struct GltfExportOptions {
   // file. Off by default: exact float deltas, readable everywhere.
   bool quantize = false;
   // kSkin only: EXT_meshopt_compression (meshoptimizer's codecs on every buffer view; rest
-  // positions as normalized shorts (KHR_mesh_quantization), normals, UVs, corrective deltas and
+  // positions as normalized shorts (KHR_mesh_quantization; floats beside residual targets, whose
+  // deltas are metres), normals, UVs, corrective deltas and
   // translation keys rounded first to what its filters store, so the reported errors are the
   // decoded file's). The vertices are stored in the order the codecs store in fewer bytes (the
   // mesh's own, or the order the triangles use them: GltfExportReport::vertex_order). The
