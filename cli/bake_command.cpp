@@ -1,5 +1,6 @@
 #include "bake_command.h"
 #include "option_checks.h"
+#include "output_checks.h"
 
 #include <chrono>
 #include <cstdio>
@@ -130,6 +131,8 @@ int RunBakeCommand(const BakeCommandOptions& options, std::ostream& out, std::os
   // Where the output goes is checked before any work.
   if (Result<bool> writable = CheckOutputFile(options.output, {".glb", ".gltf"}); !writable)
     return fail(writable.error());
+  if (Result<bool> own = CheckOutputIsNoSceneInput(options.output, options.scene); !own)
+    return fail(own.error());
   const auto start = std::chrono::steady_clock::now();
   Result<BuiltScene> built = LoadAndBuildScene(options.scene, options.import_limits.Isolation());
   if (!built) return fail(built.error());

@@ -1,5 +1,6 @@
 #include "build_command.h"
 #include "option_checks.h"
+#include "output_checks.h"
 
 #include <cctype>
 #include <map>
@@ -41,6 +42,8 @@ int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::
   };
   if (Result<bool> writable = CheckOutputFile(options.output, {".wrig"}); !writable)
     return fail(writable.error());
+  if (Result<bool> own = CheckOutputIsNoSceneInput(options.output, options.scene); !own)
+    return fail(own.error());
   Result<BuiltScene> built = LoadAndBuildScene(options.scene, options.import_limits.Isolation());
   if (!built) return fail(built.error());
   // The clips first, while the scene is whole; nothing is written until everything is made and
@@ -67,6 +70,8 @@ int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::
                     "nothing written");
       if (Result<bool> writable = CheckOutputFile(path, {".wclip"}); !writable)
         return fail(writable.error() + " (clip \"" + clip.name + "\"); nothing written");
+      if (Result<bool> own = CheckOutputIsNoSceneInput(path, options.scene); !own)
+        return fail(own.error() + " (clip \"" + clip.name + "\"); nothing written");
       out << "clip \"" << clip.name << "\": " << sampled.value().frame_count() << " frames at "
           << options.fps << " fps";
       if (!sampled.value().wires.empty())
@@ -81,31 +86,20 @@ int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::
   if (Status valid = ValidateRigModel(asset.model); !valid)
     return fail(options.scene + ": the built rig is not valid: " + ToString(valid));
   const std::vector<std::uint8_t> bytes = SerializeRigAsset(asset);
-  const auto written = WriteFileAtomically(
-      options.output, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  // All or nothing: the rig and its clips are written together, or none replaces an old file.
+  auto view = [](const std::vector<std::uint8_t>& data) {
+    return std::string_view(reinterpret_cast<const char*>(data.data()), data.size());
+  };
+  std::vector<FileToWrite> files = {{options.output, view(bytes)}};
+  for (const auto& [path, clip_bytes] : clip_files) files.push_back({path, view(clip_bytes)});
+  const auto written = WriteFilesAtomically(files);
   if (!written) return fail(written.error());
   out << "rig asset: " << asset.model.parts.size() << " parts, " << asset.model.vertices.size()
       << " welded vertices (" << asset.vertex_order.size() << " in the source order), "
       << asset.model.triangles.size() << " triangles, " << bytes.size() << " bytes\n"
       << "written: " << options.output << "\n";
-  std::vector<std::filesystem::path> written_files = {options.output};
-  for (const auto& [path, clip_bytes] : clip_files) {
-    const auto clip_written = WriteFileAtomically(
-        path,
-        std::string_view(reinterpret_cast<const char*>(clip_bytes.data()), clip_bytes.size()));
-    if (!clip_written) {
-      // All or nothing: what this run wrote goes again.
-      std::string removed;
-      for (const std::filesystem::path& file : written_files) {
-        std::error_code ignored;
-        std::filesystem::remove(file, ignored);
-        removed += (removed.empty() ? "" : ", ") + file.string();
-      }
-      return fail(clip_written.error() + "; removed what this run had written: " + removed);
-    }
-    written_files.push_back(path);
+  for (const auto& [path, clip_bytes] : clip_files)
     out << "written: " << path.string() << " (" << clip_bytes.size() << " bytes)\n";
-  }
   return 0;
 }
 

@@ -1,5 +1,6 @@
 #include "render_command.h"
 #include "option_checks.h"
+#include "output_checks.h"
 
 #include <cstdio>
 #include <ostream>
@@ -57,6 +58,8 @@ int RunRenderCommand(const RenderCommandOptions& options, std::ostream& out, std
   // Where the output goes is checked before any work (PNG only: no other image writer).
   if (Result<bool> writable = CheckOutputFile(options.output, {".png"}); !writable)
     return fail(writable.error());
+  if (Result<bool> own = CheckOutputIsNoSceneInput(options.output, options.scene); !own)
+    return fail(own.error());
   Size size;
   if (!ParseImageSize(options.size, &size.width, &size.height))
     return fail(std::string("--size: must be ") + kImageSizeRule);

@@ -170,6 +170,10 @@ int RunRigCommand(const RigCommandOptions& options, std::ostream& out, std::ostr
   // Where the rig goes is checked before any work.
   if (Result<bool> writable = CheckOutputFile(options.output, {".json"}); !writable)
     return fail(writable.error());
+  for (const auto& [input, what] :
+       {std::pair{options.mesh, "the mesh"}, std::pair{options.description, "the rig description"}})
+    if (Result<bool> own = CheckNotAnInput(options.output, input, what); !own)
+      return fail(own.error());
   RigDescription description;
   std::string source;
   if (!options.description.empty()) {

@@ -36,6 +36,13 @@ int RunWireCommand(const WireCommandOptions& options, std::istream& in, std::ost
       err << "wirerig wire: " << writable.error() << "\n";
       return 1;
     }
+    if (options.input != "-") {
+      if (Result<bool> own = CheckNotAnInput(options.output, options.input, "the wire problem");
+          !own) {
+        err << "wirerig wire: " << own.error() << "\n";
+        return 1;
+      }
+    }
   }
   const bool from_stdin = options.input == "-";
   const std::string source = from_stdin ? "<stdin>" : options.input;

@@ -106,6 +106,21 @@ bool SameSource(const SceneDescription& a, const SceneDescription& b) {
 
 }  // namespace
 
+std::vector<std::pair<std::filesystem::path, std::string>> SceneInputFiles(
+    const SceneDescription& scene) {
+  std::vector<std::pair<std::filesystem::path, std::string>> files;
+  if (!scene.mesh.file.empty())
+    files.emplace_back(Resolve(scene, scene.mesh.file), "the scene's mesh");
+  if (!scene.rig.file.empty())
+    files.emplace_back(Resolve(scene, scene.rig.file), "the scene's rig");
+  for (const auto& [clip, motion] : scene.motions) {
+    files.emplace_back(Resolve(scene, motion.file), "clip \"" + clip + "\"'s motion file");
+    if (!motion.mapping.empty())
+      files.emplace_back(Resolve(scene, motion.mapping), "clip \"" + clip + "\"'s motion mapping");
+  }
+  return files;
+}
+
 const Clip* BuiltScene::FindClip(const std::string& name) const {
   if (clips.empty()) return nullptr;
   if (name.empty()) return &clips.front();

@@ -29,6 +29,15 @@ std::optional<std::string> NotARegularTarget(const fs::path& path) {
   return "is not a regular file (a device, FIFO or socket): writing would replace it";
 }
 
+Result<bool> CheckNotAnInput(const fs::path& output, const fs::path& input, std::string_view what) {
+  std::error_code error;
+  if (input.empty() || !fs::equivalent(output, input, error) || error) return true;
+  std::string problem = "is ";
+  problem.append(what).append(" (").append(input.string());
+  problem.append("), which this command reads; write elsewhere");
+  return PathError(output, problem);
+}
+
 Result<bool> CheckOutputFile(const fs::path& path,
                              std::initializer_list<std::string_view> extensions) {
   if (path.empty()) return Error{"the output path is empty"};

@@ -50,6 +50,11 @@ void ExpectExit(const ProcessResult& run, int code, const std::string& text) {
 
 // A steel beam (r = 0.1 m, L = 1 m: EI = 1.57e7 N m^2, a cantilever) pushed at its tip by
 // `force` N along +x for its 1 s clip, written as `name`.
+std::string Contents(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 fs::path PushedBeamScene(const std::string& name, double force) {
   const fs::path scene = Scratch(name);
   char text[1000];
@@ -341,6 +346,38 @@ TEST(WirerigOutputs, RefusedBeforeAnyWork) {
   const fs::path deep = Scratch("absent") / "deeper" / "x.glb";
   ExpectExit(RunWirerig({"bake", missing_scene, "-o", deep.string()}), 1,
              deep.string() + ": the folder " + Scratch("absent").string() + " does not exist");
+}
+
+// No command writes over a file it reads: a bake over the scene's mesh (a .gltf), a rig over
+// its description, a wire solution over its problem. The inputs stay as they were.
+TEST(WirerigOutputs, NoCommandWritesOverItsInput) {
+  const fs::path folder = Scratch("own_inputs");
+  fs::create_directories(folder);
+  const fs::path box = fs::path(WIRERIG_ASSET_DIR) / "assimp/glTF2/BoxTextured-glTF";
+  if (!fs::exists(box)) FAIL() << "asset missing: " << box << " (run scripts/setup.sh)";
+  for (const char* name : {"BoxTextured.gltf", "BoxTextured0.bin", "CesiumLogoFlat.png"})
+    fs::copy_file(box / name, folder / name, fs::copy_options::overwrite_existing);
+  const fs::path mesh = folder / "BoxTextured.gltf";
+  const auto size = fs::file_size(mesh);
+  const fs::path scene = folder / "box.scene.json";
+  std::ofstream(scene) << R"({"format": "wirerig.scene", "version": 1, "name": "box",
+    "mesh": {"file": "BoxTextured.gltf"}, "rig": {"from": "automatic"}})";
+  ExpectExit(RunWirerig({"bake", scene.string(), "-o", mesh.string()}), 1,
+             mesh.string() + ": is the scene's mesh (" + mesh.string() +
+                 "), which this command reads; write elsewhere");
+  EXPECT_EQ(fs::file_size(mesh), size);
+  const fs::path description = folder / "box.description.json";
+  std::ofstream(description) << R"({"format": "wirerig.rig_description", "version": 1,
+    "parts": [{"name": "box", "central_curve": [[0, -0.4, 0], [0, 0.4, 0]]}]})";
+  ExpectExit(
+      RunWirerig({"rig", mesh.string(), "-d", description.string(), "-o", description.string()}), 1,
+      "is the rig description");
+  EXPECT_NE(Contents(description).find("wirerig.rig_description"), std::string::npos);
+  const fs::path problem = Scratch("own_problem.json");
+  std::ofstream(problem) << "{}";
+  ExpectExit(RunWirerig({"wire", problem.string(), "-o", problem.string()}), 1,
+             "is the wire problem");
+  EXPECT_EQ(Contents(problem), "{}");
 }
 
 // Out-of-range option values state their bound readably (usage errors: exit 2).

@@ -9,7 +9,10 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -130,6 +133,55 @@ TEST(CheckOutputFile, RefusesAnUnwritableFolder) {
   ASSERT_FALSE(checked.ok());
   EXPECT_EQ(checked.error(),
             (dir / "x.png").string() + ": the folder " + dir.string() + " is not writable");
+}
+
+std::string Contents(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The same file through another spelling or a hard link is refused; another file, or one
+// that does not exist, passes.
+TEST(CheckNotAnInput, RefusesTheInputThroughAnyPath) {
+  const fs::path dir = Scratch() / "inputs";
+  fs::create_directories(dir / "sub");
+  const fs::path mesh = dir / "mesh.gltf";
+  std::ofstream(mesh) << "{}";
+  const fs::path other_spelling = dir / "sub" / ".." / "mesh.gltf";
+  const Result<bool> same = CheckNotAnInput(other_spelling, mesh, "the scene's mesh");
+  ASSERT_FALSE(same.ok());
+  EXPECT_EQ(same.error(), other_spelling.string() + ": is the scene's mesh (" + mesh.string() +
+                              "), which this command reads; write elsewhere");
+  fs::create_hard_link(mesh, dir / "linked.gltf");
+  EXPECT_FALSE(CheckNotAnInput(dir / "linked.gltf", mesh, "the scene's mesh").ok());
+  std::ofstream(dir / "other.gltf") << "{}";
+  EXPECT_TRUE(CheckNotAnInput(dir / "other.gltf", mesh, "the scene's mesh").ok());
+  EXPECT_TRUE(CheckNotAnInput(dir / "new.gltf", mesh, "the scene's mesh").ok());
+  EXPECT_TRUE(CheckNotAnInput(dir / "new.gltf", dir / "absent.gltf", "the scene's mesh").ok());
+}
+
+// Several files: when one cannot be written, none of the old ones is replaced and no
+// temporary file stays; otherwise all are.
+TEST(WriteFilesAtomically, WritesAllOrNothing) {
+  const fs::path dir = Scratch() / "all_or_nothing";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "b.wclip");  // a directory where the second file would go
+  std::ofstream(dir / "a.wrig") << "OLD";
+  const std::vector<FileToWrite> files = {{dir / "a.wrig", "NEW A"}, {dir / "b.wclip", "NEW B"}};
+  const Result<std::vector<fs::path>> failed = WriteFilesAtomically(files);
+  ASSERT_FALSE(failed.ok());
+  EXPECT_NE(failed.error().find("none of the 2 files was replaced"), std::string::npos)
+      << failed.error();
+  EXPECT_EQ(Contents(dir / "a.wrig"), "OLD");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
+
+  fs::remove(dir / "b.wclip");
+  const Result<std::vector<fs::path>> written = WriteFilesAtomically(files);
+  ASSERT_TRUE(written.ok()) << written.error();
+  EXPECT_EQ(written.value(), (std::vector<fs::path>{dir / "a.wrig", dir / "b.wclip"}));
+  EXPECT_EQ(Contents(dir / "a.wrig"), "NEW A");
+  EXPECT_EQ(Contents(dir / "b.wclip"), "NEW B");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
 }
 
 }  // namespace WIRERIG_TEST_FILE

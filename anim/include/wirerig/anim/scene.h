@@ -129,6 +129,12 @@ Result<BuiltScene> BuildScene(const SceneDescription& scene);
 // again, and it returns true. Otherwise the scene is built anew and it returns false. On error
 // *scene is left as it was.
 Result<bool> EditScene(BuiltScene* scene, const SceneDescription& edited);
+
+// The files `scene` reads, each with what it is for messages ("the scene's mesh"): the mesh,
+// a rig or rig description file, motion files and their mappings, resolved against its folder.
+std::vector<std::pair<std::filesystem::path, std::string>> SceneInputFiles(
+    const SceneDescription& scene);
+
 // LoadScene then BuildScene; every error starts with the file's path. `import_isolation`, when
 // set, imports the scene's mesh file in a child process (mesh_import.h).
 Result<BuiltScene> LoadAndBuildScene(

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <filesystem>
+#include <span>
 #include <string_view>
+#include <vector>
 
 #include "wirerig/io/result.h"
 
@@ -15,5 +17,17 @@ namespace wirerig {
 // (temp_files.h).
 Result<std::filesystem::path> WriteFileAtomically(const std::filesystem::path& path,
                                                   std::string_view bytes);
+
+struct FileToWrite {
+  std::filesystem::path path;
+  std::string_view bytes;
+};
+
+// Several files, all or none: each is written to its temporary file first, and only when every
+// one was written are they renamed over their targets, in order. A failed write leaves every
+// target untouched and no temporary file (the error says so when there are several). Returns the
+// paths written. (A rename that fails after earlier ones succeeded, which takes the folder changing
+// under the process, leaves those replaced; the error lists them.)
+Result<std::vector<std::filesystem::path>> WriteFilesAtomically(std::span<const FileToWrite> files);
 
 }  // namespace wirerig

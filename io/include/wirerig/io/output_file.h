@@ -22,6 +22,12 @@ namespace wirerig {
 Result<bool> CheckOutputFile(const std::filesystem::path& path,
                              std::initializer_list<std::string_view> extensions);
 
+// Refuses an `output` that is the file `input` (through any path or link), which the command
+// reads: "<output>: is <what> (<input>), which this command reads; write elsewhere". Passes
+// when either does not exist.
+Result<bool> CheckNotAnInput(const std::filesystem::path& output,
+                             const std::filesystem::path& input, std::string_view what);
+
 // Why an existing `path` must not be replaced by a written file: it is a device, a FIFO, a
 // socket or a symbolic link (writing renames a new file over the name, which would destroy the
 // device or the link, not write through it). Empty when `path` does not exist or is a regular
