@@ -48,6 +48,17 @@ wr_status Fail(wr_status status, std::string message) {
   return status;
 }
 
+// `status` with "<function>: <what>" as the message, or an empty message when even that cannot
+// be allocated: never throws.
+wr_status Caught(wr_status status, const char* function, const char* what) noexcept {
+  try {
+    last_error.assign(function).append(": ").append(what);
+  } catch (...) {
+    last_error.clear();
+  }
+  return status;
+}
+
 // Runs `body`, turning an allocation failure or any other exception into a status: nothing
 // escapes across the C boundary.
 template <class Body>
@@ -56,9 +67,9 @@ wr_status Guarded(const char* function, Body&& body) {
     last_error.clear();
     return body();
   } catch (const std::bad_alloc&) {
-    return Fail(WR_OUT_OF_MEMORY, std::string(function) + ": out of memory");
+    return Caught(WR_OUT_OF_MEMORY, function, "out of memory");
   } catch (const std::exception& e) {
-    return Fail(WR_INVALID_ARGUMENT, std::string(function) + ": " + e.what());
+    return Caught(WR_INVALID_ARGUMENT, function, e.what());
   }
 }
 
@@ -110,8 +121,9 @@ const char* wr_last_error(void) { return last_error.c_str(); }
 
 wr_status wr_rig_load_memory(const void* bytes, size_t size, wr_rig** out) {
   return Guarded("wr_rig_load_memory", [&] {
-    if (bytes == nullptr || out == nullptr)
-      return Fail(WR_INVALID_ARGUMENT, "wr_rig_load_memory: bytes and out are required");
+    if ((bytes == nullptr && size > 0) || out == nullptr)  // no bytes: refused as an asset
+      return Fail(WR_INVALID_ARGUMENT,
+                  "wr_rig_load_memory: out, and bytes when size > 0, are required");
     auto rig = std::make_unique<wr_rig>();
     const wirerig::Status status = wirerig::ParseRigAsset(
         std::span(static_cast<const std::uint8_t*>(bytes), size), &rig->asset);
@@ -172,23 +184,26 @@ uint32_t wr_rig_triangle_count(const wr_rig* rig) {
 }
 
 wr_status wr_rig_welded_triangles(const wr_rig* rig, uint32_t* indices, size_t capacity) {
-  if (rig == nullptr || indices == nullptr)
-    return Fail(WR_INVALID_ARGUMENT, "wr_rig_welded_triangles: rig and indices are required");
-  const auto& triangles = rig->asset.model.triangles;
-  if (capacity < 3 * triangles.size())
-    return Fail(WR_INVALID_ARGUMENT, "wr_rig_welded_triangles: capacity " +
-                                         std::to_string(capacity) + " is below the " +
-                                         std::to_string(3 * triangles.size()) + " indices");
-  for (std::size_t t = 0; t < triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) indices[3 * t + std::size_t(k)] = triangles[t][std::size_t(k)];
-  last_error.clear();
-  return WR_OK;
+  return Guarded("wr_rig_welded_triangles", [&] {
+    if (rig == nullptr || indices == nullptr)
+      return Fail(WR_INVALID_ARGUMENT, "wr_rig_welded_triangles: rig and indices are required");
+    const auto& triangles = rig->asset.model.triangles;
+    if (capacity < 3 * triangles.size())
+      return Fail(WR_INVALID_ARGUMENT, "wr_rig_welded_triangles: capacity " +
+                                           std::to_string(capacity) + " is below the " +
+                                           std::to_string(3 * triangles.size()) + " indices");
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k) indices[3 * t + std::size_t(k)] = triangles[t][std::size_t(k)];
+    last_error.clear();
+    return WR_OK;
+  });
 }
 
 wr_status wr_clip_load_memory(const void* bytes, size_t size, wr_clip** out) {
   return Guarded("wr_clip_load_memory", [&] {
-    if (bytes == nullptr || out == nullptr)
-      return Fail(WR_INVALID_ARGUMENT, "wr_clip_load_memory: bytes and out are required");
+    if ((bytes == nullptr && size > 0) || out == nullptr)  // no bytes: refused as an asset
+      return Fail(WR_INVALID_ARGUMENT,
+                  "wr_clip_load_memory: out, and bytes when size > 0, are required");
     auto clip = std::make_unique<wr_clip>();
     const wirerig::Status status = wirerig::ParseClipAsset(
         std::span(static_cast<const std::uint8_t*>(bytes), size), &clip->clip);
@@ -264,51 +279,58 @@ void wr_context_reset(wr_context* context) {
 }
 
 wr_status wr_context_set_normal_mode(wr_context* context, wr_normal_mode mode) {
-  if (context == nullptr)
-    return Fail(WR_INVALID_ARGUMENT, "wr_context_set_normal_mode: context is null");
-  if (mode != WR_NORMALS_FROM_TRIANGLES && mode != WR_NORMALS_ROTATED)
-    return Fail(WR_INVALID_ARGUMENT,
-                "wr_context_set_normal_mode: mode must be from triangles or rotated");
-  context->normal_mode = mode == WR_NORMALS_ROTATED ? wirerig::NormalMode::kRotated
-                                                    : wirerig::NormalMode::kFromTriangles;
-  last_error.clear();
-  return WR_OK;
+  return Guarded("wr_context_set_normal_mode", [&] {
+    if (context == nullptr)
+      return Fail(WR_INVALID_ARGUMENT, "wr_context_set_normal_mode: context is null");
+    if (mode != WR_NORMALS_FROM_TRIANGLES && mode != WR_NORMALS_ROTATED)
+      return Fail(WR_INVALID_ARGUMENT,
+                  "wr_context_set_normal_mode: mode must be from triangles or rotated");
+    context->normal_mode = mode == WR_NORMALS_ROTATED ? wirerig::NormalMode::kRotated
+                                                      : wirerig::NormalMode::kFromTriangles;
+    last_error.clear();
+    return WR_OK;
+  });
 }
 
 wr_status wr_context_set_joint_angles(wr_context* context, uint32_t part, float x_degrees,
                                       float y_degrees, float z_degrees) {
-  if (wr_status s = CheckPart("wr_context_set_joint_angles", context, part); s != WR_OK) return s;
-  const float degrees[3] = {x_degrees, y_degrees, z_degrees};
-  if (!Finite(degrees, 3))
-    return Fail(WR_INVALID_ARGUMENT, "wr_context_set_joint_angles: angles must be finite");
-  if (context->rig->asset.model.parts[part].parent < 0)
-    return Fail(WR_INVALID_ARGUMENT, "wr_context_set_joint_angles: part " +
-                                         context->rig->asset.model.parts[part].name +
-                                         " is a root and has no joint");
-  context->joint_degrees[part] = wirerig::Vec3(x_degrees, y_degrees, z_degrees);
-  last_error.clear();
-  return WR_OK;
+  return Guarded("wr_context_set_joint_angles", [&] {
+    if (wr_status s = CheckPart("wr_context_set_joint_angles", context, part); s != WR_OK) return s;
+    const float degrees[3] = {x_degrees, y_degrees, z_degrees};
+    if (!Finite(degrees, 3))
+      return Fail(WR_INVALID_ARGUMENT, "wr_context_set_joint_angles: angles must be finite");
+    if (context->rig->asset.model.parts[part].parent < 0)
+      return Fail(WR_INVALID_ARGUMENT, "wr_context_set_joint_angles: part " +
+                                           context->rig->asset.model.parts[part].name +
+                                           " is a root and has no joint");
+    context->joint_degrees[part] = wirerig::Vec3(x_degrees, y_degrees, z_degrees);
+    last_error.clear();
+    return WR_OK;
+  });
 }
 
 wr_status wr_context_set_part_transform(wr_context* context, uint32_t part,
                                         const float rotation_xyzw[4], const float translation[3]) {
-  if (wr_status s = CheckPart("wr_context_set_part_transform", context, part); s != WR_OK) return s;
-  if (rotation_xyzw == nullptr || translation == nullptr || !Finite(rotation_xyzw, 4) ||
-      !Finite(translation, 3))
-    return Fail(WR_INVALID_ARGUMENT,
-                "wr_context_set_part_transform: rotation and translation must be finite");
-  for (int c = 0; c < 3; ++c)
-    if (!(std::abs(translation[c]) <= wirerig::kMaxTranslation))
+  return Guarded("wr_context_set_part_transform", [&] {
+    if (wr_status s = CheckPart("wr_context_set_part_transform", context, part); s != WR_OK)
+      return s;
+    if (rotation_xyzw == nullptr || translation == nullptr || !Finite(rotation_xyzw, 4) ||
+        !Finite(translation, 3))
       return Fail(WR_INVALID_ARGUMENT,
-                  "wr_context_set_part_transform: translation must be within 1e6 m");
-  const wirerig::Quat q(rotation_xyzw[3], rotation_xyzw[0], rotation_xyzw[1], rotation_xyzw[2]);
-  if (!(q.norm() > 1e-6))
-    return Fail(WR_INVALID_ARGUMENT, "wr_context_set_part_transform: rotation must not be zero");
-  context->transform_rotation[part] = q.normalized();
-  context->transform_translation[part] =
-      wirerig::Vec3(translation[0], translation[1], translation[2]);
-  last_error.clear();
-  return WR_OK;
+                  "wr_context_set_part_transform: rotation and translation must be finite");
+    for (int c = 0; c < 3; ++c)
+      if (!(std::abs(translation[c]) <= wirerig::kMaxTranslation))
+        return Fail(WR_INVALID_ARGUMENT,
+                    "wr_context_set_part_transform: translation must be within 1e6 m");
+    const wirerig::Quat q(rotation_xyzw[3], rotation_xyzw[0], rotation_xyzw[1], rotation_xyzw[2]);
+    if (!(q.norm() > 1e-6))
+      return Fail(WR_INVALID_ARGUMENT, "wr_context_set_part_transform: rotation must not be zero");
+    context->transform_rotation[part] = q.normalized();
+    context->transform_translation[part] =
+        wirerig::Vec3(translation[0], translation[1], translation[2]);
+    last_error.clear();
+    return WR_OK;
+  });
 }
 
 wr_status wr_context_set_point_loads(wr_context* context, uint32_t part, const float* at,
@@ -336,50 +358,52 @@ wr_status wr_context_set_point_loads(wr_context* context, uint32_t part, const f
 wr_status wr_context_evaluate(wr_context* context, wr_vertex_order order, float* positions,
                               size_t position_stride, float* normals, size_t normal_stride,
                               size_t capacity) {
-  if (context == nullptr || positions == nullptr)
-    return Fail(WR_INVALID_ARGUMENT, "wr_context_evaluate: context and positions are required");
-  if (order != WR_ORDER_SOURCE && order != WR_ORDER_WELDED)
-    return Fail(WR_INVALID_ARGUMENT, "wr_context_evaluate: order must be source or welded");
-  const wirerig::RigAsset& asset = context->rig->asset;
-  std::span<const wirerig::ProfileLoads> profile_loads;
-  if (context->clip != nullptr) {
-    const wirerig::SampleClipJob sample{&context->clip->clip, context->clip_time,
-                                        &context->clip_buffers};
-    if (wirerig::Status s = sample.Run(); !s)
-      return Fail(WR_INVALID_ARGUMENT, "wr_context_evaluate: " + wirerig::ToString(s));
-    std::copy(context->clip_buffers.poses.begin(), context->clip_buffers.poses.end(),
-              context->poses.begin());
-    profile_loads = context->clip_buffers.used_profile_loads();
-  }
-  for (std::size_t p = 0; p < context->poses.size(); ++p) {
-    wirerig::PartPose& pose = context->poses[p];
-    if (context->clip == nullptr) {
-      pose.rotation = context->transform_rotation[p];
-      pose.translation = context->transform_translation[p];
-      pose.loads = {};
-      pose.loads.bending_point_loads = context->loads[p];
+  return Guarded("wr_context_evaluate", [&] {
+    if (context == nullptr || positions == nullptr)
+      return Fail(WR_INVALID_ARGUMENT, "wr_context_evaluate: context and positions are required");
+    if (order != WR_ORDER_SOURCE && order != WR_ORDER_WELDED)
+      return Fail(WR_INVALID_ARGUMENT, "wr_context_evaluate: order must be source or welded");
+    const wirerig::RigAsset& asset = context->rig->asset;
+    std::span<const wirerig::ProfileLoads> profile_loads;
+    if (context->clip != nullptr) {
+      const wirerig::SampleClipJob sample{&context->clip->clip, context->clip_time,
+                                          &context->clip_buffers};
+      if (wirerig::Status s = sample.Run(); !s)
+        return Fail(WR_INVALID_ARGUMENT, "wr_context_evaluate: " + wirerig::ToString(s));
+      std::copy(context->clip_buffers.poses.begin(), context->clip_buffers.poses.end(),
+                context->poses.begin());
+      profile_loads = context->clip_buffers.used_profile_loads();
     }
-    if (asset.model.parts[p].parent >= 0 && !context->joint_degrees[p].isZero())
-      pose.rotation = (pose.rotation * wirerig::JointRotation(asset.model.parts[p].joint,
-                                                              context->joint_degrees[p]))
-                          .normalized();
-  }
-  wirerig::EvaluateRigJob job;
-  job.model = &asset.model;
-  job.poses = context->poses;
-  job.profile_loads = profile_loads;
-  job.workspace = &context->workspace;
-  job.float_positions = std::span(positions, capacity);
-  job.float_position_stride = position_stride;
-  if (normals != nullptr) job.float_normals = std::span(normals, capacity);
-  job.float_normal_stride = normal_stride;
-  if (order == WR_ORDER_SOURCE) job.float_vertex_order = asset.vertex_order;
-  job.normal_mode = context->normal_mode;
-  const wirerig::Status status = job.Run();
-  if (!status)
-    return Fail(WR_INVALID_ARGUMENT, "wr_context_evaluate: " + wirerig::ToString(status));
-  last_error.clear();
-  return WR_OK;
+    for (std::size_t p = 0; p < context->poses.size(); ++p) {
+      wirerig::PartPose& pose = context->poses[p];
+      if (context->clip == nullptr) {
+        pose.rotation = context->transform_rotation[p];
+        pose.translation = context->transform_translation[p];
+        pose.loads = {};
+        pose.loads.bending_point_loads = context->loads[p];
+      }
+      if (asset.model.parts[p].parent >= 0 && !context->joint_degrees[p].isZero())
+        pose.rotation = (pose.rotation * wirerig::JointRotation(asset.model.parts[p].joint,
+                                                                context->joint_degrees[p]))
+                            .normalized();
+    }
+    wirerig::EvaluateRigJob job;
+    job.model = &asset.model;
+    job.poses = context->poses;
+    job.profile_loads = profile_loads;
+    job.workspace = &context->workspace;
+    job.float_positions = std::span(positions, capacity);
+    job.float_position_stride = position_stride;
+    if (normals != nullptr) job.float_normals = std::span(normals, capacity);
+    job.float_normal_stride = normal_stride;
+    if (order == WR_ORDER_SOURCE) job.float_vertex_order = asset.vertex_order;
+    job.normal_mode = context->normal_mode;
+    const wirerig::Status status = job.Run();
+    if (!status)
+      return Fail(WR_INVALID_ARGUMENT, "wr_context_evaluate: " + wirerig::ToString(status));
+    last_error.clear();
+    return WR_OK;
+  });
 }
 
 }  // extern "C"

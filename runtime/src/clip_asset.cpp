@@ -1,6 +1,7 @@
 #include "wirerig/runtime/clip_asset.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "asset_envelope.h"
@@ -108,15 +109,21 @@ Status ValidateWires(const SampledClip& c, const RigModel* model) {
 }
 
 Status ValidateProfileWires(const SampledClip& c, const RigModel* model) {
+  // (part, profile, index) sorted: a profile named twice shows as neighbours (n log n, as a
+  // file may hold a million profile wires).
+  std::vector<std::array<std::uint32_t, 3>> named(c.profile_wires.size());
+  for (std::size_t i = 0; i < c.profile_wires.size(); ++i)
+    named[i] = {c.profile_wires[i].part, c.profile_wires[i].profile, std::uint32_t(i)};
+  std::sort(named.begin(), named.end());
+  for (std::size_t i = 1; i < named.size(); ++i)
+    if (named[i][0] == named[i - 1][0] && named[i][1] == named[i - 1][1])
+      return Status::InvalidElement("profile_wires", int(named[i][2]), "profile",
+                                    "must name a profile no other profile wire does");
   for (std::size_t i = 0; i < c.profile_wires.size(); ++i) {
     const ClipProfileWire& w = c.profile_wires[i];
     const int index = int(i);
     if (w.part >= c.part_count)
       return Status::InvalidElement("profile_wires", index, "part", "must name a part");
-    for (std::size_t j = 0; j < i; ++j)
-      if (c.profile_wires[j].part == w.part && c.profile_wires[j].profile == w.profile)
-        return Status::InvalidElement("profile_wires", index, "profile",
-                                      "must name a profile no other profile wire does");
     if (w.modes < 1 || w.modes > std::uint32_t(ModalBasis::kMaxModes))
       return Status::InvalidElement("profile_wires", index, "modes", "must lie in [1, 32]");
     if (w.weights.size() < 2 || w.weights.size() > 65536)
@@ -161,6 +168,56 @@ std::uint32_t MostOf(const std::vector<Key>& keys, Member member) {
   std::uint32_t most = 0;
   for (const Key& k : keys) most = std::max(most, (k.*member).count);
   return most;
+}
+
+// The sizes of MakeClipPlaybackBuffers' buffers: each part's and profile key's loads get their
+// own stretch, as long as the most that part (or profile key) ever carries; each wire its mode
+// tables. In size_t: a file's counts may multiply past 32 bits.
+struct PlaybackSizes {
+  std::size_t profiles = 0;  // most profile keys in a frame
+  std::size_t points = 0, lines = 0, axial_points = 0, axial_lines = 0;
+  std::size_t table_entries = 0;  // samples x modes, summed over the wires and profile wires
+};
+
+PlaybackSizes PlaybackSizesOf(const SampledClip& c) {
+  PlaybackSizes z;
+  for (const LoadRange& r : c.profile_keys_of_frame)
+    z.profiles = std::max<std::size_t>(z.profiles, r.count);
+  const std::size_t slots = std::size_t(c.part_count) + z.profiles;
+  z.points = slots * std::max(MostOf(c.parts, &PartKey::point_loads),
+                              MostOf(c.profile_keys, &ProfileKey::point_loads));
+  z.lines = slots * std::max(MostOf(c.parts, &PartKey::line_loads),
+                             MostOf(c.profile_keys, &ProfileKey::line_loads));
+  z.axial_points = std::size_t(c.part_count) * MostOf(c.parts, &PartKey::axial_point_loads);
+  z.axial_lines = std::size_t(c.part_count) * MostOf(c.parts, &PartKey::axial_line_loads);
+  for (const ClipWire& w : c.wires) z.table_entries += std::size_t(w.samples) * w.modes;
+  for (const ClipProfileWire& w : c.profile_wires)
+    z.table_entries += w.weights.size() * std::size_t(w.modes);
+  return z;
+}
+
+// What playback may hold: 4 Mi loads of each kind (about 100 MB at most) and 16 Mi mode table
+// entries (256 MB). A real clip holds a few loads per part; a file asking for more (counts
+// that multiply: many parts x one part with many loads) is refused at load, not allocated.
+constexpr std::size_t kMostPlaybackLoads = std::size_t(1) << 22;     // 4194304, in the messages
+constexpr std::size_t kMostModeTableEntries = std::size_t(1) << 24;  // 16777216
+
+Status ValidatePlaybackSizes(const SampledClip& c) {
+  const PlaybackSizes z = PlaybackSizesOf(c);
+  const std::pair<const char*, std::size_t> loads[] = {{"point_loads", z.points},
+                                                       {"line_loads", z.lines},
+                                                       {"axial_point_loads", z.axial_points},
+                                                       {"axial_line_loads", z.axial_lines}};
+  for (const auto& [field, count] : loads)
+    if (count > kMostPlaybackLoads)
+      return Status::Invalid(field,
+                             "playback would need over 4194304 slots (the most loads one part "
+                             "or profile key carries, times the parts and profile keys of a "
+                             "frame)");
+  if (z.table_entries > kMostModeTableEntries)
+    return Status::Invalid("wires",
+                           "their mode tables would hold over 16777216 entries (samples x modes)");
+  return Status::Ok();
 }
 
 // Loads of frames a and b at fraction f: interpolated element-wise when the two frames carry
@@ -283,7 +340,8 @@ Status ValidateSampledClip(const SampledClip& c, const RigModel* model) {
   }
   if (Status s = ValidateWires(c, model); !s) return s;
   if (Status s = ValidateProfileWires(c, model); !s) return s;
-  return ValidateLoads(c);
+  if (Status s = ValidateLoads(c); !s) return s;
+  return ValidatePlaybackSizes(c);
 }
 
 std::size_t SampledClip::wire_motion_stride() const {
@@ -396,20 +454,12 @@ Status ParseClipAsset(std::span<const std::uint8_t> bytes, SampledClip* out) {
 ClipPlaybackBuffers MakeClipPlaybackBuffers(const SampledClip& c) {
   ClipPlaybackBuffers b;
   b.poses.resize(c.part_count);
-  std::uint32_t profiles = 0;
-  for (const LoadRange& r : c.profile_keys_of_frame) profiles = std::max(profiles, r.count);
-  b.profile_loads.resize(profiles + c.profile_wires.size());
-  // Each part's and profile's loads get their own stretch of the buffers, as long as the most
-  // that part (or profile key) ever carries.
-  const std::size_t slots = c.part_count + profiles;
-  const std::size_t points = slots * std::max(MostOf(c.parts, &PartKey::point_loads),
-                                              MostOf(c.profile_keys, &ProfileKey::point_loads));
-  const std::size_t lines = slots * std::max(MostOf(c.parts, &PartKey::line_loads),
-                                             MostOf(c.profile_keys, &ProfileKey::line_loads));
-  b.point_loads.resize(points);
-  b.line_loads.resize(lines);
-  b.axial_point_loads.resize(c.part_count * MostOf(c.parts, &PartKey::axial_point_loads));
-  b.axial_line_loads.resize(c.part_count * MostOf(c.parts, &PartKey::axial_line_loads));
+  const PlaybackSizes z = PlaybackSizesOf(c);
+  b.profile_loads.resize(z.profiles + c.profile_wires.size());
+  b.point_loads.resize(z.points);
+  b.line_loads.resize(z.lines);
+  b.axial_point_loads.resize(z.axial_points);
+  b.axial_line_loads.resize(z.axial_lines);
   b.wires.resize(c.wires.size());
   for (std::size_t i = 0; i < c.wires.size(); ++i) {
     const ClipWire& wire = c.wires[i];

@@ -21,6 +21,9 @@ bool Unit(const Vec3& v) { return Finite(v) && std::abs(v.norm() - 1.0) < 1e-6; 
 bool Fraction(double x) { return x >= 0.0 && x <= 1.0; }
 // Stiffness, mass and inertia: finite and not negative (steel's EA is ~1e9 N).
 bool Physical(double x) { return std::isfinite(x) && x >= 0.0 && x <= 1e30; }
+// A stiffness the wire jobs can solve with: with lengths below 1e6 m, L^3 / EI and L / EA stay
+// far from overflow (AxialJob and BendingJob refuse zero, and EI so small L^3 / EI overflows).
+bool Stiff(double x) { return std::isfinite(x) && x >= 1e-30 && x <= 1e30; }
 
 Status ValidatePart(const RigModel& model, std::size_t i) {
   const PartModel& p = model.parts[i];
@@ -45,6 +48,10 @@ Status ValidatePart(const RigModel& model, std::size_t i) {
                                   "must be positive and below 1e6 m");
   if (!Physical(p.spine_stiffness.axial) || !Physical(p.spine_stiffness.bending))
     return Status::InvalidElement("parts", index, "spine_stiffness", "must be finite and >= 0");
+  if (p.kind == SpineKind::kDeformable &&
+      (!Stiff(p.spine_stiffness.axial) || !Stiff(p.spine_stiffness.bending)))
+    return Status::InvalidElement("parts", index, "spine_stiffness",
+                                  "must lie in [1e-30, 1e30] for a deformable part");
   const MassProperties& m = p.mass;
   if (!Physical(m.volume) || !Physical(m.mass) || !Finite(m.center) || !m.inertia.allFinite() ||
       !Finite(m.principal_axes) || !m.principal_moments.allFinite())
@@ -64,8 +71,9 @@ Status ValidatePart(const RigModel& model, std::size_t i) {
       return Status::InvalidElement("parts", index, "profiles", "need at least 2 points each");
     for (const Vec3& q : profile.local_points)
       if (!Finite(q)) return Status::InvalidElement("parts", index, "profiles", "must be finite");
-    if (!Physical(profile.stiffness.axial) || !Physical(profile.stiffness.bending))
-      return Status::InvalidElement("parts", index, "profiles", "stiffness must be finite, >= 0");
+    if (!Stiff(profile.stiffness.axial) || !Stiff(profile.stiffness.bending))
+      return Status::InvalidElement("parts", index, "profiles",
+                                    "stiffness must lie in [1e-30, 1e30]");
   }
   const JointType type = p.joint.type;
   if (type != JointType::kBall && type != JointType::kHinge && type != JointType::kFixed)

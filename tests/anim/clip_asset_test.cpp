@@ -297,6 +297,45 @@ TEST(ClipAsset, RefusesBadClipsNamingTheField) {
   EXPECT_FALSE(ValidateSampledClip(good, &human.model).ok());
 }
 
+// Counts that multiply: 65,536 parts and one part key carrying 65,536 axial loads would need
+// 2^32 playback slots (a 32-bit product wrapped to 0 before, and the buffers were written past
+// their end), and a profile wire named twice among many is found. Refused at load, naming
+// the field, before any buffer is made.
+TEST(ClipAsset, RefusesPlaybackBuffersThatCountsMultiplyPastTheLimit) {
+  SampledClip clip;
+  clip.duration = 1.0;
+  clip.frame_rate = 1.0;
+  clip.part_count = 65536;
+  clip.profile_keys_of_frame = {LoadRange{}};
+  clip.parts.resize(clip.part_count);
+  clip.axial_point_loads.assign(65536, AxialPointLoad{0.5, 1.0});
+  clip.parts[0].axial_point_loads = {0, 65536};
+  const Status refused = ValidateSampledClip(clip);
+  EXPECT_EQ(std::string(refused.field), "axial_point_loads") << ToString(refused);
+  // One load fewer per part and 64 parts: within the limit, and the buffers hold every load.
+  clip.part_count = 64;
+  clip.parts.resize(64);
+  ASSERT_TRUE(ValidateSampledClip(clip).ok()) << ToString(ValidateSampledClip(clip));
+  EXPECT_EQ(MakeClipPlaybackBuffers(clip).axial_point_loads.size(), 64u * 65536u);
+
+  clip.profile_wire_motion.clear();
+  for (std::uint32_t i = 0; i < 2000; ++i) {
+    ClipProfileWire wire;
+    wire.part = 0;
+    wire.profile = i == 1999 ? 7 : i;  // the last names profile 7 again
+    wire.modes = 1;
+    wire.weights = {0.5, 0.5};
+    wire.length = 1.0;
+    wire.bending_stiffness = 1.0;
+    wire.reach = 1.0;
+    clip.profile_wires.push_back(wire);
+  }
+  clip.profile_wire_motion.assign(clip.profile_wire_motion_stride(), Vec3::Zero());
+  const Status twice = ValidateSampledClip(clip);
+  EXPECT_EQ(ToString(twice),
+            "profile_wires[1999].profile: must name a profile no other profile wire does");
+}
+
 TEST(ClipAsset, SampleJobRefusesBuffersOfAnotherClip) {
   const SampledClip clip = OctopusClip();
   SampledClip other = clip;

@@ -45,7 +45,15 @@ int main(int argc, char** argv) {
   const char garbage[40] = "WRIG and then nothing that makes sense";
   CHECK(wr_rig_load_memory(garbage, sizeof garbage, &rig) == WR_BAD_ASSET && rig == NULL);
   CHECK(strstr(wr_last_error(), "rig asset") != NULL);
-  CHECK(wr_rig_load_memory(NULL, 0, &rig) == WR_INVALID_ARGUMENT);
+  CHECK(wr_rig_load_memory(NULL, 5, &rig) == WR_INVALID_ARGUMENT && rig == NULL);
+  /* No bytes at all (an empty file) is a bad asset, not a missing argument. */
+  CHECK(wr_rig_load_memory(NULL, 0, &rig) == WR_BAD_ASSET && rig == NULL);
+  FILE* empty = fopen("capi_test_empty.wrig", "wb");
+  CHECK(empty != NULL);
+  if (empty) fclose(empty);
+  CHECK(wr_rig_load_file("capi_test_empty.wrig", &rig) == WR_BAD_ASSET && rig == NULL);
+  CHECK(strstr(wr_last_error(), "capi_test_empty.wrig: rig asset") != NULL);
+  remove("capi_test_empty.wrig");
 
   if (wr_rig_load_file(argv[1], &rig) != WR_OK) {
     fprintf(stderr, "cannot load %s: %s\n", argv[1], wr_last_error());

@@ -2,6 +2,7 @@
 #include "wirerig/runtime/rig_asset.h"
 
 #include <gtest/gtest.h>
+#include <algorithm>
 
 #include <cstring>
 #include <random>
@@ -154,6 +155,23 @@ TEST(RigAsset, RefusesModelsThatCannotBeEvaluated) {
   asset = Limb();
   asset.vertex_order.back() = std::uint32_t(asset.model.vertices.size());
   EXPECT_NE(Refusal(SerializeRigAsset(asset)).find("vertex_order"), std::string::npos);
+
+  // Stiffness the wire jobs cannot solve with (a review found such rigs loaded, then failed
+  // every evaluation blaming "poses"): zero on a deformable spine, 1e-300 on a profile.
+  asset = Limb();
+  const auto part =
+      std::find_if(asset.model.parts.begin(), asset.model.parts.end(),
+                   [](const PartModel& p) { return p.kind == SpineKind::kDeformable; });
+  ASSERT_NE(part, asset.model.parts.end());
+  const std::size_t deformable = std::size_t(part - asset.model.parts.begin());
+  part->spine_stiffness.axial = 0.0;
+  EXPECT_EQ(Refusal(SerializeRigAsset(asset)),
+            "parts[" + std::to_string(deformable) +
+                "].spine_stiffness: must lie in [1e-30, 1e30] for a deformable part");
+  asset = Limb();
+  asset.model.parts[0].profiles.at(0).stiffness.bending = 1e-300;
+  EXPECT_EQ(Refusal(SerializeRigAsset(asset)),
+            "parts[0].profiles: stiffness must lie in [1e-30, 1e30]");
 }
 
 TEST(RigAsset, RefusesCountsLargerThanTheFile) {

@@ -51,7 +51,8 @@ typedef struct wr_context wr_context;
 /* The message of the calling thread's last failure ("" if none). Valid until its next call. */
 const char* wr_last_error(void);
 
-/* Loads a rig asset from memory (the bytes are copied as needed) or from a file. */
+/* Loads a rig asset from memory (the bytes are copied as needed; bytes may be null when size is
+   0, which is refused as a bad asset) or from a file. */
 wr_status wr_rig_load_memory(const void* bytes, size_t size, wr_rig** out);
 wr_status wr_rig_load_file(const char* path, wr_rig** out);
 void wr_rig_free(wr_rig* rig); /* null is allowed */
