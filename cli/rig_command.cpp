@@ -140,7 +140,7 @@ CLI::App* AddRigCommand(CLI::App& app, RigCommandOptions& options) {
   rig->add_option("--wrap-alpha", options.wrap_alpha,
                   "Without a description, for an open, non-manifold or many-piece mesh: the size "
                   "(m) of the watertight wrap its skeleton is taken from (default: its bounding "
-                  "box diagonal / 60)")
+                  "box diagonal / 60; at least the diagonal / 200)")
       ->check(Above(0));
   rig->add_flag("--joint-report", options.joint_report,
                 "Bend every joint through 30-120 degrees and a 90-degree twist; print folded "

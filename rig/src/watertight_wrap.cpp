@@ -2,6 +2,7 @@
 // of CGAL's mesh packages). Built only with WIRERIG_WITH_CGAL (without_cgal.cpp stands in).
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <limits>
 #include <map>
@@ -93,6 +94,14 @@ Result<WatertightProxy> WrapWatertight(const Mesh& mesh, const WrapOptions& opti
   out.alpha = options.alpha > 0.0 ? options.alpha : diagonal / kWrapRelativeAlpha;
   if (!std::isfinite(out.alpha) || !(out.alpha > 0.0))
     return Error{"alpha wrap: alpha must be a positive length (m)"};
+  if (const double least = diagonal / kWrapMostRelativeAlpha; out.alpha < least) {
+    char message[200];
+    std::snprintf(message, sizeof message,
+                  "alpha wrap: alpha %g m is below the mesh's diagonal / %g (%g m), where the "
+                  "wrap would take minutes and gigabytes; give at least %g m",
+                  out.alpha, kWrapMostRelativeAlpha, least, least);
+    return Error{message};
+  }
   out.offset = out.alpha * kWrapOffsetFraction;
   out.holes_closed = CloseHoles(points, faces);
   CgalMesh wrap;

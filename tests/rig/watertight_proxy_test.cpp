@@ -78,6 +78,14 @@ TEST(WatertightProxy, WrapIsClosedAndHugsTheMesh) {
   WrapOptions options;
   options.alpha = -1.0;  // not set: from the mesh
   EXPECT_TRUE(WrapWatertight(tube, options).ok());
+  // Far below the diagonal: refused with the least alpha allowed, before any work.
+  options.alpha = diagonal / 1e4;
+  const Result<WatertightProxy> tiny = WrapWatertight(tube, options);
+  ASSERT_FALSE(tiny.ok());
+  EXPECT_NE(tiny.error().find("below the mesh's diagonal / 200"), std::string::npos)
+      << tiny.error();
+  options.alpha = diagonal / 190.0;  // within the bound: wraps
+  EXPECT_TRUE(WrapWatertight(tube, options).ok());
 }
 
 TEST(WatertightProxy, OpenTubeRigsAlongItsAxis) {

@@ -30,6 +30,10 @@ struct WrapOptions {
   double alpha = 0.0;
 };
 inline constexpr double kWrapRelativeAlpha = 60.0;
+// The smallest alpha allowed: diagonal / this. The wrap's work grows as (diagonal / alpha)^2 to
+// ^3: Wuson.off takes 1 s at the default, 14 s at diagonal / 185, and at diagonal / 740 ran over
+// two minutes and half a gigabyte without finishing (a new user's trial, 2026-12-07).
+inline constexpr double kWrapMostRelativeAlpha = 200.0;
 inline constexpr double kWrapOffsetFraction = 1.0 / 30.0;  // offset = alpha x this
 
 struct WatertightProxy {
@@ -38,7 +42,8 @@ struct WatertightProxy {
   std::size_t holes_closed = 0;      // border loops fanned shut before wrapping
 };
 
-// Errors name why (no triangles, a non-positive or non-finite alpha, CGAL failing).
+// Errors name why (no triangles, a non-positive or non-finite alpha, an alpha below
+// diagonal / kWrapMostRelativeAlpha, CGAL failing).
 Result<WatertightProxy> WrapWatertight(const Mesh& mesh, const WrapOptions& options = {});
 
 }  // namespace wirerig
