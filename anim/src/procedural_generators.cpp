@@ -25,13 +25,14 @@ std::string CheckCount(double value, const char* name, double lo, double hi) {
   return std::string("/mesh/parameters/") + name + ": must be a whole number in [" +
          std::to_string(int(lo)) + ", " + std::to_string(int(hi)) + "]";
 }
-// A generator's count before its own check: a whole number, at least 1 and at most 4096 (what
-// any generator may allocate); the generator may allow fewer (the octopus's 64 arms), so the
-// message names only the bound that failed.
+// A generator's count before its own check: a whole number, at least 1. Every generator's own
+// range ends at or below 4096 (what any generator may allocate), so a larger count is handed on
+// as 4097 (kCountPastEveryRange) for the generator to refuse with its own range, rather than a
+// bound that is not the one that holds (radial_segments: "at most 4096", then "[6, 512]").
+constexpr int kCountPastEveryRange = 4097;
 std::string CheckAnyCount(double value, const char* name) {
-  const std::string where = std::string("/mesh/parameters/") + name + ": ";
-  if (!(value == std::floor(value)) || value < 1.0) return where + "must be a whole number >= 1";
-  if (value > 4096.0) return where + "must be at most 4096";
+  if (!(value == std::floor(value)) || value < 1.0)
+    return std::string("/mesh/parameters/") + name + ": must be a whole number >= 1";
   return {};
 }
 std::string FirstError(std::initializer_list<std::string> errors) {
@@ -63,7 +64,8 @@ struct DescribedShape {
     for (auto [name, field] : counts) {
       const double value = Parameter(source, name, parameters.*field);
       if (std::string e = CheckAnyCount(value, name); !e.empty()) return Error{e};
-      parameters.*field = static_cast<int>(value);
+      parameters.*field =
+          value < kCountPastEveryRange ? static_cast<int>(value) : kCountPastEveryRange;
     }
     Result<ProceduralRigSource> made = make(parameters);
     if (!made) return Error{"/mesh/parameters/" + made.error()};

@@ -385,6 +385,12 @@ TEST(Scene, EveryProceduralGeneratorBuildsWithItsDefaults) {
             "scene \"beam\": /mesh/parameters/tentacle_count: must be a whole number >= 1");
   d["mesh"]["parameters"]["tentacle_count"] = 100;
   EXPECT_EQ(BuildError(d), "scene \"beam\": /mesh/parameters/tentacle_count: must be in [1, 64]");
+  // Far above every generator's range: the generator's own range, not a bound it does not hold
+  // (before: "at most 4096", and 4096 then "must be in [6, 512]").
+  d["mesh"]["parameters"] = {{"radial_segments", 1e6}};
+  EXPECT_EQ(BuildError(d), "scene \"beam\": /mesh/parameters/radial_segments: must be in [6, 512]");
+  d["mesh"] = {{"procedural", "trunk"}, {"parameters", {{"profile_count", 1e8}}}};
+  EXPECT_EQ(BuildError(d), "scene \"beam\": /mesh/parameters/profile_count: must be in [2, 1024]");
 }
 
 TEST(Scene, TheOctopusSampleBuilds) {
