@@ -239,9 +239,11 @@ class Parser {
     ExpectWord(tokens_, frames.line, "Time:", "after \"Frame\"");
     const Token time = Expect(tokens_, frames.line, "the frame time");
     const std::optional<double> dt = ParseNumber(time.text);
-    if (!dt || !std::isfinite(*dt) || !(*dt > 0.0) || *dt > 1e6)
+    // At most 10,000 frames a second (a clip's rate, clip_asset.h): a shorter frame time
+    // (1e-300) made the whole capture last less than a key and bake as one pose.
+    if (!dt || !std::isfinite(*dt) || !(*dt >= 1e-4) || *dt > 1e6)
       Fail(time.line,
-           "Frame Time: must be a positive finite number of seconds, not " + Quoted(time.text));
+           "Frame Time: must be a number of seconds in [1e-4, 1e6], not " + Quoted(time.text));
     motion_.frame_time = *dt;
     if (motion_.channel_count == 0) Fail(time.line, "the hierarchy has no channels to animate");
     if (motion_.frame_count > kMaxValues / motion_.channel_count)

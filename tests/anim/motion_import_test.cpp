@@ -943,8 +943,10 @@ TEST(MotionErrors, BvhHierarchyAndMotionMustAgree) {
   EXPECT_EQ(BvhError(ThreeJointsWith("0 90 0 45 0 0", "0 90 0 1e999 0 0")),
             "bad.bvh: line 25: frame 1, value 9 (C Zrotation): \"1e999\" is not finite");
   EXPECT_EQ(BvhError(ThreeJointsWith("Frame Time: 0.5", "Frame Time: 0")),
-            "bad.bvh: line 23: Frame Time: must be a positive finite number of seconds, not "
-            "\"0\"");
+            "bad.bvh: line 23: Frame Time: must be a number of seconds in [1e-4, 1e6], not \"0\"");
+  EXPECT_EQ(BvhError(ThreeJointsWith("Frame Time: 0.5", "Frame Time: 1e-300")),
+            "bad.bvh: line 23: Frame Time: must be a number of seconds in [1e-4, 1e6], not "
+            "\"1e-300\"");
   EXPECT_EQ(BvhError(ThreeJointsWith("OFFSET 5 0 0", "OFFSET 5 inf 0")),
             "bad.bvh: line 16: the End Site OFFSET of \"C\": \"inf\" is not finite");
   // Every truncation of the file is refused (and nothing crashes).
