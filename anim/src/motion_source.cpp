@@ -62,7 +62,8 @@ MotionSource ReadMotionSource(const JsonObject& o) {
     for (const char* key : {"mapping", "frames"})
       if (o.Has(key))
         throw FieldError(o.PathOf(key),
-                         "is for BVH motion captures; a skinned asset plays on its own skeleton");
+                         "is for BVH motion captures (\"file\" names no .bvh file); a skinned "
+                         "asset plays on its own skeleton");
     if (o.Has("animation")) {
       const json& value = o.Required("animation");
       if (value.is_string()) {

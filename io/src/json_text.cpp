@@ -17,7 +17,41 @@ TextPosition PositionInText(std::string_view text, std::size_t offset) {
   return position;
 }
 
+namespace {
+
+// `text` with every byte outside printable ASCII as \xNN: the parser quotes what it read, and a
+// binary file's bytes would otherwise go to the terminal as they are.
+std::string Printable(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte < 0x7f) {
+      out += c;
+    } else {
+      constexpr char kHex[] = "0123456789abcdef";
+      out.append("\\x").append(1, kHex[byte >> 4]).append(1, kHex[byte & 15]);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 Result<nlohmann::json> ParseJsonText(std::string_view text, std::string_view source_name) {
+  // No JSON text holds a control byte other than tab, newline and return, not even in a string:
+  // the first one says the file is not text (the parser would report "unexpected end of
+  // input" at a NUL).
+  const auto control = std::find_if(text.begin(), text.end(), [](char c) {
+    const auto byte = static_cast<unsigned char>(c);
+    return byte < 0x20 && c != '\t' && c != '\n' && c != '\r';
+  });
+  if (control != text.end()) {
+    const std::size_t offset = std::size_t(control - text.begin());
+    const TextPosition at = PositionInText(text, offset);
+    return Error{std::string(source_name) + ": not valid JSON: line " + std::to_string(at.line) +
+                 ", column " + std::to_string(at.column) + ": control byte " +
+                 Printable(text.substr(offset, 1)) + " (a binary file, not JSON text)"};
+  }
   try {
     const ScopedFloatingPointHold hold;
     return nlohmann::json::parse(text);
@@ -29,7 +63,7 @@ Result<nlohmann::json> ParseJsonText(std::string_view text, std::string_view sou
     if (const std::size_t colon = reason.find(": "); colon != std::string::npos)
       reason.erase(0, colon + 2);
     return Error{std::string(source_name) + ": not valid JSON: line " + std::to_string(at.line) +
-                 ", column " + std::to_string(at.column) + ": " + reason};
+                 ", column " + std::to_string(at.column) + ": " + Printable(reason)};
   } catch (const nlohmann::json::exception& e) {
     // A number too large for a double: "[json.exception.out_of_range.406] number overflow
     // parsing '1e999'"; its first occurrence gives the position.
@@ -47,7 +81,7 @@ Result<nlohmann::json> ParseJsonText(std::string_view text, std::string_view sou
                 std::to_string(position.column) + ": ";
       }
     }
-    return Error{std::string(source_name) + ": not valid JSON: " + where + reason};
+    return Error{std::string(source_name) + ": not valid JSON: " + where + Printable(reason)};
   }
 }
 

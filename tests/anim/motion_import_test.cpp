@@ -1069,7 +1069,8 @@ TEST(MotionErrors, AnimationsMustExist) {
   scene = AssetScene("assimp/X/anim_test.x", 0);
   scene["clips"][0]["motion"]["mapping"] = "x.json";
   EXPECT_EQ(samples::SceneError(scene),
-            "/clips/0/motion/mapping: is for BVH motion captures; a skinned asset plays on its "
+            "/clips/0/motion/mapping: is for BVH motion captures (\"file\" names no .bvh file); a "
+            "skinned asset plays on its "
             "own skeleton");
   // A file without animations.
   scene = AssetScene("assimp/X/anim_test.x", 0);

@@ -59,6 +59,24 @@ TEST(ParseJsonText, HugeLiteralIsRefusedWithTrapsHeld) {
             "huge.json: not valid JSON: line 1, column 2: number overflow parsing '1e999'");
 }
 
+// A binary file is named as one at its first control byte, and what the parser quotes is
+// printed with its bytes escaped, never raw to the terminal.
+TEST(ParseJsonText, BinaryBytesAreNamedAndEscaped) {
+  const Result<nlohmann::json> binary = ParseJsonText(std::string("{\n\0\x01{", 5), "d.json");
+  ASSERT_FALSE(binary.ok());
+  EXPECT_EQ(binary.error(),
+            "d.json: not valid JSON: line 2, column 1: control byte \\x00 (a binary file, not JSON "
+            "text)");
+  const Result<nlohmann::json> high = ParseJsonText("\xe5\xff", "e.json");
+  ASSERT_FALSE(high.ok());
+  EXPECT_NE(high.error().find("\\xe5"), std::string::npos) << high.error();
+  EXPECT_EQ(high.error().find('\xe5'), std::string::npos) << high.error();
+  // Tabs, returns and UTF-8 inside strings are text.
+  const Result<nlohmann::json> text = ParseJsonText("{\t\"a\":\r\n \"caf\xc3\xa9\"}", "f.json");
+  ASSERT_TRUE(text.ok()) << text.error();
+  EXPECT_EQ(text.value()["a"], "caf\xc3\xa9");
+}
+
 }  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig
