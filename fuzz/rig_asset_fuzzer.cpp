@@ -1,7 +1,9 @@
 // libFuzzer target: built rig assets (.wrig, runtime/rig_asset.h) through ParseRigAsset, as is
 // and with a consistent envelope (asset_header.h). A rig that parses passed ValidateRigModel,
-// which promises it is safe to evaluate: it is evaluated at rest, into doubles and floats, and
-// must serialize back to bytes that parse again.
+// which promises it is safe to evaluate: it is evaluated at rest, into doubles and floats, then
+// posed (every joint turned, spines loaded, rotated normals, interleaved buffers), and must
+// serialize back to bytes that parse again.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -9,10 +11,13 @@
 
 #include "asset_header.h"
 #include "fuzz_support.h"
+#include "wirerig/runtime/joint.h"
 #include "wirerig/runtime/rig_asset.h"
 #include "wirerig/runtime/rig_evaluation.h"
 
 namespace {
+
+const wirerig::PointLoad kLoad{0.6, wirerig::Vec3(0.0, 2.0, 1.0)};  // N, at 60% of the spine
 
 void Evaluate(const wirerig::RigAsset& asset) {
   const wirerig::RigModel& model = asset.model;
@@ -41,6 +46,33 @@ void Evaluate(const wirerig::RigAsset& asset) {
   const wirerig::Status floats = job.Run();
   FUZZ_CHECK(floats.ok(),
              "a validated rig does not evaluate into floats: " + wirerig::ToString(floats));
+
+  // Posed as an engine poses it: every joint turned (JointRotation clamps to its limits), a
+  // point load on every deformable spine, rotated normals, interleaved buffers (stride 6). The
+  // frame may be refused (loads too large for a soft spine), but then it names the field and
+  // writes nothing; evaluated, every output is finite.
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const wirerig::PartModel& part = model.parts[p];
+    if (part.parent >= 0)
+      poses[p].rotation = wirerig::JointRotation(
+          part.joint, wirerig::Vec3(37.0 + double(p), -23.0, 11.0 * double(p % 3)));
+    if (part.kind == wirerig::SpineKind::kDeformable)
+      poses[p].loads.bending_point_loads = std::span(&kLoad, 1);
+  }
+  std::vector<float> interleaved(outputs * 6, -7.0f);
+  job.float_positions = interleaved;
+  job.float_position_stride = 6;
+  job.float_normals = std::span(interleaved).subspan(3);
+  job.float_normal_stride = 6;
+  job.normal_mode = wirerig::NormalMode::kRotated;
+  const wirerig::Status posed = job.Run();
+  if (!posed.ok()) {
+    FUZZ_CHECK(!posed.field.empty(), "a refused frame names no field");
+    for (const float value : interleaved) FUZZ_CHECK(value == -7.0f, "a refused frame wrote");
+    return;
+  }
+  for (const float value : interleaved)
+    FUZZ_CHECK(std::isfinite(value), "a posed frame wrote a value that is not finite");
 }
 
 void ParseOne(std::span<const std::uint8_t> bytes) {
