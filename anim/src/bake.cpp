@@ -139,7 +139,13 @@ Result<BakedAnimation> BakeClip(const Mesh& mesh, const RigModel& model, const C
     if (Status s =
             player.Evaluate(std::min(t, clip.duration - 1e-12 * clip.duration), output, frame);
         !s) {
-      return Error{"key at t = " + std::to_string(t) + " s: " + ToString(s)};
+      // A part's failure by its name rather than its index.
+      const bool part =
+          s.field == "parts" && s.index >= 0 && std::size_t(s.index) < model.parts.size();
+      return Error{"key at t = " + std::to_string(t) + " s: " +
+                   (part ? "part \"" + model.parts[std::size_t(s.index)].name + "\" (" +
+                               std::string(s.member) + "): " + std::string(s.reason)
+                         : ToString(s))};
     }
     for (std::size_t p = 0; p < frame.size(); ++p)
       if (frame[p].max_deflection_ratio > worst[p].first.max_deflection_ratio)

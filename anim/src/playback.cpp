@@ -178,7 +178,12 @@ Status Playback::StepBodies(double dt) {
     step.at_middle = SampleRigidWrench(*clip_, p, body, t0 + 0.5 * dt, state, g);
     step.at_end = SampleRigidWrench(*clip_, p, body, t0 + dt, state, g);
     step.state = &state;
-    if (Status s = step.Run(); !s) return s;
+    // Named by part: the step's own field ("dt") says nothing of which body or why.
+    if (Status s = step.Run(); !s)
+      return Status::InvalidElement("parts", int(p), "rigid body",
+                                    "its step cannot go on: the forces and couples keyed on it "
+                                    "are too large for its mass and inertia (or the rigid step "
+                                    "too long): the motion would overflow");
   }
   clock_ += dt;
   if (!wired) return Status::Ok();

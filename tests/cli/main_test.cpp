@@ -380,6 +380,22 @@ TEST(WirerigOutputs, NoCommandWritesOverItsInput) {
   EXPECT_EQ(Contents(problem), "{}");
 }
 
+// A rigid body whose keyed force is far too large for its mass: the bake stops naming the part,
+// not the integrator's step ("dt").
+TEST(WirerigBake, AnOverloadedRigidBodyIsNamedByPart) {
+  const fs::path scene = Scratch("overloaded.scene.json");
+  std::ofstream(scene) << R"({"format": "wirerig.scene", "version": 1, "name": "arm",
+    "mesh": {"procedural": "cylinder", "parameters": {"radius": 0.1, "height": 1.0}},
+    "rig": {"description": {"parts": [{"name": "base", "central_curve": [[0, 0, 0], [0, 0.5, 0]],
+                                       "profile_count": 8, "points_per_profile": 16}]}},
+    "default_kind": "rigid",
+    "clips": [{"name": "push", "duration": 1, "parts": [
+      {"part": "base", "rigid_forces": [{"at": [0, 0, 0], "force": [1e6, 0, 0]}]}]}]})";
+  ExpectExit(RunWirerig({"bake", scene.string(), "-o", Scratch("overloaded.glb").string()}), 1,
+             "part \"base\" (rigid body): its step cannot go on");
+  EXPECT_FALSE(fs::exists(Scratch("overloaded.glb")));
+}
+
 // Out-of-range option values state their bound readably (usage errors: exit 2).
 TEST(WirerigOutputs, OptionBoundsAreReadable) {
   ExpectExit(RunWirerig({"bake", kOctopus, "-o", "x.glb", "--fps", "0"}), 2,
