@@ -23,6 +23,7 @@
 #include "gltf_paths.h"
 #include "wirerig/io/atomic_file.h"
 #include "wirerig/io/input_file.h"
+#include "wirerig/io/json_text.h"
 #include "wirerig/io/output_file.h"
 #include "wirerig/io/temp_files.h"
 
@@ -181,7 +182,7 @@ Result<std::vector<fs::path>> WriteGlb(tinygltf::Model model, const BufferTail& 
     if (document.is_discarded()) return Error{out.string() + ": tinygltf wrote invalid JSON"};
     document["buffers"] = nlohmann::json::array({{{"byteLength", buffer_size}}});
     AddMeshoptJson(document, meshopt);
-    json = document.dump();
+    json = DumpJson(document);
   } else if (buffer_size > 0) {
     json.pop_back();
     json.append(R"(,"buffers":[{"byteLength":)").append(std::to_string(buffer_size)).append("}]}");
@@ -296,7 +297,7 @@ Result<std::vector<fs::path>> WriteGltfAndBin(tinygltf::Model model, const Buffe
         {{{"byteLength", buffer_size}, {"uri", PathToUri(bin_path.filename())}}});
     AddMeshoptJson(document, meshopt);
   }
-  const std::string json = document.dump(2).append("\n");
+  const std::string json = DumpJson(document, 2).append("\n");
 
   std::vector<fs::path> files;
   // Until the switch the new .bin is removed on SIGINT or SIGTERM like a temporary file.

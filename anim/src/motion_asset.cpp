@@ -17,6 +17,7 @@
 #include "wirerig/anim/clip_json.h"
 #include "wirerig/anim/motion_import.h"
 #include "wirerig/io/floating_point_hold.h"
+#include "wirerig/io/json_text.h"
 #include "wirerig/rig/isolated_process.h"
 
 namespace wirerig {
@@ -253,7 +254,7 @@ Result<RawClip> ClipFromAssetAnimation(const std::filesystem::path& file, const 
         RunIsolated(file, *options.import.isolation, [&]() -> Result<std::string> {
           Result<RawClip> clip = ClipFromAssetAnimation(file, mesh, model, in_child);
           if (!clip) return Error{clip.error()};
-          return ClipToJson(clip.value()).dump();
+          return DumpJson(ClipToJson(clip.value()));
         });
     if (!answer) return Error{answer.error()};
     const nlohmann::json document = nlohmann::json::parse(answer.value(), nullptr, false);

@@ -107,7 +107,7 @@ RigSource ReadRigSource(const JsonObject& o) {
     Result<RigDescription> parsed = ParseRigDescription(inline_description);
     if (!parsed) throw FieldError(o.PathOf("description"), parsed.error());
     rig.description = std::move(parsed).value();
-    rig.description_json = inline_description.dump();
+    rig.description_json = DumpJson(inline_description);
   }
   return rig;
 }
@@ -417,7 +417,7 @@ nlohmann::json SceneToJson(const SceneDescription& scene) {
 
 Result<std::filesystem::path> SaveScene(const SceneDescription& scene,
                                         const std::filesystem::path& path) {
-  return WriteFileAtomically(path, SceneToJson(scene).dump(2) + "\n");
+  return WriteFileAtomically(path, DumpJson(SceneToJson(scene), 2) + "\n");
 }
 
 }  // namespace wirerig

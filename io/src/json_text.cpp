@@ -37,6 +37,55 @@ std::string Printable(std::string_view text) {
 
 }  // namespace
 
+std::string ValidUtf8(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned char lead = byte(i);
+    // The sequence's length and the range its second byte must lie in (RFC 3629: no overlong
+    // forms, no surrogates, nothing above U+10FFFF).
+    std::size_t length = 0;
+    unsigned char low = 0x80, high = 0xbf;
+    if (lead < 0x80)
+      length = 1;
+    else if (lead >= 0xc2 && lead <= 0xdf)
+      length = 2;
+    else if (lead == 0xe0)
+      length = 3, low = 0xa0;
+    else if (lead >= 0xe1 && lead <= 0xec)
+      length = 3;
+    else if (lead == 0xed)
+      length = 3, high = 0x9f;
+    else if (lead >= 0xee && lead <= 0xef)
+      length = 3;
+    else if (lead == 0xf0)
+      length = 4, low = 0x90;
+    else if (lead >= 0xf1 && lead <= 0xf3)
+      length = 4;
+    else if (lead == 0xf4)
+      length = 4, high = 0x8f;
+    bool whole = length > 0 && i + length <= text.size();
+    for (std::size_t k = 1; whole && k < length; ++k) {
+      const unsigned char c = byte(i + k);
+      whole = k == 1 ? c >= low && c <= high : c >= 0x80 && c <= 0xbf;
+    }
+    if (whole) {
+      out.append(text.substr(i, length));
+      i += length;
+    } else {
+      out.append("\xef\xbf\xbd");  // U+FFFD for the one byte
+      ++i;
+    }
+  }
+  return out;
+}
+
+std::string DumpJson(const nlohmann::json& document, int indent) {
+  return document.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 Result<nlohmann::json> ParseJsonText(std::string_view text, std::string_view source_name) {
   // No JSON text holds a control byte other than tab, newline and return, not even in a string:
   // the first one says the file is not text (the parser would report "unexpected end of

@@ -1,5 +1,6 @@
 #include "imported_mesh_codec.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <type_traits>
@@ -81,6 +82,47 @@ static_assert(sizeof(Triangle) == 3 * sizeof(std::uint32_t) &&
 
 Error Damaged(const char* what) {
   return Error{std::string("truncated or damaged mesh message (") + what + ")"};
+}
+
+bool TrianglesWithin(const std::vector<Triangle>& triangles, std::size_t vertices) {
+  return std::all_of(triangles.begin(), triangles.end(), [&](const Triangle& t) {
+    return t[0] < vertices && t[1] < vertices && t[2] < vertices;
+  });
+}
+
+// What the parent relies on of a mesh the child sent (indexes it without checks): every index
+// within its array, parts over the triangles in order, joints' parents before them. The child
+// ran Assimp on an untrusted file and may have been corrupted without crashing.
+const char* Inconsistency(const Mesh& mesh) {
+  const std::size_t vertices = mesh.positions.size();
+  if ((!mesh.normals.empty() && mesh.normals.size() != vertices) ||
+      (!mesh.uvs.empty() && mesh.uvs.size() != vertices))
+    return "normals or uvs";
+  if (!TrianglesWithin(mesh.triangles, vertices)) return "triangles";
+  std::uint64_t next = 0;
+  for (const MeshPart& part : mesh.parts) {
+    if (part.first_triangle != next ||
+        (part.material != -1 &&
+         (part.material < 0 || std::size_t(part.material) >= mesh.materials.size())))
+      return "parts";
+    next += part.triangle_count;
+  }
+  if (!mesh.parts.empty() && next != mesh.triangles.size()) return "parts";
+  for (std::size_t j = 0; j < mesh.joints.size(); ++j)
+    if (mesh.joints[j].parent < -1 || mesh.joints[j].parent >= int(j)) return "joints";
+  if (!mesh.skin_joints.empty() &&
+      (mesh.skin_joints.size() != vertices || mesh.skin_weights.size() != vertices))
+    return "skin";
+  for (const std::array<int, 4>& slots : mesh.skin_joints)
+    for (const int joint : slots)
+      if (joint < -1 || joint >= int(mesh.joints.size())) return "skin";
+  if (!mesh.weld_map.empty() &&
+      (mesh.weld_map.size() != vertices || mesh.welded_triangles.size() != mesh.triangles.size()))
+    return "welding";
+  for (const std::uint32_t w : mesh.weld_map)
+    if (w >= mesh.welded_positions.size()) return "welding";
+  if (!TrianglesWithin(mesh.welded_triangles, mesh.welded_positions.size())) return "welding";
+  return nullptr;
 }
 
 }  // namespace
@@ -176,6 +218,8 @@ Result<ImportedMesh> DecodeImportedMesh(std::string_view bytes) {
   std::uint64_t source_vertices = 0;
   if (!r.Get(source_vertices) || !r.AtEnd()) return Damaged("report");
   if (up < 0 || up > 2) return Damaged("up axis");
+  if (const char* what = Inconsistency(mesh)) return Damaged(what);
+  MakeNamesUtf8(mesh);  // a child corrupted without crashing may have sent any bytes
   report.source_up = static_cast<UpAxis>(up);
   report.source_vertices = static_cast<std::size_t>(source_vertices);
   return imported;

@@ -1,6 +1,8 @@
 // Welding render vertices by position, and bounds.
 #include "wirerig/rig/mesh.h"
+
 #include "wirerig/io/finite.h"
+#include "wirerig/io/json_text.h"
 
 #include <algorithm>
 #include <bit>
@@ -155,6 +157,12 @@ Bounds ComputeBounds(const Mesh& mesh) {
     }
   }
   return bounds;
+}
+
+void MakeNamesUtf8(Mesh& mesh) {
+  for (MeshPart& part : mesh.parts) part.name = ValidUtf8(part.name);
+  for (MeshMaterial& material : mesh.materials) material.name = ValidUtf8(material.name);
+  for (Joint& joint : mesh.joints) joint.name = ValidUtf8(joint.name);
 }
 
 }  // namespace wirerig

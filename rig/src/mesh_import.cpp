@@ -1193,6 +1193,7 @@ Result<ImportedMesh> ImportMesh(const fs::path& path, const ImportOptions& optio
     if (!mesh) return Error{mesh.error()};
   }
   imported.mesh = std::move(mesh).value();
+  MakeNamesUtf8(imported.mesh);  // Assimp hands names over as the file's bytes
   report.source_vertices = imported.mesh.positions.size();
   WeldByPosition(imported.mesh, 0.0);
   return imported;

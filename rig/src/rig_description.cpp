@@ -172,6 +172,20 @@ std::string ValidateRigDescription(const RigDescription& description) {
   if (Status s = ValidateMaterial(description.material); !s)
     return "/material/" + std::string(s.field) + ": " + std::string(s.reason);
   if (description.parts.empty()) return "/parts: needs at least one part";
+  // Checked here, not only when a file is parsed: a skeleton's bones become parts too.
+  if (description.parts.size() > kMaxRigParts)
+    return "/parts: at most " + std::to_string(kMaxRigParts) + " parts (this rig has " +
+           std::to_string(description.parts.size()) + ")";
+  // The profile curves' rays, all parts together (each part is bounded alone as well).
+  std::size_t profile_points = 0;
+  for (const PartDescription& part : description.parts)
+    profile_points += std::size_t(std::max(part.profile_count, 0)) *
+                      std::size_t(std::max(part.points_per_profile, 0));
+  if (profile_points > kMaxRigProfilePoints)
+    return "/parts: " + std::to_string(profile_points) +
+           " profile points in all (profile_count x points_per_profile, summed over the parts); "
+           "at most " +
+           std::to_string(kMaxRigProfilePoints);
   std::set<std::string> seen;
   for (std::size_t i = 0; i < description.parts.size(); ++i) {
     const PartDescription& part = description.parts[i];

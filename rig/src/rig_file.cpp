@@ -233,7 +233,7 @@ Result<Rig> RigFromJson(const nlohmann::json& document) {
 }
 
 Result<std::filesystem::path> SaveRig(const Rig& rig, const std::filesystem::path& path) {
-  return WriteFileAtomically(path, RigToJson(rig).dump(1) + "\n");
+  return WriteFileAtomically(path, DumpJson(RigToJson(rig), 1) + "\n");
 }
 
 Result<Rig> LoadRig(const std::filesystem::path& path) {

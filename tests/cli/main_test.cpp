@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -378,6 +379,52 @@ TEST(WirerigOutputs, NoCommandWritesOverItsInput) {
   ExpectExit(RunWirerig({"wire", problem.string(), "-o", problem.string()}), 1,
              "is the wire problem");
   EXPECT_EQ(Contents(problem), "{}");
+}
+
+// A mesh whose file name and object name are Latin-1 (not UTF-8) rigs and bakes: the JSON and
+// glTF writers take UTF-8 only, and such names aborted `wirerig rig` after all its work.
+TEST(WirerigOutputs, NamesThatAreNotUtf8AreWrittenWithReplacementCharacters) {
+  const fs::path folder = Scratch("latin1");
+  fs::create_directories(folder);
+  const fs::path mesh = folder / std::string("caf\xe9.obj");
+  {
+    std::ofstream obj(mesh, std::ios::binary);
+    obj << "o caf\xe9_part\n";
+    constexpr int kSides = 12, kRings = 8;
+    for (int r = 0; r <= kRings; ++r)
+      for (int k = 0; k < kSides; ++k) {
+        const double a = 2.0 * 3.14159265358979 * k / kSides;
+        obj << "v " << 0.1 * std::cos(a) << " " << double(r) / kRings << " " << 0.1 * std::sin(a)
+            << "\n";
+      }
+    obj << "v 0 0 0\nv 0 1 0\n";
+    const int bottom = (kRings + 1) * kSides + 1, top = bottom + 1;  // 1-based
+    for (int r = 0; r < kRings; ++r)
+      for (int k = 0; k < kSides; ++k) {
+        const int a = r * kSides + k + 1, b = r * kSides + (k + 1) % kSides + 1;
+        obj << "f " << a << " " << a + kSides << " " << b << "\nf " << b << " " << a + kSides << " "
+            << b + kSides << "\n";
+      }
+    for (int k = 0; k < kSides; ++k)
+      obj << "f " << bottom << " " << k + 1 << " " << (k + 1) % kSides + 1 << "\nf " << top << " "
+          << kRings * kSides + (k + 1) % kSides + 1 << " " << kRings * kSides + k + 1 << "\n";
+  }
+  const fs::path rig = folder / "latin1.rig.json";
+  const ProcessResult rigged = RunWirerig({"rig", mesh.string(), "-o", rig.string()});
+  ASSERT_EQ(rigged.exit_code, 0) << rigged.err;
+  EXPECT_NE(Contents(rig).find("caf\xef\xbf\xbd.obj"), std::string::npos);
+  const fs::path scene = folder / "latin1.scene.json";
+  std::ofstream(scene)
+      << "{\"format\": \"wirerig.scene\", \"version\": 1, \"name\": \"latin1\", "
+         "\"mesh\": {\"file\": \"caf\xc3\xa9.obj\"}, \"rig\": {\"file\": "
+         "\"latin1.rig.json\"}, \"clips\": [{\"name\": \"still\", \"duration\": 1, "
+         "\"parts\": []}]}";
+  // The scene (UTF-8, as JSON is) cannot name the Latin-1 file: the mesh is read by the rig's
+  // own path, so copy it under its UTF-8 name.
+  fs::copy_file(mesh, folder / "caf\xc3\xa9.obj", fs::copy_options::overwrite_existing);
+  const fs::path glb = folder / "latin1.glb";
+  const ProcessResult baked = RunWirerig({"bake", scene.string(), "-o", glb.string()});
+  EXPECT_EQ(baked.exit_code, 0) << baked.err;
 }
 
 // A rigid body whose keyed force is far too large for its mass: the bake stops naming the part,

@@ -77,6 +77,22 @@ TEST(ParseJsonText, BinaryBytesAreNamedAndEscaped) {
   EXPECT_EQ(text.value()["a"], "caf\xc3\xa9");
 }
 
+// Well-formed UTF-8 stays as it is; each byte of anything else becomes U+FFFD (a Latin-1 name,
+// an overlong form, a surrogate, a sequence cut short), so JSON writers never throw on it.
+TEST(ValidUtf8, ReplacesEveryByteThatIsNotUtf8) {
+  const std::string fffd = "\xef\xbf\xbd";
+  EXPECT_EQ(ValidUtf8("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x90\x99"),
+            "caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x90\x99");
+  EXPECT_EQ(ValidUtf8("caf\xe9.obj"), "caf" + fffd + ".obj");
+  EXPECT_EQ(ValidUtf8("\xc0\xaf"), fffd + fffd);                        // overlong '/'
+  EXPECT_EQ(ValidUtf8("\xed\xa0\x80"), fffd + fffd + fffd);             // a UTF-16 surrogate
+  EXPECT_EQ(ValidUtf8("a\xe2\x82"), "a" + fffd + fffd);                 // cut short
+  EXPECT_EQ(ValidUtf8("\xf4\x90\x80\x80"), fffd + fffd + fffd + fffd);  // above U+10FFFF
+  EXPECT_EQ(ValidUtf8(std::string("a\0b", 3)), std::string("a\0b", 3));
+  const nlohmann::json named = {{"name", "caf\xe9"}};
+  EXPECT_EQ(DumpJson(named), "{\"name\":\"caf" + fffd + "\"}");
+}
+
 }  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig

@@ -69,6 +69,33 @@ TEST(RigDescription, RefusesMorePartsThanARigMayHave) {
   ExpectRefused(d, "/parts: at most 1024 parts");
 }
 
+// Descriptions made in code (a skeleton's bones, an automatic rig) meet the same bounds as
+// files: the part count, and the profile points of all parts together (16 parts of 4096
+// profiles of 1024 points asked for 6 GB of JSON and 7 x 10^7 rays).
+TEST(RigDescription, ValidationBoundsPartsAndProfilePointsOfDescriptionsMadeInCode) {
+  Result<RigDescription> parsed = ParseRigDescription(Good());
+  ASSERT_TRUE(parsed.ok()) << parsed.error();
+  RigDescription many = parsed.value();
+  const PartDescription arm = many.parts[1];
+  for (std::size_t i = many.parts.size(); i <= kMaxRigParts; ++i) {
+    many.parts.push_back(arm);
+    many.parts.back().name = "arm_" + std::to_string(i);
+  }
+  EXPECT_NE(ValidateRigDescription(many).find("/parts: at most 1024 parts"), std::string::npos)
+      << ValidateRigDescription(many);
+  RigDescription dense = parsed.value();
+  for (int i = 0; i < 16; ++i) {
+    dense.parts.push_back(arm);
+    dense.parts.back().name = "dense_" + std::to_string(i);
+    dense.parts.back().profile_count = 4096;
+    dense.parts.back().points_per_profile = 1024;
+  }
+  EXPECT_NE(ValidateRigDescription(dense).find("profile points in all"), std::string::npos)
+      << ValidateRigDescription(dense);
+  dense.parts.resize(parsed.value().parts.size() + 1);  // one part at its largest: allowed
+  EXPECT_EQ(ValidateRigDescription(dense), "");
+}
+
 TEST(RigDescription, EachBrokenRuleIsNamed) {
   nlohmann::json d = Good();
   d["parts"][1]["parent"] = "leg";

@@ -25,4 +25,14 @@ TextPosition PositionInText(std::string_view text, std::size_t offset);
 // Floating-point traps are held while parsing (huge literals overflow).
 Result<nlohmann::json> ParseJsonText(std::string_view text, std::string_view source_name);
 
+// `text` as valid UTF-8: every byte that does not begin or continue a well-formed sequence
+// becomes U+FFFD. JSON and glTF hold UTF-8 only (their writers throw on anything else), while
+// names from mesh files (Assimp's bytes) and paths from the command line may be Latin-1 or
+// anything.
+std::string ValidUtf8(std::string_view text);
+
+// `document` as JSON text (indented by `indent` spaces, or compact when negative), any string
+// in it that is not UTF-8 written with U+FFFD: never throws for encoding.
+std::string DumpJson(const nlohmann::json& document, int indent = -1);
+
 }  // namespace wirerig

@@ -71,6 +71,10 @@ struct Mesh {
   std::vector<Triangle> welded_triangles;
 };
 
+// Makes every name in `mesh` (parts, materials, joints) valid UTF-8 (ValidUtf8): names from
+// mesh files may hold any bytes, and what writes them (JSON, glTF) takes UTF-8 only.
+void MakeNamesUtf8(Mesh& mesh);
+
 // Merges render vertices whose positions are within `tolerance` metres (exactly equal when 0)
 // and fills the weld fields. Deterministic: a welded vertex takes the position of its first
 // render vertex, and with a tolerance a render vertex joins the lowest-numbered welded vertex

@@ -45,6 +45,9 @@ struct PartDescription {
 // The most parts a rig may have (a description or a rig file): building is quadratic in them
 // (20,000 parts ran for minutes); a character has tens.
 inline constexpr std::size_t kMaxRigParts = 1024;
+// The most profile points (rays cast) a rig may ask for, all parts together: two parts at their
+// largest (4096 profiles of 1024 points). Without it 1024 such parts asked for 4 x 10^9 rays.
+inline constexpr std::size_t kMaxRigProfilePoints = std::size_t(2) * 4096 * 1024;
 
 struct RigDescription {
   std::filesystem::path mesh;  // the mesh file; relative paths are relative to the description
