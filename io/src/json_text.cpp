@@ -1,7 +1,10 @@
 #include "wirerig/io/json_text.h"
 
 #include <algorithm>
+#include <optional>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "wirerig/io/floating_point_hold.h"
 
@@ -101,9 +104,38 @@ Result<nlohmann::json> ParseJsonText(std::string_view text, std::string_view sou
                  ", column " + std::to_string(at.column) + ": control byte " +
                  Printable(text.substr(offset, 1)) + " (a binary file, not JSON text)"};
   }
+  // A key twice in one object: the parser would keep the last silently (a mapping's
+  // "LeftHand" given twice drove the second part). Noted while parsing, with the keys of the
+  // objects around it, and refused after.
+  std::vector<std::set<std::string>> keys_of_open_objects;
+  std::vector<std::string> path;  // the key each open object is under ("" at the top)
+  std::string pending_key;
+  std::optional<std::string> duplicate;
+  const nlohmann::json::parser_callback_t note_duplicates =
+      [&](int /*depth*/, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+        using Event = nlohmann::json::parse_event_t;
+        if (event == Event::object_start) {
+          path.push_back(pending_key);
+          keys_of_open_objects.emplace_back();
+        } else if (event == Event::object_end && !keys_of_open_objects.empty()) {
+          keys_of_open_objects.pop_back();
+          path.pop_back();
+        } else if (event == Event::key && !keys_of_open_objects.empty()) {
+          pending_key = parsed.get<std::string>();
+          if (!keys_of_open_objects.back().insert(pending_key).second && !duplicate) {
+            std::string where;
+            for (std::size_t i = 1; i < path.size(); ++i) where += "/" + path[i];
+            duplicate = (where.empty() ? std::string("/") : where) + ": the key \"" + pending_key +
+                        "\" appears twice in one object";
+          }
+        }
+        return true;
+      };
   try {
     const ScopedFloatingPointHold hold;
-    return nlohmann::json::parse(text);
+    nlohmann::json document = nlohmann::json::parse(text, note_duplicates);
+    if (duplicate) return Error{std::string(source_name) + ": " + Printable(*duplicate)};
+    return document;
   } catch (const nlohmann::json::parse_error& e) {
     // e.byte counts the bytes read, the offending one included.
     const TextPosition at = PositionInText(text, e.byte > 0 ? e.byte - 1 : 0);

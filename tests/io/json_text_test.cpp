@@ -77,6 +77,22 @@ TEST(ParseJsonText, BinaryBytesAreNamedAndEscaped) {
   EXPECT_EQ(text.value()["a"], "caf\xc3\xa9");
 }
 
+// A key given twice in one object is refused with where it is (the parser alone keeps the last
+// silently); the same key in different objects is fine.
+TEST(ParseJsonText, DuplicateKeysAreRefused) {
+  const Result<nlohmann::json> top = ParseJsonText(R"({"name": "a", "name": "b"})", "g.json");
+  ASSERT_FALSE(top.ok());
+  EXPECT_EQ(top.error(), "g.json: /: the key \"name\" appears twice in one object");
+  const Result<nlohmann::json> nested = ParseJsonText(
+      R"({"joints": {"LeftHand": "hand_l", "Spine": "chest", "LeftHand": "hand_r"}})", "m.json");
+  ASSERT_FALSE(nested.ok());
+  EXPECT_EQ(nested.error(), "m.json: /joints: the key \"LeftHand\" appears twice in one object");
+  const Result<nlohmann::json> apart =
+      ParseJsonText(R"({"a": {"x": 1}, "b": {"x": 2}, "c": [{"x": 3}, {"x": 4}]})", "h.json");
+  ASSERT_TRUE(apart.ok()) << apart.error();
+  EXPECT_EQ(apart.value()["c"][1]["x"], 4);
+}
+
 // Well-formed UTF-8 stays as it is; each byte of anything else becomes U+FFFD (a Latin-1 name,
 // an overlong form, a surrogate, a sequence cut short), so JSON writers never throw on it.
 TEST(ValidUtf8, ReplacesEveryByteThatIsNotUtf8) {
