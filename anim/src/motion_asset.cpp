@@ -244,7 +244,11 @@ Result<RawClip> ClipFromAssetAnimation(const std::filesystem::path& file, const 
   const std::string name = file.string();
   auto fail = [&](const std::string& reason) { return Error{name + ": " + reason}; };
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) return fail("no such motion file");
+  if (!std::filesystem::exists(file, ec)) return fail("no such motion file");
+  if (!std::filesystem::is_regular_file(file, ec))
+    return fail(std::filesystem::is_directory(file, ec)
+                    ? "is a directory, not a motion file"
+                    : "is not a regular file (a device, FIFO or socket), not a motion file");
   if (options.import.isolation) {
     // Assimp reads the file in a child process; the clip comes back in its JSON form (which
     // ReadClip reads back exactly).

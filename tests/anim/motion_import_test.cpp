@@ -1078,6 +1078,11 @@ TEST(MotionErrors, AnimationsMustExist) {
   EXPECT_EQ(samples::SceneError(scene),
             "scene \"asset\": /clips/0/motion/file: " + Asset("assimp/X/test.x").string() +
                 ": holds no animation");
+  // A folder where the file should be: said so, not "no such motion file".
+  scene["clips"][0]["motion"]["file"] = Asset("assimp/X").string();
+  EXPECT_EQ(samples::SceneError(scene),
+            "scene \"asset\": /clips/0/motion/file: " + Asset("assimp/X").string() +
+                ": is a directory, not a motion file");
 }
 
 }  // namespace WIRERIG_TEST_FILE
