@@ -27,7 +27,8 @@ int Components(int type) {
   }
 }
 
-// Appends `bytes` to buffer 0 (created when missing) at a 4-byte aligned offset, as a new view.
+}  // namespace
+
 int AddBufferView(tinygltf::Model& model, const void* bytes, std::size_t size, int target) {
   AlignedBufferEnd(model);
   std::vector<unsigned char>& data = model.buffers[0].data;
@@ -41,8 +42,6 @@ int AddBufferView(tinygltf::Model& model, const void* bytes, std::size_t size, i
   model.bufferViews.push_back(view);
   return static_cast<int>(model.bufferViews.size()) - 1;
 }
-
-}  // namespace
 
 std::size_t AlignedBufferEnd(tinygltf::Model& model) {
   if (model.buffers.empty()) model.buffers.emplace_back();

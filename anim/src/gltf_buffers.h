@@ -49,6 +49,10 @@ inline constexpr double kUnsignedByteScale = 255.0;
 int AddNormalizedByteAccessor(tinygltf::Model& model, std::span<const std::uint8_t> values,
                               int type, int target);
 
+// Appends `size` bytes to buffer 0 (created when missing) at a 4-byte aligned offset, as a new
+// view with `target` (0: none). Returns the view's index.
+int AddBufferView(tinygltf::Model& model, const void* bytes, std::size_t size, int target);
+
 // A view of `bytes` in buffer 0 (an embedded image: no target). Returns the view's index.
 int AddBytesView(tinygltf::Model& model, std::span<const unsigned char> bytes);
 
