@@ -70,7 +70,9 @@ int RunBuildCommand(const BuildCommandOptions& options, std::ostream& out, std::
                     "nothing written");
       if (Result<bool> writable = CheckOutputFile(path, {".wclip"}); !writable)
         return fail(writable.error() + " (clip \"" + clip.name + "\"); nothing written");
-      if (Result<bool> own = CheckOutputIsNoSceneInput(path, options.scene); !own)
+      if (Result<bool> own =
+              CheckOutputIsNoSceneInput(path, options.scene, built.value().description);
+          !own)
         return fail(own.error() + " (clip \"" + clip.name + "\"); nothing written");
       out << "clip \"" << clip.name << "\": " << sampled.value().frame_count() << " frames at "
           << options.fps << " fps";

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "wirerig/anim/scene.h"
 #include "wirerig/io/result.h"
 
 namespace wirerig::cli {
@@ -13,5 +14,9 @@ namespace wirerig::cli {
 // loading it reports why.
 Result<bool> CheckOutputIsNoSceneInput(const std::filesystem::path& output,
                                        const std::filesystem::path& scene_file);
+// The same with the scene already read (nothing parsed again).
+Result<bool> CheckOutputIsNoSceneInput(const std::filesystem::path& output,
+                                       const std::filesystem::path& scene_file,
+                                       const SceneDescription& scene);
 
 }  // namespace wirerig::cli
