@@ -370,6 +370,16 @@ std::vector<Vec3> BvhRestPositions(const MotionCapture& motion) {
 Result<MotionCapture> ParseBvh(std::string_view text, const std::string& source) {
   const ScopedFloatingPointHold hold;
   try {
+    // Lines may end in LF, CRLF or a lone CR (classic Mac OS exporters): the parser counts LFs.
+    std::string unified;
+    if (text.find('\r') != std::string_view::npos) {
+      unified.reserve(text.size());
+      for (std::size_t i = 0; i < text.size(); ++i) {
+        if (text[i] != '\r') unified.push_back(text[i]);
+        else if (i + 1 == text.size() || text[i + 1] != '\n') unified.push_back('\n');
+      }
+      text = unified;
+    }
     Parser parser(text);
     MotionCapture motion = parser.Parse();
     motion.source = source;

@@ -1,5 +1,6 @@
 // Retargeting a BVH motion capture onto a rig through a mapping file (motion_import.h).
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <numbers>
 
@@ -85,6 +86,14 @@ Result<RetargetedMotion> RetargetMotion(const MotionCapture& motion, const Motio
     return Error{"frames: [" + std::to_string(first) + ", " + std::to_string(last) +
                  "] must be first <= last within the capture's frames 0.." +
                  std::to_string(motion.frame_count - 1) + " (" + motion.source + ")"};
+  if (const double duration = double(last - first) * motion.frame_time;
+      !(duration <= kMaxClipDuration)) {
+    char seconds[64];
+    std::snprintf(seconds, sizeof seconds, "%.6g s at its Frame Time of %.6g s", duration,
+                  motion.frame_time);
+    return Error{"frames: [" + std::to_string(first) + ", " + std::to_string(last) + "] of " +
+                 motion.source + " last " + seconds + ", more than a clip may (1e6 s)"};
+  }
 
   // Names to indices.
   const std::size_t part_count = model.parts.size();

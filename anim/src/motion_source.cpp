@@ -1,5 +1,6 @@
 // A scene clip's motion: reading and writing its JSON form, and making the clip it plays.
 #include <algorithm>
+#include <cstdio>
 
 #include <nlohmann/json.hpp>
 
@@ -110,9 +111,9 @@ Result<RawClip> MakeMotionClip(const MotionSource& source, const RawClip& clip,
   RawClip made;
   if (IsBvhFile(file)) {
     Result<MotionCapture> motion = LoadBvh(file);
-    if (!motion) return Error{"file: " + motion.error()};
+    if (!motion) return Error{"/motion/file: " + motion.error()};
     Result<MotionMapping> mapping = LoadMotionMapping(resolve(source.mapping));
-    if (!mapping) return Error{"mapping: " + mapping.error()};
+    if (!mapping) return Error{"/motion/mapping: " + mapping.error()};
     RetargetOptions options;
     options.clip_name = clip.name;
     options.first_frame = source.first_frame.value_or(0);
@@ -121,7 +122,7 @@ Result<RawClip> MakeMotionClip(const MotionSource& source, const RawClip& clip,
         RetargetMotion(motion.value(), mapping.value(), model, options);
     if (!retargeted) {
       const std::string& e = retargeted.error();
-      return Error{(e.starts_with("frames: ") ? "" : "mapping: ") + e};
+      return Error{(e.starts_with("frames: ") ? "/motion/" : "/motion/mapping: ") + e};
     }
     made = std::move(retargeted.value().clip);
   } else {
@@ -138,14 +139,22 @@ Result<RawClip> MakeMotionClip(const MotionSource& source, const RawClip& clip,
       const std::string& e = animation.error();
       const bool about_animation = e.find(": animation index ") != std::string::npos ||
                                    e.find(": no animation named ") != std::string::npos;
-      return Error{(about_animation ? "animation: " : "file: ") + e};
+      return Error{(about_animation ? "/motion/animation: " : "/motion/file: ") + e};
     }
     made = std::move(animation).value();
   }
   made.name = clip.name;
   made.loop = clip.loop;
 
-  // The clip's own tracks: loads and boundaries on top of the motion.
+  // The clip's own tracks: loads and boundaries on top of the motion, first checked alone
+  // against the motion's duration so that an error names the clip's own index.
+  RawClip own_tracks = clip;
+  own_tracks.duration = made.duration;
+  if (std::string e = ValidateRawClip(own_tracks); !e.empty()) {
+    char seconds[48];
+    std::snprintf(seconds, sizeof seconds, "%.6g", made.duration);
+    return Error{": " + e + " (the motion lasts " + seconds + " s)"};
+  }
   for (std::size_t i = 0; i < clip.parts.size(); ++i) {
     const RawPartTracks& own = clip.parts[i];
     const auto it = std::find_if(made.parts.begin(), made.parts.end(),

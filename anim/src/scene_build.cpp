@@ -77,10 +77,7 @@ std::string SetPartsAndClips(const SceneDescription& scene, BuiltScene& out) {
           motion->second, scene.clips[i], scene.folder, out.mesh,
           scene.mesh.procedural.empty() ? Resolve(scene, scene.mesh.file) : std::filesystem::path(),
           scene.mesh.import, out.model);
-      if (!made) {
-        const std::string& e = made.error();
-        return clip_path + (e.starts_with("/") ? "" : "/motion/") + e;
-      }
+      if (!made) return clip_path + made.error();
       raw = std::move(made).value();
     }
     Result<Clip> clip =

@@ -280,6 +280,33 @@ TEST(MotionCapture, ParsesAHandWrittenThreeJointFile) {
   EXPECT_EQ(BvhRestPositions(m)[2], Vec3(20, 0, 0));
 }
 
+TEST(MotionCapture, ReadsLinesEndedByCrLfOrALoneCr) {
+  const std::string lf = kThreeJoints;
+  for (const char* ending : {"\r\n", "\r"}) {
+    std::string text;
+    for (char c : lf) {
+      if (c == '\n')
+        text.append(ending);
+      else
+        text.push_back(c);
+    }
+    Result<MotionCapture> parsed = ParseBvh(text, "three.bvh");
+    ASSERT_TRUE(parsed.ok()) << parsed.error();
+    EXPECT_EQ(parsed.value().frame_count, 2u);
+    EXPECT_EQ(parsed.value().Frame(1)[7], 90.0);
+    EXPECT_EQ(parsed.value().channel_count, 12u);
+  }
+  // A line number in an error counts lone CRs as line ends too.
+  std::string broken = lf;
+  broken.replace(broken.find("OFFSET"), 6, "OFFSTE");
+  const std::size_t line = 1 + std::count(broken.begin(), broken.begin() + broken.find("OFFSTE"), '\n');
+  std::replace(broken.begin(), broken.end(), '\n', '\r');
+  Result<MotionCapture> parsed = ParseBvh(broken, "three.bvh");
+  ASSERT_FALSE(parsed.ok());
+  EXPECT_NE(parsed.error().find("line " + std::to_string(line) + ":"), std::string::npos)
+      << parsed.error();
+}
+
 TEST(MotionRetarget, ThreeJointChainTurnsAsTheDefinitionSays) {
   const fs::path folder = TempFolder();
   const fs::path bvh = WriteFile(folder / "three.bvh", kThreeJoints);
@@ -892,6 +919,13 @@ TEST(MotionScene, ClipTracksMergeWithTheMotion) {
   scene["clips"][0]["parts"] = json::parse(R"([{"part": "bottom", "rotation": [0, 0, 1]}])");
   EXPECT_EQ(samples::SceneError(scene),
             "scene \"chain\": /clips/0/parts/0/rotation: the motion drives this part's rotation");
+  // A track of the clip's own is checked against the motion's duration (0.5 s here) under
+  // the clip's own index, not its place among the motion's tracks.
+  scene["clips"][0]["parts"] = json::parse(R"([{"part": "top", "point_loads": [
+      {"at": 0.5, "magnitude": {"keys": [[0, 0], [2, 10]]}, "direction": [1, 0, 0]}]}])");
+  EXPECT_EQ(samples::SceneError(scene),
+            "scene \"chain\": /clips/0: parts[0].point_loads[0].magnitude.keys[1].time: must "
+            "lie within the clip, [0, duration] (the motion lasts 0.5 s)");
   fs::remove_all(folder);
 }
 
@@ -1041,6 +1075,17 @@ TEST(MotionErrors, MappingsMustNameJointsAndPartsThatExist) {
             "scene \"chain\": /clips/0/motion/frames: [1, 5] must be first <= last within the "
             "capture's frames 0..1 (" +
                 bvh.string() + ")");
+  scene["clips"][0]["motion"]["frames"] = json::array({1, 1});
+  EXPECT_EQ(samples::SceneError(scene), "ok");
+  // A capture longer than a clip may be is its frames' problem, not the mapping's.
+  std::string three_frames = ThreeJointsWith("Frames: 2\nFrame Time: 0.5",
+                                              "Frames: 3\nFrame Time: 600000");
+  three_frames += three_frames.substr(three_frames.rfind('\n', three_frames.size() - 2) + 1);
+  const fs::path slow = WriteFile(folder / "slow.bvh", three_frames);
+  scene = ChainScene(slow, folder / "good.mapping.json");
+  EXPECT_EQ(samples::SceneError(scene),
+            "scene \"chain\": /clips/0/motion/frames: [0, 2] of " + slow.string() +
+                " last 1.2e+06 s at its Frame Time of 600000 s, more than a clip may (1e6 s)");
   scene["clips"][0]["motion"]["frames"] = json::array({1, 1});
   EXPECT_EQ(samples::SceneError(scene), "ok");
   scene = ChainScene(WriteFile(folder / "short.bvh", ThreeJointsWith("0 90 0 45 0 0", "0 90")),

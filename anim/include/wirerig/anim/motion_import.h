@@ -136,8 +136,10 @@ bool IsBvhFile(const std::filesystem::path& file);
 // part's rotation, translation or joint angles that the motion drives are refused). `folder`
 // resolves relative paths; `mesh_file` and `mesh_import` are the scene's mesh, whose import
 // options apply when the motion file is that same file (and whose isolation, if set, imports
-// any motion file Assimp reads in a child process). Errors name the field of the motion
-// object ("file: ...", "mapping: ...", "animation: ...", "frames: ...") or the clip's field.
+// any motion file Assimp reads in a child process). Errors are relative to the clip's path:
+// a field of its motion object ("/motion/file: ...", "/motion/mapping: ...",
+// "/motion/animation: ...", "/motion/frames: ..."), one of its own parts ("/parts/2/...") or a
+// track of its own checked against the motion's duration (": parts[0]....").
 Result<RawClip> MakeMotionClip(const MotionSource& source, const RawClip& clip,
                                const std::filesystem::path& folder, const Mesh& mesh,
                                const std::filesystem::path& mesh_file,
