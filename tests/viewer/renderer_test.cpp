@@ -154,6 +154,25 @@ TEST_F(RendererTest, GroundIsDarkerUnderTheModel) {
   EXPECT_GT(MeanLuminance(flat, int(under.x()), int(under.y()), 3), l_under);
 }
 
+TEST_F(RendererTest, AnEyeBelowTheGroundStillSeesTheModel) {
+  const OwnedMesh capsule = LyingCapsule(0.5f);
+  const RenderMesh mesh = capsule.View();
+  RenderFrame frame;
+  frame.meshes = {&mesh, 1};
+  frame.ground_at_lowest_point = false;
+  frame.ground_height = 0.0f;  // under the capsule, whose centre is at y 0.5
+  Camera camera;
+  camera.pitch = -0.5f;  // looking up from below
+  FrameCamera(camera, ComputeFrameBounds(frame), size_.Aspect(), 1.6f);
+  ASSERT_LT(camera.Eye().y(), 0.0f);
+  const Image image = Render(frame, camera, "capsule_from_below.png");
+  Vec2f centre;
+  ASSERT_TRUE(ProjectToPixel(camera, size_, ComputeFrameBounds(frame).Center(), &centre));
+  const auto c = image.At(int(centre.x()), int(centre.y()));
+  EXPECT_GT(c[0], c[1] + 20) << int(c[0]) << " " << int(c[1]) << " " << int(c[2]);  // orange
+  EXPECT_GT(c[1], c[2]);
+}
+
 TEST_F(RendererTest, DifferentPosesGiveDifferentImages) {
   OwnedMesh capsule = LyingCapsule(0.3f);
   RenderMesh mesh = capsule.View();

@@ -550,8 +550,9 @@ void Renderer::Render(const RenderFrame& frame, const Camera& camera, Size viewp
 
   // Opaque things front to back where it helps llvmpipe's early depth test: the model and arrows
   // first, then the ground (only where the model does not cover it), then the background.
-  // Ground.
-  if (frame.ground) {
+  // Ground: seen from above only (an eye below it, as a follow camera can be, would see its
+  // underside hide the model).
+  if (frame.ground && camera.Eye().y() > ground_y) {
     const GLuint p = m.ground.get();
     glUseProgram(p);
     set_lights(p);
