@@ -77,7 +77,9 @@ struct ThreadPool::State {
   }
 
   void Loop() {
-    std::uint64_t seen = generation.load();
+    // Generation 0 is the pool's creation: a worker that first runs after a Run has already
+    // published generation 1 still joins it.
+    std::uint64_t seen = 0;
     for (;;) {
       SpinUntil([&] { return stop.load() || generation.load() != seen; });
       std::unique_lock<std::mutex> lock(mutex);

@@ -836,45 +836,6 @@ TEST(RigEvaluation, FloatOutputsAreCheckedBeforeAnythingIsWritten) {
   expect_invalid(mixed, "float_normals");
 }
 
-TEST(ThreadPool, RunsEveryTaskOnceAndReturnsAfterAll) {
-  const ThreadPool pool(2);
-  for (std::size_t count : {0u, 1u, 2u, 7u, 1000u}) {
-    std::vector<std::atomic<int>> calls(count);
-    pool.Run(
-        count,
-        [](const void* context, std::size_t k) {
-          (*static_cast<std::vector<std::atomic<int>>*>(const_cast<void*>(context)))[k]++;
-        },
-        &calls);
-    for (std::size_t k = 0; k < count; ++k) EXPECT_EQ(calls[k].load(), 1) << count << " " << k;
-  }
-}
-
-// Back-to-back Runs (a frame's passes) meet workers still spinning after the previous one, or
-// asleep after a pause: each task still runs once, and its writes are seen when Run returns.
-TEST(ThreadPool, BackToBackRunsWithSpinningAndSleepingWorkers) {
-  for (std::size_t threads : {2u, 3u}) {
-    const ThreadPool pool(threads);
-    std::vector<std::size_t> values(64);
-    for (std::size_t round = 0; round < 3000; ++round) {
-      const std::size_t count = 2 + round % 63;
-      struct Context {
-        std::vector<std::size_t>* values;
-        std::size_t round;
-      } context{&values, round};
-      pool.Run(
-          count,
-          [](const void* c, std::size_t k) {
-            const auto* ctx = static_cast<const Context*>(c);
-            (*ctx->values)[k] = ctx->round * 100 + k;
-          },
-          &context);
-      for (std::size_t k = 0; k < count; ++k) ASSERT_EQ(values[k], round * 100 + k) << round;
-      if (round % 1000 == 999) std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
-  }
-}
-
 }  // namespace WIRERIG_TEST_FILE
 }  // namespace
 }  // namespace wirerig
