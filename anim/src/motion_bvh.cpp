@@ -375,8 +375,10 @@ Result<MotionCapture> ParseBvh(std::string_view text, const std::string& source)
     if (text.find('\r') != std::string_view::npos) {
       unified.reserve(text.size());
       for (std::size_t i = 0; i < text.size(); ++i) {
-        if (text[i] != '\r') unified.push_back(text[i]);
-        else if (i + 1 == text.size() || text[i + 1] != '\n') unified.push_back('\n');
+        if (text[i] != '\r')
+          unified.push_back(text[i]);
+        else if (i + 1 == text.size() || text[i + 1] != '\n')
+          unified.push_back('\n');
       }
       text = unified;
     }

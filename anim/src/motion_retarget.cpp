@@ -1,7 +1,7 @@
 // Retargeting a BVH motion capture onto a rig through a mapping file (motion_import.h).
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "motion_floor.h"

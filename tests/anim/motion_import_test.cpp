@@ -299,7 +299,8 @@ TEST(MotionCapture, ReadsLinesEndedByCrLfOrALoneCr) {
   // A line number in an error counts lone CRs as line ends too.
   std::string broken = lf;
   broken.replace(broken.find("OFFSET"), 6, "OFFSTE");
-  const std::size_t line = 1 + std::count(broken.begin(), broken.begin() + broken.find("OFFSTE"), '\n');
+  const std::size_t line =
+      1 + std::count(broken.begin(), broken.begin() + broken.find("OFFSTE"), '\n');
   std::replace(broken.begin(), broken.end(), '\n', '\r');
   Result<MotionCapture> parsed = ParseBvh(broken, "three.bvh");
   ASSERT_FALSE(parsed.ok());
@@ -1078,8 +1079,8 @@ TEST(MotionErrors, MappingsMustNameJointsAndPartsThatExist) {
   scene["clips"][0]["motion"]["frames"] = json::array({1, 1});
   EXPECT_EQ(samples::SceneError(scene), "ok");
   // A capture longer than a clip may be is its frames' problem, not the mapping's.
-  std::string three_frames = ThreeJointsWith("Frames: 2\nFrame Time: 0.5",
-                                              "Frames: 3\nFrame Time: 600000");
+  std::string three_frames =
+      ThreeJointsWith("Frames: 2\nFrame Time: 0.5", "Frames: 3\nFrame Time: 600000");
   three_frames += three_frames.substr(three_frames.rfind('\n', three_frames.size() - 2) + 1);
   const fs::path slow = WriteFile(folder / "slow.bvh", three_frames);
   scene = ChainScene(slow, folder / "good.mapping.json");

@@ -77,13 +77,28 @@ class RendererTest : public ::testing::Test {
   Size size_{640, 400};
 };
 
-TEST_F(RendererTest, CapsuleIsLitWhereItsBoundsProjectAndBackgroundElsewhere) {
-  const OwnedMesh capsule = LyingCapsule(0.5f);
-  const RenderMesh mesh = capsule.View();
+// `mesh` alone over a ground at y = 0.
+RenderFrame OnGround(const RenderMesh& mesh) {
   RenderFrame frame;
   frame.meshes = {&mesh, 1};
   frame.ground_at_lowest_point = false;
   frame.ground_height = 0.0f;
+  return frame;
+}
+
+// The model's colour (orange: red over green over blue) where `point` projects.
+void ExpectOrangeAt(const Image& image, const Camera& camera, Size size, const Vec3f& point) {
+  Vec2f pixel;
+  ASSERT_TRUE(ProjectToPixel(camera, size, point, &pixel));
+  const auto c = image.At(int(pixel.x()), int(pixel.y()));
+  EXPECT_GT(c[0], c[1] + 20) << int(c[0]) << " " << int(c[1]) << " " << int(c[2]);
+  EXPECT_GT(c[1], c[2]);
+}
+
+TEST_F(RendererTest, CapsuleIsLitWhereItsBoundsProjectAndBackgroundElsewhere) {
+  const OwnedMesh capsule = LyingCapsule(0.5f);
+  const RenderMesh mesh = capsule.View();
+  const RenderFrame frame = OnGround(mesh);
   Camera camera;
   FrameCamera(camera, ComputeFrameBounds(frame), size_.Aspect(), 1.6f);
   const Image image = Render(frame, camera, "capsule.png");
@@ -99,14 +114,11 @@ TEST_F(RendererTest, CapsuleIsLitWhereItsBoundsProjectAndBackgroundElsewhere) {
   }
   EXPECT_GT(hi - lo, 60.0f);
 
-  // The model's colour (orange: red over green over blue) at the projected centre of its box,
-  // and lit (not black).
+  // The model's colour at the projected centre of its box, and lit (not black).
+  ExpectOrangeAt(image, camera, size_, ComputeFrameBounds(frame).Center());
   Vec2f centre;
   ASSERT_TRUE(ProjectToPixel(camera, size_, ComputeFrameBounds(frame).Center(), &centre));
-  const auto c = image.At(int(centre.x()), int(centre.y()));
-  EXPECT_GT(c[0], c[1] + 20) << int(c[0]) << " " << int(c[1]) << " " << int(c[2]);
-  EXPECT_GT(c[1], c[2]);
-  EXPECT_GT(Luminance(c), 60.0f);
+  EXPECT_GT(Luminance(image.At(int(centre.x()), int(centre.y()))), 60.0f);
 
   // Outside the projected box, above the model: the background gradient (bluish grey).
   Vec2f lo_px, hi_px;
@@ -131,10 +143,7 @@ TEST_F(RendererTest, CapsuleIsLitWhereItsBoundsProjectAndBackgroundElsewhere) {
 TEST_F(RendererTest, GroundIsDarkerUnderTheModel) {
   const OwnedMesh capsule = LyingCapsule(0.45f);
   const RenderMesh mesh = capsule.View();
-  RenderFrame frame;
-  frame.meshes = {&mesh, 1};
-  frame.ground_at_lowest_point = false;
-  frame.ground_height = 0.0f;
+  const RenderFrame frame = OnGround(mesh);
   Camera camera;
   camera.pitch = 0.6f;
   const FrameBounds bounds = ComputeFrameBounds(frame);
@@ -155,22 +164,15 @@ TEST_F(RendererTest, GroundIsDarkerUnderTheModel) {
 }
 
 TEST_F(RendererTest, AnEyeBelowTheGroundStillSeesTheModel) {
-  const OwnedMesh capsule = LyingCapsule(0.5f);
+  const OwnedMesh capsule = LyingCapsule(0.5f);  // above the ground: its centre is at y 0.5
   const RenderMesh mesh = capsule.View();
-  RenderFrame frame;
-  frame.meshes = {&mesh, 1};
-  frame.ground_at_lowest_point = false;
-  frame.ground_height = 0.0f;  // under the capsule, whose centre is at y 0.5
+  const RenderFrame frame = OnGround(mesh);
   Camera camera;
   camera.pitch = -0.5f;  // looking up from below
   FrameCamera(camera, ComputeFrameBounds(frame), size_.Aspect(), 1.6f);
   ASSERT_LT(camera.Eye().y(), 0.0f);
   const Image image = Render(frame, camera, "capsule_from_below.png");
-  Vec2f centre;
-  ASSERT_TRUE(ProjectToPixel(camera, size_, ComputeFrameBounds(frame).Center(), &centre));
-  const auto c = image.At(int(centre.x()), int(centre.y()));
-  EXPECT_GT(c[0], c[1] + 20) << int(c[0]) << " " << int(c[1]) << " " << int(c[2]);  // orange
-  EXPECT_GT(c[1], c[2]);
+  ExpectOrangeAt(image, camera, size_, ComputeFrameBounds(frame).Center());
 }
 
 TEST_F(RendererTest, DifferentPosesGiveDifferentImages) {
